@@ -1,0 +1,73 @@
+#include "gridtopo/core/output_set.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace gridtopo {
+namespace {
+std::atomic<unsigned> g_counter{0};
+
+// Everything after the first '.' of the file name that is not at its start, e.g. ".gridmap.gz".
+std::string extensionsOf(const std::string& name) {
+  const auto pos = name.find('.', 1);
+  return pos == std::string::npos ? std::string() : name.substr(pos);
+}
+}  // namespace
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  for (const auto& t : temps_) {
+    std::error_code ec;
+    fs::remove(t, ec);
+  }
+}
+
+std::string OutputSet::add(const std::string& final_path) {
+  const fs::path p(final_path);
+  if (p.has_parent_path()) fs::create_directories(p.parent_path());
+  const std::string name = p.filename().string();
+  const std::string tmp_name = "." + name + ".tmp-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(g_counter++) + extensionsOf(name);
+  const std::string tmp = (p.parent_path() / tmp_name).string();
+  finals_.push_back(final_path);
+  temps_.push_back(tmp);
+  return tmp;
+}
+
+void OutputSet::write(const std::string& final_path, const std::function<void(const std::string&)>& writer) {
+  writer(add(final_path));
+}
+
+void OutputSet::commit() {
+  for (std::size_t i = 0; i < temps_.size(); ++i) {
+    if (!fs::exists(temps_[i]))
+      throw std::runtime_error("output " + finals_[i] + " was not written (temporary file missing)");
+  }
+  for (std::size_t i = 0; i < temps_.size(); ++i) fs::rename(temps_[i], finals_[i]);
+  committed_ = true;
+}
+
+void writeFileAtomically(const std::string& path, const std::function<void(const std::string&)>& writer) {
+  OutputSet set;
+  set.write(path, writer);
+  set.commit();
+}
+
+void writeTextFileAtomically(const std::string& path, const std::string& content) {
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot open " + tmp + " for writing");
+    f << content;
+    f.flush();
+    if (!f) throw std::runtime_error("error writing " + path);
+  });
+}
+
+}  // namespace gridtopo

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs gridtopo's build and test dependencies from Debian 12 packages, only those that are missing.
+# Idempotent; runs apt-get as root (or through sudo). Never installs the libmrpt-dev metapackage (ROS 1).
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libmrpt-slam-dev libmrpt-gui-dev libwxgtk3.2-dev libopencv-dev libeigen3-dev
+  libtclap-dev zlib1g-dev
+  googletest libgtest-dev
+  xvfb xauth libgl1-mesa-dri libglx-mesa0
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/core/progress.h"
+
+namespace fs = std::filesystem;
+using namespace gridtopo;
+
+namespace {
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("gridtopo_core_test_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+}  // namespace
+
+TEST(InputError, NamesFileLineAndField) {
+  const InputError e("log.clf", 12, "FLASER range 3", "not a number");
+  EXPECT_STREQ(e.what(), "log.clf:12: FLASER range 3: not a number");
+  EXPECT_EQ(e.line(), 12u);
+  EXPECT_EQ(e.field(), "FLASER range 3");
+  EXPECT_STREQ(InputError("x.ini", "missing").what(), "x.ini: missing");
+}
+
+TEST(OutputSet, CommitsAllOrNothing) {
+  const auto dir = freshDir("commit");
+  {
+    OutputSet set;
+    set.write((dir / "a.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "A"; });
+    const std::string tmp_b = set.add((dir / "sub/b.gridmap.gz").string());
+    EXPECT_NE(tmp_b.find(".gridmap.gz"), std::string::npos);  // writers choosing by extension still work
+    std::ofstream(tmp_b) << "B";
+    EXPECT_FALSE(fs::exists(dir / "a.txt"));
+    set.commit();
+  }
+  EXPECT_EQ(slurp(dir / "a.txt"), "A");
+  EXPECT_EQ(slurp(dir / "sub/b.gridmap.gz"), "B");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);  // no temporaries left
+}
+
+TEST(OutputSet, FailedRunLeavesNothing) {
+  const auto dir = freshDir("fail");
+  try {
+    OutputSet set;
+    set.write((dir / "a.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "A"; });
+    set.write((dir / "b.txt").string(), [](const std::string&) { throw std::runtime_error("boom"); });
+    set.commit();
+    FAIL() << "expected an exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "boom");
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(OutputSet, MissingTemporaryIsAnError) {
+  const auto dir = freshDir("missing");
+  OutputSet set;
+  set.add((dir / "never.txt").string());
+  EXPECT_THROW(set.commit(), std::runtime_error);
+}
+
+TEST(ProgressBar, RendersRateAndEta) {
+  ProgressBar bar(200, "slam", "scans", 0);
+  EXPECT_FALSE(bar.enabled());
+  const std::string line = bar.render(50, 10.0, "Neff 12.5");
+  EXPECT_NE(line.find(" 25%"), std::string::npos) << line;
+  EXPECT_NE(line.find("50/200"), std::string::npos) << line;
+  EXPECT_NE(line.find("5.0 scans/s"), std::string::npos) << line;
+  EXPECT_NE(line.find("ETA 00:30"), std::string::npos) << line;
+  EXPECT_NE(line.find("Neff 12.5"), std::string::npos) << line;
+  EXPECT_EQ(formatDuration(3725), "1:02:05");
+}
