@@ -37,3 +37,13 @@ function(gridtopo_test name)
   endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 120 PROPERTIES LABELS "${A_LABELS}")
 endfunction()
+
+# gridtopo_tests_in_dir(DEPS ... [LABELS ...]): one test binary per *_test.cpp file of the current directory.
+function(gridtopo_tests_in_dir)
+  cmake_parse_arguments(A "" "" "DEPS;LABELS" ${ARGN})
+  file(GLOB _srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp)
+  foreach(src ${_srcs})
+    get_filename_component(_name ${src} NAME_WE)
+    gridtopo_test(${_name} SOURCES ${src} DEPS ${A_DEPS} LABELS ${A_LABELS})
+  endforeach()
+endfunction()

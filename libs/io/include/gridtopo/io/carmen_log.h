@@ -1,0 +1,39 @@
+#pragma once
+// Reader for CARMEN logs (plain or gzip): FLASER, RLASER, ROBOTLASER1, ODOM, PARAM and comment lines.
+// Written for gridtopo because MRPT's built-in reader gets the aperture of 180-beam scans wrong, ignores ODOM
+// lines and drops the real timestamps.
+#include <cstddef>
+#include <istream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gridtopo/io/scan_record.h"
+
+namespace gridtopo::io {
+
+struct CarmenReadOptions {
+  /// false: the first malformed line throws gridtopo::InputError (file, line, field).
+  /// true: malformed lines are skipped, counted and reported in CarmenLog::skipped.
+  bool skip_bad_lines = false;
+  bool read_rear_laser = false;  ///< also return RLASER scans (rear laser) in CarmenLog::scans
+};
+
+struct CarmenLog {
+  std::string path;
+  /// Front-laser scans (FLASER, ROBOTLASER1; RLASER if asked) in file order. `odometry` of each record is the
+  /// robot odometry pose inside the laser line, `scan.sensor_pose` the laser's mounting pose on the robot.
+  std::vector<ScanRecord> scans;
+  std::vector<OdometryReading> odometry;          ///< ODOM lines in file order
+  std::map<std::string, std::string> params;      ///< PARAM name -> value (last one wins)
+  std::size_t lines = 0;                          ///< lines read
+  std::size_t skipped_lines = 0;                  ///< malformed lines skipped (skip_bad_lines)
+  std::vector<std::string> skipped;               ///< messages of the first skipped lines
+};
+
+/// Reads a CARMEN log; ".gz" files (or gzip magic) are decompressed on the fly.
+CarmenLog readCarmenLog(const std::string& path, const CarmenReadOptions& options = {});
+/// Parses CARMEN text from a stream; `name` is used in error messages.
+CarmenLog parseCarmenLog(std::istream& in, const std::string& name, const CarmenReadOptions& options = {});
+
+}  // namespace gridtopo::io

@@ -1,0 +1,32 @@
+#pragma once
+// Occupancy grid maps in and out: PNG, ROS map_server PGM + YAML, MRPT .gridmap(.gz), and .simplemap.
+// The exchange type is MRPT's COccupancyGridMap2D, so any MRPT program can use what gridtopo reads or builds.
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/maps/CSimpleMap.h>
+
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace gridtopo::io {
+
+struct MapReadOptions {
+  double resolution = 0.05;  ///< metres per pixel, for plain images without a YAML file
+  double origin_x = 0.0;     ///< world x of the image's lower-left corner, for plain images
+  double origin_y = 0.0;     ///< world y of the image's lower-left corner, for plain images
+};
+
+/// Reads .png/.pgm/.jpg (with a ROS .yaml beside it if there is one), a ROS .yaml, or .gridmap / .gridmap.gz.
+mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options = {});
+
+/// Grey image of a grid (CV_8UC1, 255 = free, 0 = occupied, value = round(255 * p_free)); row 0 is the
+/// map's top (largest y), so it has the size and orientation of the image the map was read from.
+cv::Mat gridToImage(const mrpt::maps::COccupancyGridMap2D& grid);
+
+// Writers; each writes atomically (temporary file + rename).
+void writeMapPng(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path);
+/// Writes `<stem>.pgm` and `<stem>.yaml` (map_server: resolution, origin, negate, occupied/free thresholds).
+void writeRosMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& stem);
+void writeGridmapGz(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path);
+void writeSimplemap(const mrpt::maps::CSimpleMap& map, const std::string& path);
+
+}  // namespace gridtopo::io
