@@ -28,7 +28,12 @@ bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-mrpt::poses::CPose2D toCPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
+// Keeps phi bit-exact (the CPose2D constructor wraps it through +/- pi arithmetic).
+mrpt::poses::CPose2D toCPose(const mrpt::math::TPose2D& p) {
+  mrpt::poses::CPose2D c(p.x, p.y, 0.0);
+  c.phi(p.phi);
+  return c;
+}
 mrpt::math::TPose2D toTPose(const mrpt::poses::CPose2D& p) { return {p.x(), p.y(), p.phi()}; }
 
 // Linear interpolation of two poses (shortest way round for the angle); f in [0, 1].
@@ -122,6 +127,11 @@ RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanReco
     out.reset();  // flush and close before the rename
   });
   return stats;
+}
+
+RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanRecord>& records) {
+  static const RawlogWriteOptions defaults;
+  return writeRawlog(path, records, defaults);
 }
 
 RawlogContents readRawlog(const std::string& path) {

@@ -53,7 +53,9 @@ struct RawlogWriteStats {
 /// odometry seen. The first scan's increment is zero. Throws std::invalid_argument on a record MRPT cannot
 /// hold (see toMrptScan) and std::runtime_error on I/O errors.
 RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanRecord>& records,
-                             const RawlogWriteOptions& options = {});
+                             const RawlogWriteOptions& options);
+/// The same with default options (action / sensory-frame layout, Gaussian motion model).
+RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanRecord>& records);
 
 struct RawlogContents {
   std::string path;
