@@ -77,6 +77,10 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> md_arg("", "markdown", "write a Markdown table here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images per map here", false, "",
                                           "dir", cmd);
+    TCLAP::ValueArg<std::string> order_arg("", "fold-order",
+                                           "decision-list order for the leave-one-map-out folds: auto (validation "
+                                           "inside each fold, slow) or e.g. doorway,room,corridor; default: the "
+                                           "training INI's order", false, "", "order", cmd);
     TCLAP::SwitchArg no_seg("", "no-segmentation", "skip the room-segmentation benchmark", cmd);
     cmd.parse(argc, argv);
 
@@ -97,6 +101,7 @@ int main(int argc, char** argv) {
       feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
       feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
     }
+    if (!order_arg.getValue().empty()) train.order = order_arg.getValue();
     scan.threads = topo.threads;
     std::optional<places::PlacesModel> fixed_model;
     if (!model_arg.getValue().empty()) {

@@ -19,6 +19,7 @@ void BoostOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, co
   boost_type = s.read_string(sec, "boost_type", boost_type);
   max_samples_per_class = s.read_int(sec, "max_samples_per_class", max_samples_per_class);
   seed = static_cast<unsigned>(s.read_int(sec, "seed", static_cast<int>(seed)));
+  weight_trim_rate = s.read_double(sec, "weight_trim_rate", weight_trim_rate);
   validate("[" + sec + "]");
 }
 
@@ -26,13 +27,16 @@ void BoostOptions::dumpToTextStream(std::ostream& out) const {
   out << "weak_count            = " << weak_count << "\n"
       << "boost_type            = " << boost_type << "\n"
       << "max_samples_per_class = " << max_samples_per_class << "\n"
-      << "seed                  = " << seed << "\n";
+      << "seed                  = " << seed << "\n"
+      << "weight_trim_rate      = " << weight_trim_rate << "\n";
 }
 
 void BoostOptions::validate(const std::string& where) const {
   if (weak_count < 1 || weak_count > 10000) throw InputError(where, 0, "weak_count", "must be in [1, 10000]");
   if (boost_type != "real" && boost_type != "discrete" && boost_type != "gentle" && boost_type != "logit")
     throw InputError(where, 0, "boost_type", "must be real, discrete, gentle or logit");
+  if (!(weight_trim_rate >= 0 && weight_trim_rate <= 1))
+    throw InputError(where, 0, "weight_trim_rate", "must be in [0, 1]");
   if (max_samples_per_class < 10) throw InputError(where, 0, "max_samples_per_class", "must be >= 10");
 }
 
@@ -67,7 +71,7 @@ BoostedClassifier trainBoostedClassifier(const cv::Mat& features, const std::vec
   boost->setBoostType(type);
   boost->setWeakCount(options.weak_count);
   boost->setMaxDepth(1);
-  boost->setWeightTrimRate(0.0);
+  boost->setWeightTrimRate(options.weight_trim_rate);
   boost->setUseSurrogates(false);
   boost->setCVFolds(0);
   boost->setMinSampleCount(2);

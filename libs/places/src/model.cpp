@@ -1,5 +1,6 @@
 #include "gridtopo/places/model.h"
 
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -31,6 +32,7 @@ cv::Mat PlacesModel::classify(const cv::Mat& features, int threads) const {
 
 namespace {
 void writeClassifier(cv::FileStorage& fs, const std::string& name, const BoostedClassifier& c) {
+  fs << name + "_bias" << c.bias;
   fs << name << "[";
   for (const auto& s : c.stumps)
     fs << "{" << "feature" << s.feature << "threshold" << s.threshold << "left" << s.left << "right" << s.right << "}";
@@ -51,6 +53,9 @@ BoostedClassifier readClassifier(const cv::FileNode& n, std::size_t nfeat, const
     c.stumps.push_back(st);
   }
   if (c.stumps.empty()) throw InputError(path, 0, name, "classifier has no stumps");
+  for (const Stump& s : c.stumps)
+    if (!std::isfinite(s.threshold) || !std::isfinite(s.left) || !std::isfinite(s.right))
+      throw InputError(path, 0, name, "non-finite stump value");
   return c;
 }
 }  // namespace
@@ -125,6 +130,10 @@ PlacesModel PlacesModel::load(const std::string& path) {
     }
   m.first = readClassifier(fs["first"], m.feature_names.size(), path, "first");
   m.second = readClassifier(fs["second"], m.feature_names.size(), path, "second");
+  m.first.bias = static_cast<double>(fs["first_bias"]);
+  m.second.bias = static_cast<double>(fs["second_bias"]);
+  if (!std::isfinite(m.first.bias) || !std::isfinite(m.second.bias))
+    throw InputError(path, 0, "bias", "must be finite");
   m.notes = static_cast<std::string>(fs["notes"]);
   return m;
 }

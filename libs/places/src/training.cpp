@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
@@ -72,11 +73,14 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
 void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
   boost.loadFromConfigFile(s, sec);
   order = s.read_string(sec, "order", order);
+  prior_weight = s.read_double(sec, "prior_weight", prior_weight);
+  if (!(prior_weight >= 0 && prior_weight <= 2)) throw InputError("[" + sec + "]", 0, "prior_weight", "must be in [0, 2]");
 }
 
 void TrainingOptions::dumpToTextStream(std::ostream& out) const {
   boost.dumpToTextStream(out);
-  out << "order                 = " << order << "\n";
+  out << "order                 = " << order << "\n"
+      << "prior_weight          = " << prior_weight << "\n";
 }
 
 std::string orderName(const std::array<int, kNumLabels>& o) {
@@ -112,6 +116,19 @@ Pool pool(const std::vector<const MapSamples*>& maps, int per_class, unsigned se
     p.labels.push_back(chosen[i].first->labels[static_cast<std::size_t>(chosen[i].second)]);
   }
   return p;
+}
+
+// w/2 ln(N+ / N-) over all labelled samples of `maps` (positive = label `positive`, negative = `negative`
+// or, if negative < 0, every other label).
+double priorBias(const std::vector<const MapSamples*>& maps, int positive, int negative, double w) {
+  double np = 0, nn = 0;
+  for (const MapSamples* m : maps)
+    for (int l : m->labels) {
+      if (l < 0) continue;
+      if (l == positive) np += 1;
+      else if (negative < 0 || l == negative) nn += 1;
+    }
+  return np > 0 && nn > 0 ? 0.5 * w * std::log(np / nn) : 0.0;
 }
 
 BoostedClassifier trainBinary(const Pool& p, int positive, int negative, const BoostOptions& o) {
@@ -183,6 +200,8 @@ PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSim
       trial.order = {a, b, c};
       trial.first = one_vs_rest[a];
       trial.second = pair[b][c];
+      trial.first.bias = priorBias(train, a, -1, options.prior_weight);
+      trial.second.bias = priorBias(train, b, c, options.prior_weight);
       double conf[kNumLabels][kNumLabels] = {};
       for (const MapSamples* m : val)
         for (std::size_t i = 0; i < m->labels.size(); ++i) {
@@ -213,6 +232,8 @@ PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSim
   if (log) log("training final decision list " + orderName(order) + " on all maps");
   model.first = trainBinary(all, order[0], -1, options.boost);
   model.second = trainBinary(all, order[1], order[2], options.boost);
+  model.first.bias = priorBias(maps, order[0], -1, options.prior_weight);
+  model.second.bias = priorBias(maps, order[1], order[2], options.prior_weight);
   return model;
 }
 

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "gridtopo/core/error.h"
@@ -13,6 +14,7 @@ namespace gridtopo::topology {
 
 void CorrectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
   enabled = s.read_bool(sec, "enabled", enabled);
+  min_place_area = s.read_double(sec, "min_place_area", min_place_area);
   min_room_area = s.read_double(sec, "min_room_area", min_room_area);
   min_corridor_area = s.read_double(sec, "min_corridor_area", min_corridor_area);
   min_doorway_area = s.read_double(sec, "min_doorway_area", min_doorway_area);
@@ -24,6 +26,7 @@ void CorrectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
 
 void CorrectionOptions::dumpToTextStream(std::ostream& out) const {
   out << "enabled                = " << enabled << "\n"
+      << "min_place_area         = " << min_place_area << "   // m^2\n"
       << "min_room_area          = " << min_room_area << "   // m^2\n"
       << "min_corridor_area      = " << min_corridor_area << "   // m^2\n"
       << "min_doorway_area       = " << min_doorway_area << "   // m^2\n"
@@ -34,7 +37,7 @@ void CorrectionOptions::dumpToTextStream(std::ostream& out) const {
 
 void CorrectionOptions::validate(const std::string& where) const {
   for (auto [v, n] : {std::pair{min_room_area, "min_room_area"}, {min_corridor_area, "min_corridor_area"},
-                      {min_doorway_area, "min_doorway_area"}, {max_doorway_area, "max_doorway_area"}})
+                      {min_doorway_area, "min_doorway_area"}, {min_place_area, "min_place_area"}, {max_doorway_area, "max_doorway_area"}})
     if (!std::isfinite(v) || v < 0) throw InputError(where, 0, n, "must be a finite area >= 0 (m^2)");
   if (max_passes < 0 || max_passes > 1000) throw InputError(where, 0, "max_passes", "must be in [0, 1000]");
 }
@@ -59,6 +62,19 @@ cv::Mat correctRegions(const cv::Mat& labels_in, double resolution, const Correc
   if (!o.enabled) {
     if (stats) *stats = st;
     return labels;
+  }
+  // R0
+  {
+    cv::Mat cc, stats, cents;
+    const int n = cv::connectedComponentsWithStats(labels < places::kNumLabels, cc, stats, cents, 8, CV_32S);
+    const double cell = resolution * resolution;
+    for (int k = 1; k < n; ++k)
+      if (stats.at<int>(k, cv::CC_STAT_AREA) * cell < o.min_place_area) ++st.patches_removed;
+    for (int y = 0; y < labels.rows; ++y)
+      for (int x = 0; x < labels.cols; ++x) {
+        const int k = cc.at<int>(y, x);
+        if (k > 0 && stats.at<int>(k, cv::CC_STAT_AREA) * cell < o.min_place_area) labels.at<unsigned char>(y, x) = 255;
+      }
   }
   const double min_area[3] = {o.min_room_area, o.min_corridor_area, o.min_doorway_area};
   for (int pass = 0; pass < o.max_passes; ++pass) {

@@ -20,8 +20,11 @@ struct Stump {
 
 struct BoostedClassifier {
   std::vector<Stump> stumps;
+  /// Prior correction added to H: training is class-balanced, so bias = w/2 ln(N+ / N-) restores the class
+  /// frequencies of the labelled maps (w = TrainingOptions::prior_weight).
+  double bias = 0;
   double score(const float* f) const {
-    double h = 0;
+    double h = bias;
     for (const Stump& s : stumps) h += f[s.feature] <= s.threshold ? s.left : s.right;
     return h;
   }
@@ -34,6 +37,7 @@ struct BoostOptions : public mrpt::config::CLoadableOptions {
   std::string boost_type = "real";   ///< real | discrete | gentle | logit (OpenCV Boost::Types)
   int max_samples_per_class = 15000; ///< class balancing: at most this many training samples per place class
   unsigned seed = 1;                 ///< subsampling seed
+  double weight_trim_rate = 0.95;    ///< OpenCV weight trimming (speed); 0 = use every sample in every round
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;

@@ -1,5 +1,7 @@
 #pragma once
 // Heuristic region correction after Mozos et al. Rules, applied in this order, each pass until nothing changes:
+//  R0 small free patches: a connected patch of labelled cells (any labels, 8-connected) smaller than
+//     min_place_area is not a place (isolated specks and one-cell free lines of scanned maps); it loses its label.
 //  R1 small regions: a room / corridor / doorway region smaller than its minimum area takes the label of the
 //     neighbouring region it shares the longest border with (isolated small regions are kept).
 //  R2 doorways separate: a doorway region that touches fewer than two non-doorway regions (so joins nothing)
@@ -14,6 +16,7 @@ namespace gridtopo::topology {
 
 struct CorrectionOptions : public mrpt::config::CLoadableOptions {
   bool enabled = true;
+  double min_place_area = 0.5;      ///< m^2 (R0)
   double min_room_area = 1.0;       ///< m^2 (R1)
   double min_corridor_area = 1.0;   ///< m^2 (R1)
   double min_doorway_area = 0.1;    ///< m^2 (R1)
@@ -27,7 +30,7 @@ struct CorrectionOptions : public mrpt::config::CLoadableOptions {
 };
 
 struct CorrectionStats {
-  int small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, passes = 0;
+  int patches_removed = 0, small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, passes = 0;
 };
 
 /// Corrected copy of `labels` (CV_8U, 0..2 place labels, other values = no label).
