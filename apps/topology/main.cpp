@@ -47,7 +47,11 @@ int main(int argc, char** argv) {
     topology::TopologyOptions opt;
     if (!ini.getValue().empty()) {
       if (!fs::is_regular_file(ini.getValue())) throw InputError(ini.getValue(), "INI file not found");
-      opt.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
+      try {
+        opt.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
+      } catch (const InputError& e) {
+        throw InputError(ini.getValue(), 0, e.file() + " " + e.field(), e.message());
+      }
     }
     if (res.isSet()) {
       if (!(res.getValue() > 0)) throw InputError("--resolution", "must be > 0");
