@@ -23,6 +23,15 @@ fs::path tmpDir() {
   return d;
 }
 
+// Removes this process's temporary directory when the tests are done.
+struct RemoveTmpDir : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(tmpDir(), ec);
+  }
+};
+const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
+
 double maxEndpointError(const LaserScan& a, const LaserScan& b) {
   double worst = 0;
   for (std::size_t k = 0; k < a.size(); ++k) {

@@ -29,6 +29,15 @@ fs::path tmpDir() {
   return d;
 }
 
+// Removes this process's temporary directory when the tests are done.
+struct RemoveTmpDir : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(tmpDir(), ec);
+  }
+};
+const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
+
 std::string readText(const fs::path& p) {
   std::ifstream f(p);
   std::stringstream ss;
