@@ -56,7 +56,8 @@ Summary summarize(const std::vector<io::ScanRecord>& scans) {
   return s;
 }
 
-void printSummary(std::ostream& os, const std::string& input, const io::ScanLogInfo& info, const Summary& s) {
+void printSummary(std::ostream& os, const std::string& input, const io::ScanLogInfo& info, const Summary& s,
+                  const io::LaserScan& first) {
   os << "input:              " << input << " (" << io::logFormatName(info.format)
      << (info.format == io::LogFormat::Rawlog ? (info.rawlog_has_actions ? ", action/sensory-frame layout"
                                                                           : ", observation-only layout")
@@ -69,6 +70,17 @@ void printSummary(std::ostream& os, const std::string& input, const io::ScanLogI
   if (info.odometry_fallbacks)
     os << "odometry fallbacks: " << info.odometry_fallbacks << " scans outside the ODOM time range kept the "
        << "laser-line odometry\n";
+  if (s.scans) {
+    const io::LaserScan& f = first;
+    const double deg = 180.0 / M_PI;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "first scan:         %zu beams, %.4g .. %.4g deg (step %.4g deg), max range %.4g m, laser at "
+                  "(%.4g m, %.4g m, %.4g deg)\n",
+                  f.size(), f.start_angle * deg, f.beamAngle(f.size() ? f.size() - 1 : 0) * deg,
+                  f.angle_increment * deg, f.max_range, f.sensor_pose.x, f.sensor_pose.y, f.sensor_pose.phi * deg);
+    os << buf;
+  }
   os << "beams per scan:    ";
   for (const auto& [n, count] : s.beams_per_scan) os << ' ' << n << " x " << count;
   os << "\n";
@@ -154,7 +166,7 @@ int main(int argc, char** argv) {
     const bool quiet = quiet_arg.getValue();
     io::ScanLogInfo info;
     const auto scans = io::readScanLog(in_arg.getValue(), ropt, info);
-    if (!quiet) printSummary(std::cout, in_arg.getValue(), info, summarize(scans));
+    if (!quiet) printSummary(std::cout, in_arg.getValue(), info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
 
     if (!out_arg.getValue().empty()) {
       if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");

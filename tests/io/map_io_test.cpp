@@ -307,3 +307,25 @@ TEST(MapIo, WriteGridMapPicksTheFormatAndFailsCleanly) {
   std::ofstream(d / "not_an_image.png") << "hello";
   EXPECT_THROW(readGridMap((d / "not_an_image.png").string()), gridtopo::InputError);
 }
+
+TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
+  // MRPT's own loader (COccupancyGridMap2D deserialiser -> setSize()) moves an origin that is not a whole
+  // number of cells by up to half a cell; readGridMap gives the stored origin back.
+  const fs::path png = tmpDir() / "snap_src.png";
+  writeMapPng(*sampleGrid(0.0f, 0.0f), png.string());
+  const auto g = readGridMap(png.string(), MapReadOptions{0.05, -51.225, -12.375});
+  ASSERT_EQ(g->getXMin(), -51.225f);
+  const fs::path p = tmpDir() / "snap.gridmap.gz";
+  writeGridmapGz(*g, p.string());
+  const auto back = readGridMap(p.string());
+  EXPECT_EQ(back->getXMin(), -51.225f);
+  EXPECT_EQ(back->getYMin(), -12.375f);
+  EXPECT_EQ(back->getSizeX(), 40u);
+  EXPECT_EQ(back->getSizeY(), 30u);
+  expectSameCells(*g, *back);
+  mrpt::io::CFileGZInputStream in(p.string());
+  COccupancyGridMap2D m;
+  mrpt::serialization::archiveFrom(in) >> m;
+  EXPECT_NEAR(m.getXMin(), -51.2f, 1e-5);  // MRPT itself: half a cell off
+  EXPECT_NEAR(m.getYMin(), -12.4f, 1e-5);
+}

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -187,6 +188,39 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, const std::str
   return g;
 }
 
+// MRPT's deserialiser passes the stored limits through setSize(), which moves an origin that is not a whole
+// number of cells by up to half a cell. The stored limits follow the object header as
+// [uint8 bits per cell][uint32 size_x][uint32 size_y][float x_min, x_max, y_min, y_max, resolution]
+// (little endian, COccupancyGridMap2D serialisation version 6): find that record in the first bytes of the
+// file and, if it matches the loaded grid, give the grid its exact stored origin back.
+void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
+  mrpt::io::CFileGZInputStream in;
+  if (!in.open(path)) return;
+  std::array<uint8_t, 256> head{};
+  const std::size_t n = in.Read(head.data(), head.size());
+  auto u32 = [&](std::size_t i) {
+    return static_cast<uint32_t>(head[i]) | static_cast<uint32_t>(head[i + 1]) << 8 |
+           static_cast<uint32_t>(head[i + 2]) << 16 | static_cast<uint32_t>(head[i + 3]) << 24;
+  };
+  auto f32 = [&](std::size_t i) {
+    const uint32_t bits = u32(i);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  };
+  for (std::size_t i = 0; i + 29 <= n; ++i) {
+    if ((head[i] != 8 && head[i] != 16) || u32(i + 1) != g.getSizeX() || u32(i + 5) != g.getSizeY()) continue;
+    const float x_min = f32(i + 9), x_max = f32(i + 13), y_min = f32(i + 17), y_max = f32(i + 21), res = f32(i + 25);
+    const float tol = 0.5f * res + 1e-4f;
+    if (res != g.getResolution() || !(std::abs(x_min - g.getXMin()) <= tol) ||
+        !(std::abs(y_min - g.getYMin()) <= tol) || !(std::abs(x_max - g.getXMax()) <= tol) ||
+        !(std::abs(y_max - g.getYMax()) <= tol))
+      continue;
+    GridLimits::set(g, x_min, y_min);
+    return;
+  }
+}
+
 COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
   mrpt::io::CFileGZInputStream in;
   if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
@@ -202,6 +236,7 @@ COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
   if (!g)
     throw InputError(path, 0, "", std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
                                       ", not an mrpt::maps::COccupancyGridMap2D");
+  restoreExactLimits(path, *g);
   return g;
 }
 
