@@ -12,7 +12,9 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/log_reader.h"
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/simulated_log.h"
 #include "gridtopo/io/trajectory_io.h"
 
 using namespace gridtopo;
@@ -58,15 +60,18 @@ Summary summarize(const std::vector<io::ScanRecord>& scans) {
 
 void printSummary(std::ostream& os, const std::string& input, const io::ScanLogInfo& info, const Summary& s,
                   const io::LaserScan& first) {
-  os << "input:              " << input << " (" << io::logFormatName(info.format)
+  os << "input:              " << input;
+  if (info.format != io::LogFormat::Simulated) os << " (" << io::logFormatName(info.format)
      << (info.format == io::LogFormat::Rawlog ? (info.rawlog_has_actions ? ", action/sensory-frame layout"
                                                                           : ", observation-only layout")
                                               : "")
-     << ")\n";
+       << ")";
+  os << "\n";
   os << "scans:              " << s.scans << "\n";
   os << "with odometry:      " << s.with_odometry << "\n";
-  os << "odometry messages:  " << info.odometry_messages
-     << (info.format == io::LogFormat::Carmen ? " (ODOM lines)" : " (CObservationOdometry)") << "\n";
+  if (info.format != io::LogFormat::Simulated)
+    os << "odometry messages:  " << info.odometry_messages
+       << (info.format == io::LogFormat::Carmen ? " (ODOM lines)" : " (CObservationOdometry)") << "\n";
   if (info.odometry_fallbacks)
     os << "odometry fallbacks: " << info.odometry_fallbacks << " scans outside the ODOM time range kept the "
        << "laser-line odometry\n";
@@ -112,8 +117,16 @@ int main(int argc, char** argv) {
         "in the action/sensory-frame layout (what rbpf-slam / icp-slam read) or the observation-only layout, "
         "and prints a summary of the log. The input format is detected from the file's content.",
         ' ', "0.1");
-    TCLAP::ValueArg<std::string> in_arg("i", "input", "input log: CARMEN (.clf/.log[.gz]) or MRPT rawlog", true,
+    TCLAP::ValueArg<std::string> in_arg("i", "input", "input log: CARMEN (.clf/.log[.gz]) or MRPT rawlog", false,
                                         "", "file", cmd);
+    TCLAP::ValueArg<unsigned> sim_arg("", "simulate",
+                                      "instead of --input: simulate N scans of a robot looping around two pillars "
+                                      "in a 12 m x 6 m room (noisy odometry, off-centre laser, no-return beams)",
+                                      false, 0, "N", cmd);
+    TCLAP::ValueArg<unsigned> seed_arg("", "seed", "random seed of --simulate (default 42)", false, 42, "seed", cmd);
+    TCLAP::ValueArg<std::string> gt_arg("", "ground-truth",
+                                        "with --simulate: write the true poses as a trajectory file "
+                                        "(timestamp x y theta)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> out_arg(
         "o", "output", "output rawlog (.rawlog; gzip-compressed if it ends in .gz or with --gz); omit to only "
         "print the summary", false, "", "file", cmd);
@@ -164,9 +177,32 @@ int main(int argc, char** argv) {
     wopt.scan.sensor_label = label_arg.getValue();
 
     const bool quiet = quiet_arg.getValue();
+    const bool simulate = sim_arg.isSet();
+    if (simulate == in_arg.isSet()) throw std::invalid_argument("give either --input or --simulate");
+    if (gt_arg.isSet() && !simulate) throw std::invalid_argument("--ground-truth needs --simulate");
     io::ScanLogInfo info;
-    const auto scans = io::readScanLog(in_arg.getValue(), ropt, info);
-    if (!quiet) printSummary(std::cout, in_arg.getValue(), info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
+    std::vector<io::ScanRecord> scans;
+    std::string input = in_arg.getValue();
+    OutputSet outputs;  // the rawlog and the ground truth appear together or not at all
+    if (simulate) {
+      io::SimulationOptions sopt;
+      sopt.scans = sim_arg.getValue();
+      sopt.seed = seed_arg.getValue();
+      auto sim = io::simulateLog(sopt);
+      scans = std::move(sim.scans);
+      info.format = io::LogFormat::Simulated;
+      input = "simulated (" + std::to_string(sopt.scans) + " scans, seed " + std::to_string(sopt.seed) + ")";
+      if (gt_arg.isSet()) {
+        const std::string header = "ground truth of gridtopo-import --simulate " + std::to_string(sopt.scans) +
+                                   " --seed " + std::to_string(sopt.seed);
+        outputs.write(gt_arg.getValue(), [&](const std::string& tmp) {
+          io::writeTrajectory(tmp, sim.ground_truth, {header});
+        });
+      }
+    } else {
+      scans = io::readScanLog(input, ropt, info);
+    }
+    if (!quiet) printSummary(std::cout, input, info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
 
     if (!out_arg.getValue().empty()) {
       if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");
@@ -179,6 +215,7 @@ int main(int argc, char** argv) {
                   << " layout, " << stats.entries << " entries, " << stats.scans << " scans, "
                   << stats.with_odometry << " with odometry)\n";
     }
+    outputs.commit();
     return 0;
   } catch (const TCLAP::ArgException& e) {
     std::cerr << "gridtopo-import: error: " << e.error() << " (argument " << e.argId() << ")\n"

@@ -38,6 +38,7 @@ const char* logFormatName(LogFormat format) {
   switch (format) {
     case LogFormat::Carmen: return "CARMEN";
     case LogFormat::Rawlog: return "MRPT rawlog";
+    case LogFormat::Simulated: return "simulated";
     default: return "empty";
   }
 }
@@ -104,7 +105,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
       info.rawlog_has_actions = raw.has_actions;
       return std::move(raw.scans);
     }
-    case LogFormat::Carmen: break;
+    case LogFormat::Carmen:
+    case LogFormat::Simulated: break;
   }
   CarmenLog log = readCarmenLog(path, options.carmen);
   info.odometry_messages = log.odometry.size();

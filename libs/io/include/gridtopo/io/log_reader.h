@@ -23,6 +23,7 @@ enum class LogFormat {
   Empty,   ///< an empty file (no scans, whatever the format)
   Carmen,  ///< CARMEN text log, plain or gzip
   Rawlog,  ///< MRPT rawlog (either layout), plain or gzip
+  Simulated,  ///< not a file: io::simulateLog (never returned by detectLogFormat)
 };
 const char* logFormatName(LogFormat format);
 
