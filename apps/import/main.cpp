@@ -208,7 +208,8 @@ int main(int argc, char** argv) {
       if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");
       ProgressBar bar(scans.size(), "writing", "scans", quiet ? 0 : -1);
       wopt.progress = [&](std::size_t done) { bar.update(done); };
-      const auto stats = io::writeRawlog(out_arg.getValue(), scans, wopt);
+      io::RawlogWriteStats stats;
+      outputs.write(out_arg.getValue(), [&](const std::string& tmp) { stats = io::writeRawlog(tmp, scans, wopt); });
       bar.finish();
       if (!quiet)
         std::cout << "output:             " << out_arg.getValue() << " (" << io::rawlogLayoutName(wopt.layout)
@@ -223,7 +224,7 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const InputError& e) {
     std::cerr << "gridtopo-import: " << e.what() << "\n";
-    return 2;
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "gridtopo-import: error: " << e.what() << "\n";
     return 1;

@@ -73,9 +73,34 @@ TEST(ImportApp, HelpAndBadArguments) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("unknown rawlog layout"), std::string::npos);
   r = run("-i " + (tmpDir() / "missing.clf").string());
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("missing.clf"), std::string::npos);
-  r = run("");  // -i is required
+  r = run("");  // --input or --simulate is required
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--input or --simulate"), std::string::npos);
+  // A failed run leaves no output behind: a bad input line with an output path given.
+  const fs::path bad = tmpDir() / "bad.clf", out = tmpDir() / "never.rawlog";
+  std::ofstream(bad) << "FLASER 3 1 2 x 0 0 0 0 0 0 1.0 host 1.0\n";
+  r = run("-i " + bad.string() + " -o " + out.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(bad.string() + ":1:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(ImportApp, SimulatedLogWithGroundTruth) {
+  const fs::path out = tmpDir() / "sim.rawlog", gt = tmpDir() / "sim_gt.txt";
+  auto r = run("--simulate 50 --seed 3 -o " + out.string() + " --ground-truth " + gt.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("scans:              50\n"), std::string::npos) << r.out;
+  mrpt::obs::CRawlog raw;
+  ASSERT_TRUE(raw.loadFromRawLogFile(out.string()));
+  EXPECT_EQ(raw.size(), 100u);
+  std::ifstream f(gt);
+  std::string line;
+  std::size_t poses = 0;
+  while (std::getline(f, line)) poses += !line.empty() && line[0] != '#';
+  EXPECT_EQ(poses, 50u);
+  r = run("--ground-truth " + gt.string() + " -i " + kIntel);
   EXPECT_EQ(r.status, 1);
 }
 
@@ -90,7 +115,7 @@ TEST(ImportApp, QuirkyCarmenLogSummaryAndBadLines) {
       << flaser(100.5, 0.3, 181) << "ODOM 1 0 0 0 0 0 101.0 host 101.0\n";
   }
   auto r = run("-i " + log.string());
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find(log.string() + ":7:"), std::string::npos) << r.err;
 
   const fs::path out = tmpDir() / "quirks.rawlog";
