@@ -205,3 +205,23 @@ TEST(ImportApp, IntelToBothLayoutsIsAcceptedByMrpt) {
   EXPECT_NE(r.out.find("backward steps:     631 (largest 0.897325 s)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no-return readings: 68313"), std::string::npos) << r.out;
 }
+
+TEST(ImportApp, AcesWithRelativeTimestamps) {
+  const fs::path sf = tmpDir() / "aces_sf.rawlog.gz";
+  const auto r = run("-i " + std::string(GRIDTOPO_DATA_DIR) + "/slam/aces.clf.gz -o " + sf.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("scans:              7374\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("odometry messages:  7375 (ODOM lines)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("time span:          70.2899 .. 1435.809999"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("backward steps:     0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no-return readings: 11139 "), std::string::npos) << r.out;
+  mrpt::obs::CRawlog raw;
+  ASSERT_TRUE(raw.loadFromRawLogFile(sf.string()));
+  ASSERT_EQ(raw.size(), 14748u);
+  const auto first = raw.getAsObservations(1)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(mrpt::Clock::toDouble(first->timestamp), 70.2899);
+  EXPECT_FLOAT_EQ(first->maxRange, 50.0f);
+  const auto last = raw.getAsObservations(14747)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+  EXPECT_EQ(mrpt::Clock::toDouble(last->timestamp), 1435.809999);
+}
