@@ -1,3 +1,5 @@
+#include "gridtopo/io/log_reader.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/poses/CPose2D.h>
 
@@ -6,7 +8,6 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/rawlog_io.h"
 #include "synthetic_scans.h"
 

@@ -1,11 +1,11 @@
+#include "gridtopo/io/scan_conversion.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <cmath>
 #include <limits>
-
-#include "gridtopo/io/scan_conversion.h"
 
 using namespace gridtopo::io;
 

@@ -37,10 +37,14 @@ std::string leadingBytes(const std::string& path, std::size_t n) {
 
 const char* logFormatName(LogFormat format) {
   switch (format) {
-    case LogFormat::Carmen: return "CARMEN";
-    case LogFormat::Rawlog: return "MRPT rawlog";
-    case LogFormat::Simulated: return "simulated";
-    default: return "empty";
+    case LogFormat::Carmen:
+      return "CARMEN";
+    case LogFormat::Rawlog:
+      return "MRPT rawlog";
+    case LogFormat::Simulated:
+      return "simulated";
+    default:
+      return "empty";
   }
 }
 
@@ -53,9 +57,9 @@ LogFormat detectLogFormat(const std::string& path) {
   // text lines, whose first "name" would contain spaces.
   const std::size_t len = static_cast<unsigned char>(head[0]) & 0x7f;
   if (len >= 1 && head.size() > len) {
-    const bool identifier = std::all_of(head.begin() + 1, head.begin() + 1 + static_cast<std::ptrdiff_t>(len), [](char ch) {
-      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':';
-    });
+    const bool identifier =
+        std::all_of(head.begin() + 1, head.begin() + 1 + static_cast<std::ptrdiff_t>(len),
+                    [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':'; });
     if (identifier) return LogFormat::Rawlog;
   }
   return LogFormat::Carmen;
@@ -103,7 +107,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
   info = ScanLogInfo{};
   info.format = detectLogFormat(path);
   switch (info.format) {
-    case LogFormat::Empty: return {};
+    case LogFormat::Empty:
+      return {};
     case LogFormat::Rawlog: {
       RawlogContents raw = readRawlog(path);
       info.odometry_messages = raw.odometry_observations;
@@ -112,7 +117,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
       return std::move(raw.scans);
     }
     case LogFormat::Carmen:
-    case LogFormat::Simulated: break;
+    case LogFormat::Simulated:
+      break;
   }
   CarmenLog log = readCarmenLog(path, options.carmen);
   info.odometry_messages = log.odometry.size();

@@ -72,9 +72,7 @@ RawlogLayout parseRawlogLayout(const std::string& name) {
   throw std::invalid_argument("unknown rawlog layout '" + name + "' (expected 'sf' or 'obs')");
 }
 
-const char* rawlogLayoutName(RawlogLayout layout) {
-  return layout == RawlogLayout::ActionSensoryFrame ? "sf" : "obs";
-}
+const char* rawlogLayoutName(RawlogLayout layout) { return layout == RawlogLayout::ActionSensoryFrame ? "sf" : "obs"; }
 
 RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanRecord>& records,
                              const RawlogWriteOptions& options) {
@@ -172,7 +170,7 @@ RawlogContents readRawlog(const std::string& path) {
     mrpt::math::TPose2D pose;
   };
   std::vector<OdoObs> odometry_obs;
-  std::vector<std::size_t> odo_before;  // per scan: number of odometry observations before it
+  std::vector<std::size_t> odo_before;                          // per scan: number of odometry observations before it
   std::vector<std::optional<mrpt::math::TPose2D>> action_pose;  // per scan: accumulated action odometry
   mrpt::poses::CPose2D accumulated;
   bool any_movement = false, last_collection_moved = false;
@@ -225,8 +223,10 @@ RawlogContents readRawlog(const std::string& path) {
     } else if (auto sf = std::dynamic_pointer_cast<obs::CSensoryFrame>(object)) {
       ++out.sensory_frames;
       for (const auto& o : *sf) {
-        if (auto scan = std::dynamic_pointer_cast<obs::CObservation2DRangeScan>(o)) addScan(*scan, entry);
-        else if (auto odo = std::dynamic_pointer_cast<obs::CObservationOdometry>(o)) addOdometry(*odo);
+        if (auto scan = std::dynamic_pointer_cast<obs::CObservation2DRangeScan>(o))
+          addScan(*scan, entry);
+        else if (auto odo = std::dynamic_pointer_cast<obs::CObservationOdometry>(o))
+          addOdometry(*odo);
       }
     } else if (auto scan = std::dynamic_pointer_cast<obs::CObservation2DRangeScan>(object)) {
       ++out.observations;

@@ -76,8 +76,8 @@ mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const 
   obs->maxRange = static_cast<float>(scan.max_range);
   obs->stdError = options.std_error;
   const double centre = scan.start_angle + 0.5 * span;
-  obs->sensorPose = mrpt::poses::CPose3D(scan.sensor_pose.x, scan.sensor_pose.y, 0.0,
-                                         scan.sensor_pose.phi + centre, 0.0, 0.0);
+  obs->sensorPose =
+      mrpt::poses::CPose3D(scan.sensor_pose.x, scan.sensor_pose.y, 0.0, scan.sensor_pose.phi + centre, 0.0, 0.0);
   obs->resizeScan(n);
   for (std::size_t k = 0; k < n; ++k) {
     float r = scan.ranges[k];

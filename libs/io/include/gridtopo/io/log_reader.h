@@ -20,9 +20,9 @@ struct LogReadOptions {
 };
 
 enum class LogFormat {
-  Empty,   ///< an empty file (no scans, whatever the format)
-  Carmen,  ///< CARMEN text log, plain or gzip
-  Rawlog,  ///< MRPT rawlog (either layout), plain or gzip
+  Empty,      ///< an empty file (no scans, whatever the format)
+  Carmen,     ///< CARMEN text log, plain or gzip
+  Rawlog,     ///< MRPT rawlog (either layout), plain or gzip
   Simulated,  ///< not a file: io::simulateLog (never returned by detectLogFormat)
 };
 const char* logFormatName(LogFormat format);

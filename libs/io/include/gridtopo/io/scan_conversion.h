@@ -37,8 +37,7 @@ double fromMrptTime(mrpt::Clock::time_point t);
 /// (range >= max_range) with their logged value and valid = false; non-finite or negative readings become
 /// max_range (+inf) or 0 (NaN, negative) with valid = false. Throws std::invalid_argument for fewer than 2
 /// beams, a zero or non-finite increment, or inconsistent vector sizes.
-mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan,
-                                                   const ScanConversionOptions& options = {});
+mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const ScanConversionOptions& options = {});
 
 /// CObservation2DRangeScan -> LaserScan: sensor_pose = (x, y, yaw) of the MRPT sensor pose, start_angle /
 /// angle_increment from the aperture and direction (an upside-down laser, roll = 180 deg, flips the
