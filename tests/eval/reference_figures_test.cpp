@@ -115,3 +115,20 @@ TEST(IntelReference, VariantsDocumentedInEvaluationMd) {
   const auto y = evalGfs(OdometrySource::OdomLines, CorrectedTimeMatch::LoggerAndRanges);
   EXPECT_NEAR(y.translational.mean, 0.0672, 1e-4);
 }
+
+TEST(AcesReference, RawOdometry) {
+  // No published figure: our own measurement (doc/evaluation.md), a regression guard for the ACES path
+  // (relative timestamps, 50 m no-return readings).
+  const std::string dir = std::string(GRIDTOPO_DATA_DIR) + "/slam/";
+  const auto raw = io::readCarmenLog(dir + "aces.clf.gz");
+  const auto rel = readRelations(dir + "aces.relations.gz");
+  ASSERT_EQ(rel.size(), 1279u);
+  std::vector<io::TimedPose> est;
+  for (const auto& s : raw.scans) est.push_back({s.scan.timestamp, s.odometry});
+  const auto r = evaluateRelations(est, rel, nullptr);
+  EXPECT_EQ(r.endpoints_direct, 2 * 1279u);
+  EXPECT_NEAR(r.translational.mean, 0.5493, 1e-4);
+  EXPECT_NEAR(r.translational.std, 2.6755, 1e-4);
+  EXPECT_NEAR(r.rotational.mean, 2.328, 1e-3);
+  EXPECT_NEAR(r.rotational.std, 6.506, 1e-3);
+}
