@@ -54,6 +54,11 @@ int run(int argc, char** argv) {
   TCLAP::SwitchArg interpolate("i", "interpolate",
                                "interpolate the odometry between readings instead of taking the nearest reading",
                                cmd);
+  TCLAP::SwitchArg interpolate_estimate(
+      "", "interpolate-estimate",
+      "beyond --max-gap, blend the poses carried over from the estimates before and after the relation time "
+      "(a variant, not the benchmark's definition)",
+      cmd);
   TCLAP::ValueArg<double> max_gap("", "max-gap", "seconds: nearer estimated poses are used as they are [0.1]",
                                   false, 0.1, "s", cmd);
   TCLAP::ValueArg<std::string> config("c", "config", "INI file with a [relations_metric] section (config-ini/eval.ini)",
@@ -99,6 +104,7 @@ int run(int argc, char** argv) {
     return 2;
   }
   if (interpolate.getValue()) opt.interpolate_odometry = true;
+  if (interpolate_estimate.getValue()) opt.interpolate_estimate = true;
   if (max_gap.isSet()) {
     if (!(max_gap.getValue() >= 0.0)) {
       std::cerr << "gridtopo-eval: --max-gap must be >= 0\n";
@@ -147,6 +153,7 @@ int run(int argc, char** argv) {
     info.emplace_back("odometry", "none");
   }
   info.emplace_back("odometry_interpolated", opt.interpolate_odometry ? "true" : "false");
+  info.emplace_back("estimate_interpolated", opt.interpolate_estimate ? "true" : "false");
   info.emplace_back("max_time_gap_s", io::formatDouble(opt.max_time_gap));
 
   std::vector<io::TimedPose> estimate;

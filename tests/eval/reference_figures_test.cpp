@@ -132,3 +132,15 @@ TEST(AcesReference, RawOdometry) {
   EXPECT_NEAR(r.rotational.mean, 2.328, 1e-3);
   EXPECT_NEAR(r.rotational.std, 6.506, 1e-3);
 }
+
+TEST(IntelReference, EstimateInterpolationVariant) {
+  const auto& d = intel();
+  const auto est = correctedTrajectory(d.gfs, d.raw);
+  const auto odo = OdometryTrack::fromLog(d.raw, OdometrySource::LaserLines);
+  RelationsMetricOptions o;
+  o.interpolate_estimate = true;
+  const auto r = evaluateRelations(est, d.relations, &odo, o);
+  EXPECT_EQ(r.endpoints_interpolated, 4536u);
+  EXPECT_NEAR(r.translational.mean, 0.0526, 1e-4);
+  EXPECT_NEAR(r.rotational.mean, 1.811, 1e-3);
+}

@@ -212,11 +212,12 @@ TEST(RelationsMetric, StatsUseTheSampleStd) {
 
 TEST(RelationsMetric, OptionsFromIni) {
   mrpt::config::CConfigFileMemory ini(
-      "[relations_metric]\nmax_time_gap = 0.25\ninterpolate_odometry = true\nodometry = laser\n");
+      "[relations_metric]\nmax_time_gap = 0.25\ninterpolate_odometry = true\ninterpolate_estimate = yes\nodometry = laser\n");
   RelationsMetricOptions o;
   o.loadFromConfigFile(ini, "relations_metric");
   EXPECT_EQ(o.max_time_gap, 0.25);
   EXPECT_TRUE(o.interpolate_odometry);
+  EXPECT_TRUE(o.interpolate_estimate);
   EXPECT_EQ(o.odometry, OdometrySource::LaserLines);
   std::ostringstream dump;
   o.dumpToTextStream(dump);
@@ -233,4 +234,35 @@ TEST(RelationsMetric, OptionsFromIni) {
   mrpt::config::CConfigFileMemory neg("[relations_metric]\nmax_time_gap = -1\n");
   RelationsMetricOptions c;
   EXPECT_THROW(c.loadFromConfigFile(neg, "relations_metric"), gridtopo::InputError);
+}
+
+TEST(RelationsMetric, EstimateInterpolationVariant) {
+  // Straight line at 1 m/s; estimates every 2 s; a relation between t = 1 and t = 5 (both in gaps).
+  std::vector<TimedPose> est;
+  for (int i = 0; i <= 6; i += 2) est.push_back({double(i), {double(i), 0, 0.0}});
+  std::vector<Relation> rel = {{1.0, 5.0, {4.0, 0, 0}, 1}};
+  RelationsMetricOptions o;
+  // Nearest (ties -> earlier) without odometry: poses of t = 0 and t = 4, error 0 (both 1 m early)...
+  const auto plain = evaluateRelations(est, rel, nullptr, o);
+  EXPECT_EQ(plain.endpoints_uncorrected, 2u);
+  // ...but at t = 1.2 -> 5.2 nearest gives t = 2 and t = 6 ... use an asymmetric relation instead.
+  std::vector<Relation> rel2 = {{0.9, 5.2, {4.3, 0, 0}, 1}};
+  const auto near = evaluateRelations(est, rel2, nullptr, o);
+  EXPECT_NEAR(near.errors[0].translational, std::abs(6.0 - 0.0 - 4.3), 1e-12);
+  o.interpolate_estimate = true;
+  const auto interp = evaluateRelations(est, rel2, nullptr, o);
+  EXPECT_EQ(interp.endpoints_interpolated, 2u);
+  EXPECT_NEAR(interp.errors[0].translational, 0.0, 1e-12);
+  // With odometry that is exact but in another frame, the blend of both carried poses is exact too.
+  std::vector<TimedPose> odo;
+  for (int i = 0; i <= 60; ++i) odo.push_back({0.1 * i, TPose2D(5, 5, 1.0) + TPose2D(0.1 * i, 0, 0)});
+  const OdometryTrack track(odo);
+  const auto both = evaluateRelations(est, rel2, &track, o);
+  EXPECT_NEAR(both.errors[0].translational, 0.0, 1e-9);
+  // Outside the estimate's time span there is only one side: falls back to the odometry correction.
+  std::vector<Relation> rel3 = {{0.0, 5.9, {5.9, 0, 0}, 1}};
+  std::vector<TimedPose> short_est(est.begin(), est.begin() + 3);  // up to t = 4
+  const auto edge = evaluateRelations(short_est, rel3, &track, o);
+  EXPECT_EQ(edge.endpoints_corrected, 1u);
+  EXPECT_NEAR(edge.errors[0].translational, 0.0, 1e-9);
 }

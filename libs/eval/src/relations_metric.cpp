@@ -18,6 +18,7 @@ void RelationsMetricOptions::loadFromConfigFile(const mrpt::config::CConfigFileB
   if (!(gap >= 0.0) || !std::isfinite(gap)) throw InputError(file, 0, "max_time_gap", "must be a finite number >= 0");
   max_time_gap = gap;
   interpolate_odometry = cfg.read_bool(section, "interpolate_odometry", interpolate_odometry);
+  interpolate_estimate = cfg.read_bool(section, "interpolate_estimate", interpolate_estimate);
   const std::string src = cfg.read_string(section, "odometry", toString(odometry));
   try {
     odometry = odometrySourceFromString(src);
@@ -30,6 +31,8 @@ void RelationsMetricOptions::dumpToTextStream(std::ostream& out) const {
   out << "max_time_gap         = " << max_time_gap << "   ; s: nearer estimated poses are used as they are\n"
       << "interpolate_odometry = " << (interpolate_odometry ? "true" : "false")
       << "   ; odometry at a time: nearest reading (false) or interpolated (true)\n"
+      << "interpolate_estimate = " << (interpolate_estimate ? "true" : "false")
+      << "   ; blend the estimates before and after a gap (not the benchmark's definition)\n"
       << "odometry             = " << toString(odometry) << "   ; auto | odom (ODOM lines) | laser (laser lines)\n";
 }
 
@@ -66,17 +69,41 @@ TrajectoryLookup::Result TrajectoryLookup::poseAt(double t) const {
   r.pose = e->pose;
   r.gap = std::abs(e->timestamp - t);
   if (r.gap <= options_.max_time_gap) return r;
-  if (!odometry_ || odometry_->empty()) {
+  const bool have_odometry = odometry_ && !odometry_->empty();
+  if (options_.interpolate_estimate) {
+    // Estimates on both sides of t: the last one at or before t and the first one after it.
+    const auto next = std::upper_bound(estimate_.begin(), estimate_.end(), t,
+                                       [](double v, const io::TimedPose& p) { return v < p.timestamp; });
+    if (next != estimate_.begin() && next != estimate_.end()) {
+      auto prev = std::prev(next);
+      while (prev != estimate_.begin() && std::prev(prev)->timestamp == prev->timestamp) --prev;
+      const auto& before = *prev;
+      const auto& after = *next;
+      const double w = (t - before.timestamp) / (after.timestamp - before.timestamp);
+      const auto a = have_odometry ? carry(before, t) : before.pose;
+      const auto b = have_odometry ? carry(after, t) : after.pose;
+      r.pose = {a.x + w * (b.x - a.x), a.y + w * (b.y - a.y),
+                mrpt::math::wrapToPi(a.phi + w * mrpt::math::wrapToPi(b.phi - a.phi))};
+      r.interpolated = true;
+      return r;
+    }
+  }
+  if (!have_odometry) {
     r.uncorrectable = true;
     return r;
   }
-  // p(t) = p(t_e) ⊕ (o(t_e)⁻¹ ⊕ o(t)): the odometry motion between the two times, applied in the estimate's frame.
-  const auto o_e = odometry_->at(e->timestamp, options_.interpolate_odometry);
-  const auto o_t = odometry_->at(t, options_.interpolate_odometry);
-  r.pose = e->pose + (o_t - o_e);
-  r.pose.phi = mrpt::math::wrapToPi(r.pose.phi);
+  r.pose = carry(*e, t);
   r.corrected = true;
   return r;
+}
+
+mrpt::math::TPose2D TrajectoryLookup::carry(const io::TimedPose& from, double t) const {
+  // p(t) = p(t_e) ⊕ (o(t_e)⁻¹ ⊕ o(t)): the odometry motion between the two times, applied in the estimate's frame.
+  const auto o_e = odometry_->at(from.timestamp, options_.interpolate_odometry);
+  const auto o_t = odometry_->at(t, options_.interpolate_odometry);
+  auto p = from.pose + (o_t - o_e);
+  p.phi = mrpt::math::wrapToPi(p.phi);
+  return p;
 }
 
 RelationsResult evaluateRelations(const std::vector<io::TimedPose>& estimate, const std::vector<Relation>& relations,
@@ -92,8 +119,9 @@ RelationsResult evaluateRelations(const std::vector<io::TimedPose>& estimate, co
     const auto a = lookup.poseAt(rel.t1);
     const auto b = lookup.poseAt(rel.t2);
     for (const auto* x : {&a, &b}) {
-      res.endpoints_direct += !x->corrected && !x->uncorrectable;
+      res.endpoints_direct += !x->corrected && !x->interpolated && !x->uncorrectable;
       res.endpoints_corrected += x->corrected;
+      res.endpoints_interpolated += x->interpolated;
       res.endpoints_uncorrected += x->uncorrectable;
       res.max_gap = std::max(res.max_gap, x->gap);
     }

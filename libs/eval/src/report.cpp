@@ -66,6 +66,8 @@ std::string formatSummary(const RelationsResult& r) {
   s += line("rotational squared:    ", r.rotational_squared, "deg²", 3);
   s += "relation endpoints: " + std::to_string(r.endpoints_direct) + " with an estimate in reach, " +
        std::to_string(r.endpoints_corrected) + " corrected by odometry";
+  if (r.endpoints_interpolated)
+    s += ", " + std::to_string(r.endpoints_interpolated) + " interpolated between estimates";
   if (r.endpoints_uncorrected) s += ", " + std::to_string(r.endpoints_uncorrected) + " UNCORRECTED (no odometry)";
   s += "; largest time gap " + fixed(r.max_gap, 3) + " s\n";
   return s;
@@ -80,6 +82,7 @@ std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std
   s += "  \"rotational_squared_deg2\": " + jsonStats(r.rotational_squared) + ",\n";
   s += "  \"endpoints_direct\": " + std::to_string(r.endpoints_direct) + ",\n";
   s += "  \"endpoints_corrected\": " + std::to_string(r.endpoints_corrected) + ",\n";
+  s += "  \"endpoints_interpolated\": " + std::to_string(r.endpoints_interpolated) + ",\n";
   s += "  \"endpoints_uncorrected\": " + std::to_string(r.endpoints_uncorrected) + ",\n";
   s += "  \"max_time_gap_s\": " + jsonNumber(r.max_gap) + "\n";
   return s + "}\n";

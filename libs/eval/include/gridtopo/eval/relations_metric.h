@@ -24,10 +24,15 @@ struct RelationsMetricOptions {
   /// Odometry at a time: the reading nearest in time (false, the reference tool's choice) or linearly
   /// interpolated between the two readings around it (true, "interpolation variant").
   bool interpolate_odometry = false;
+  /// Not part of the benchmark's definition (off by default): beyond max_time_gap, when estimated poses exist on
+  /// both sides of t, blend the pose carried forward from the previous estimate with the pose carried back from
+  /// the next one (weights by time; plain linear interpolation between the two when there is no odometry).
+  bool interpolate_estimate = false;
   /// Which odometry of the raw log corrects the gaps.
   OdometrySource odometry = OdometrySource::Auto;
 
-  /// Reads the keys of `section` (max_time_gap, interpolate_odometry, odometry = auto|odom|laser); missing
+  /// Reads the keys of `section` (max_time_gap, interpolate_odometry, interpolate_estimate,
+  /// odometry = auto|odom|laser); missing
   /// keys keep their value; wrong values throw gridtopo::InputError naming the key.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void dumpToTextStream(std::ostream& out) const;
@@ -57,6 +62,7 @@ struct RelationsResult {
   std::vector<RelationError> errors;  ///< in the order of the relations file
   std::size_t endpoints_direct = 0;      ///< relation endpoints whose nearest pose was within max_time_gap
   std::size_t endpoints_corrected = 0;   ///< endpoints carried over a gap by odometry
+  std::size_t endpoints_interpolated = 0; ///< endpoints interpolated between two estimates (interpolate_estimate)
   std::size_t endpoints_uncorrected = 0; ///< endpoints beyond max_time_gap with no odometry to correct them
   double max_gap = 0.0;                  ///< largest |t_estimate − t_relation| met (s)
 };
@@ -70,11 +76,13 @@ class TrajectoryLookup {
   struct Result {
     mrpt::math::TPose2D pose{0, 0, 0};
     double gap = 0.0;  ///< |t_nearest − t|
-    bool corrected = false, uncorrectable = false;
+    bool corrected = false, interpolated = false, uncorrectable = false;
   };
   Result poseAt(double t) const;
 
  private:
+  mrpt::math::TPose2D carry(const io::TimedPose& from, double t) const;  // from ⊕ (o(t_from)⁻¹ ⊕ o(t))
+
   std::vector<io::TimedPose> estimate_;  // sorted by time (stable)
   const OdometryTrack* odometry_;
   RelationsMetricOptions options_;
