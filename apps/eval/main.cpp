@@ -187,6 +187,10 @@ int run(int argc, char** argv) {
               << " relation endpoints are further than --max-gap from every estimated pose and there is no "
                  "odometry (--log) to correct them\n";
 
+  if (result.max_gap > 60.0)
+    std::cerr << "warning: a relation timestamp is " << result.max_gap
+              << " s from the nearest estimated pose: are the trajectory's timestamps the log's ipc timestamps?\n";
+
   OutputSet out;
   if (json.isSet()) {
     const std::string text = eval::formatJson(result, info);
