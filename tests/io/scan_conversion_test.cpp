@@ -188,4 +188,10 @@ TEST(ScanConversion, RejectsScansMrptCannotHold) {
   s = makeScan(10, 0.0, 1.0);
   s.max_range = 0;
   EXPECT_THROW(toMrptScan(s), std::invalid_argument);
+  s = makeScan(10, 0.0, 1.0);
+  s.sensor_pose.phi = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(toMrptScan(s), std::invalid_argument);
+  s = makeScan(10, 0.0, 1.0);
+  s.timestamp = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(toMrptScan(s), std::invalid_argument);
 }
