@@ -17,6 +17,10 @@ struct CarmenReadOptions {
   /// true: malformed lines are skipped, counted and reported in CarmenLog::skipped.
   bool skip_bad_lines = false;
   bool read_rear_laser = false;  ///< also return RLASER scans (rear laser) in CarmenLog::scans
+  /// Max range (m) of FLASER/RLASER scans when no PARAM robot_front_laser_max / robot_rear_laser_max says
+  /// otherwise (CARMEN's default). Readings at or beyond it (Intel's 81.83, ACES's 50.00) are "no return".
+  double default_max_range = 50.0;
+  std::size_t max_reported_skips = 100;  ///< how many skipped-line messages CarmenLog::skipped keeps
 };
 
 struct CarmenLog {
