@@ -11,25 +11,59 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
   const double inv2s2 = 1.0 / (2.0 * o.sigma * o.sigma);
   const int k = o.kernel;
   const float occ = o.occupied_log_odds;
+  const bool free_check = o.free_check;
+  // One-entry tile cache: consecutive beams and the cells of a window mostly fall in the same tile.
+  int ctx = 0x7fffffff, cty = 0x7fffffff;
+  const Cell* tile = nullptr;
+  auto lookup = [&](int cx, int cy) -> const Cell* {
+    const int tx = cx >> GridMap::kTileBits, ty = cy >> GridMap::kTileBits;
+    if (tx != ctx || ty != cty) {
+      ctx = tx;
+      cty = ty;
+      const Cell* any = map.cell(cx, cy);
+      tile = any ? any - (((cy & GridMap::kTileMask) << GridMap::kTileBits) | (cx & GridMap::kTileMask)) : nullptr;
+    }
+    return tile ? tile + (((cy & GridMap::kTileMask) << GridMap::kTileBits) | (cx & GridMap::kTileMask)) : nullptr;
+  };
   ScanScore out;
   const std::size_t n = scan.size();
+  const double* ex = scan.ex.data();
+  const double* ey = scan.ey.data();
+  const double* fx = scan.fx.data();
+  const double* fy = scan.fy.data();
   for (std::size_t b = 0; b < n; ++b) {
-    const double px = x.x + c * scan.ex[b] - s * scan.ey[b];
-    const double py = x.y + s * scan.ex[b] + c * scan.ey[b];
-    const double qx = x.x + c * scan.fx[b] - s * scan.fy[b];
-    const double qy = x.y + s * scan.fx[b] + c * scan.fy[b];
+    const double px = x.x + c * ex[b] - s * ey[b];
+    const double py = x.y + s * ex[b] + c * ey[b];
     const int ipx = map.cellIndex(px), ipy = map.cellIndex(py);
-    const int iqx = map.cellIndex(qx), iqy = map.cellIndex(qy);
+    const int iqx = free_check ? map.cellIndex(x.x + c * fx[b] - s * fy[b]) : 0;
+    const int iqy = free_check ? map.cellIndex(x.y + s * fx[b] + c * fy[b]) : 0;
     double best = std::numeric_limits<double>::infinity();
-    for (int dy = -k; dy <= k; ++dy) {
-      for (int dx = -k; dx <= k; ++dx) {
-        const Cell* oc = map.cell(ipx + dx, ipy + dy);
-        if (!oc || oc->hits == 0 || oc->log_odds <= occ) continue;
-        const Cell* fc = map.cell(iqx + dx, iqy + dy);
-        if (fc && fc->log_odds > occ) continue;
-        const double inv = 1.0 / oc->hits;
-        const double ddx = px - oc->hit_x * inv, ddy = py - oc->hit_y * inv;
-        best = std::min(best, ddx * ddx + ddy * ddy);
+    auto consider = [&](const Cell* oc) {
+      if (oc->log_odds <= occ || oc->hits == 0) return;
+      const double ddx = px - oc->hit_x, ddy = py - oc->hit_y;
+      best = std::min(best, ddx * ddx + ddy * ddy);
+    };
+    const int lx = ipx & GridMap::kTileMask, ly = ipy & GridMap::kTileMask;
+    if (!free_check && lx >= k && ly >= k && lx < GridMap::kTileSize - k && ly < GridMap::kTileSize - k) {
+      // Fast path: the whole window lies in one tile.
+      const Cell* centre = lookup(ipx, ipy);
+      if (centre) {
+        for (int dy = -k; dy <= k; ++dy) {
+          const Cell* row = centre + dy * GridMap::kTileSize;
+          for (int dx = -k; dx <= k; ++dx) consider(row + dx);
+        }
+      }
+    } else {
+      for (int dy = -k; dy <= k; ++dy) {
+        for (int dx = -k; dx <= k; ++dx) {
+          const Cell* oc = lookup(ipx + dx, ipy + dy);
+          if (!oc) continue;
+          if (free_check && oc->log_odds > occ && oc->hits) {
+            const Cell* fc = lookup(iqx + dx, iqy + dy);
+            if (fc && fc->log_odds > occ) continue;
+          }
+          consider(oc);
+        }
       }
     }
     if (best < std::numeric_limits<double>::infinity()) {

@@ -64,6 +64,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("match_kernel", o.matcher.kernel);
   f("match_null_log_likelihood", o.matcher.null_log_likelihood);
   f("match_occupied_log_odds", o.matcher.occupied_log_odds);
+  f("match_free_check", o.matcher.free_check);
   f("match_step_xy", o.matcher.step_xy);
   f("match_step_theta", o.matcher.step_theta);
   f("match_refinements", o.matcher.refinements);

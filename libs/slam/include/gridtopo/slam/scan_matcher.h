@@ -15,6 +15,10 @@ struct ScanMatcherOptions {
   int kernel = 1;                     ///< window half size in cells for the correspondence search
   double null_log_likelihood = -2.0;  ///< per-beam log-likelihood floor (no correspondence / outlier)
   float occupied_log_odds = 0.0f;     ///< a cell is occupied when its log-odds exceeds this
+  /// GMapping's test: a correspondence counts only if the cell one step back along the beam is not occupied
+  /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
+  /// the match by up to half a cell, so it is off by default.
+  bool free_check = false;
   double step_xy = 0.05;              ///< m, initial hill-climbing step
   double step_theta = 0.05;           ///< rad, initial hill-climbing step
   int refinements = 6;                ///< number of step halvings
