@@ -52,9 +52,10 @@ TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
   ScanMatcherOptions o;
   if (getenv("OCC")) o.occupied_log_odds = atof(getenv("OCC"));
   if (getenv("KERN")) o.kernel = atoi(getenv("KERN"));
+  if (getenv("HILL")) o.method = MatchMethod::HillClimb;
   const Pose2 truths[] = {{6.3, 2.8, 0.0}, {4.1, 2.9, 0.1}, {8.2, 2.7, -0.08}, {2.1, 4.5, -1.4}};
   const Pose2 offsets[] = {{0.12, -0.07, 0.04}, {-0.1, 0.1, -0.05}, {0.05, 0.13, 0.06}, {-0.13, -0.02, -0.03}};
-  double sum_xy = 0, sum_th = 0;
+  double sum_xy = 0, sum_th = 0, evals = 0;
   int n = 0;
   for (const auto& t : truths)
     for (const auto& d : offsets) {
@@ -62,6 +63,7 @@ TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
       const MatchResult r = matchScan(f.map, {t.x + d.x, t.y + d.y, t.theta + d.theta}, scan, o);
       ASSERT_TRUE(r.ok);
       const double exy = std::hypot(r.pose.x - t.x, r.pose.y - t.y), eth = std::abs(wrapAngle(r.pose.theta - t.theta));
+      evals += r.evaluations;
       if (exy > 0.02) std::printf("truth ll %.2f m %d  found ll %.2f m %d at %.3f %.3f %.4f evals %d\n", scoreScan(f.map, t, scan, o).log_likelihood, scoreScan(f.map, t, scan, o).matched, r.score.log_likelihood, r.score.matched, r.pose.x - t.x, r.pose.y - t.y, r.pose.theta - t.theta, r.evaluations);
       EXPECT_LT(exy, 0.02) << t.x << "," << t.y << " offset " << d.x << "," << d.y;
       EXPECT_LT(eth, 0.01);
@@ -72,7 +74,7 @@ TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
   // Sub-cell on average: well under a quarter of the 5 cm cell.
   EXPECT_LT(sum_xy / n, 0.01);
   EXPECT_LT(sum_th / n, 0.004);
-  std::printf("mean error %.4f m %.4f rad over %d matches\n", sum_xy / n, sum_th / n, n);
+  std::printf("mean error %.4f m %.4f rad over %d matches, %.1f evaluations\n", sum_xy / n, sum_th / n, n, evals / n);
 }
 
 TEST(ScanMatcher, FailsOnAnEmptyMap) {

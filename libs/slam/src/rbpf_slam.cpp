@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -75,9 +76,22 @@ double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose
   return plan.log_weight_increment;
 }
 
-RbpfSlam::RbpfSlam(const SlamOptions& options) : o_(options), motion_(options.motion) {
+RbpfSlam::RbpfSlam(const SlamOptions& options)
+    : o_(options), motion_(options.motion), prior_map_(options.resolution) {
   o_.validate();
   pool_ = std::make_unique<ThreadPool>(o_.threads);
+}
+
+void RbpfSlam::setInitialPose(const Pose2& pose) {
+  if (initialized_) throw std::logic_error("RbpfSlam::setInitialPose: the filter has already started");
+  initial_pose_ = pose;
+  has_initial_pose_ = true;
+}
+
+void RbpfSlam::insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan) {
+  if (initialized_) throw std::logic_error("RbpfSlam::insertKnownScan: the filter has already started");
+  const PreparedScan ps = prepareScan(scan, o_.beams, o_.resolution);
+  prior_map_.insertScan(robot_pose, ps.sensor, ps.map_beams, o_.map);
 }
 
 bool RbpfSlam::shouldProcess(const io::ScanRecord& r) const {
@@ -112,8 +126,9 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
 
   if (!initialized_) {
     // The map frame starts at the first odometry pose (identity without odometry).
-    const Pose2 start = record.has_odometry ? toPose(record.odometry) : Pose2{};
-    GridMap map(o_.resolution);
+    const Pose2 start =
+        has_initial_pose_ ? initial_pose_ : (record.has_odometry ? toPose(record.odometry) : Pose2{});
+    GridMap map = prior_map_;
     map.insertScan(start, scan.sensor, scan.map_beams, o_.map);
     auto node = std::make_shared<const TrajectoryNode>(start, index, nullptr);
     particles_.assign(n, Particle{start, 0.0, 0.0, node, map});

@@ -64,6 +64,13 @@ class RbpfSlam {
  public:
   explicit RbpfSlam(const SlamOptions& options);
 
+  /// Before the first scan: the pose of the first scan in the map frame (default: its odometry pose, or the
+  /// identity without odometry).
+  void setInitialPose(const Pose2& pose);
+  /// Before the first scan: inserts a scan taken at a known pose into the map every particle starts from
+  /// (to continue mapping on top of a previous map).
+  void insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan);
+
   /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy).
   bool processScan(const io::ScanRecord& record);
 
@@ -96,6 +103,9 @@ class RbpfSlam {
   std::vector<ScanInfo> scans_;
   std::vector<StepStats> stats_;
   bool initialized_ = false;
+  bool has_initial_pose_ = false;
+  Pose2 initial_pose_;
+  GridMap prior_map_;
   std::size_t last_processed_ = 0;  // scan index
   double acc_linear_ = 0.0, acc_angular_ = 0.0;
 };
