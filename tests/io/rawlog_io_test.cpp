@@ -1,3 +1,5 @@
+#include "gridtopo/io/rawlog_io.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -14,7 +16,6 @@
 #include <iterator>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/rawlog_io.h"
 #include "synthetic_scans.h"
 
 namespace fs = std::filesystem;
@@ -26,6 +27,15 @@ fs::path tmpDir() {
   fs::create_directories(d);
   return d;
 }
+
+// Removes this process's temporary directory when the tests are done.
+struct RemoveTmpDir : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(tmpDir(), ec);
+  }
+};
+const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
 
 double maxEndpointError(const LaserScan& a, const LaserScan& b) {
   double worst = 0;
