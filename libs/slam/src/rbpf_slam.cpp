@@ -1,6 +1,8 @@
 #include "gridtopo/slam/rbpf_slam.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -61,6 +63,11 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.gaussian.cov(1, 1) += mx;
   plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
   plan.log_weight_increment = plan.gaussian.log_eta;
+  if (std::getenv("GT_DEBUG"))
+    std::fprintf(stderr, "mode-pred %.3f %.3f %.3f sd %.4f %.4f %.4f mu-mode %.4f %.4f ll %.1f matched %d/%zu ev %d\n",
+                 m.pose.x - predicted.x, m.pose.y - predicted.y, m.pose.theta - predicted.theta,
+                 std::sqrt(plan.gaussian.cov(0, 0)), std::sqrt(plan.gaussian.cov(1, 1)), std::sqrt(plan.gaussian.cov(2, 2)),
+                 plan.gaussian.mean.x - m.pose.x, plan.gaussian.mean.y - m.pose.y, m.score.log_likelihood, m.score.matched, scan.size(), m.evaluations);
   return plan;
 }
 

@@ -78,6 +78,8 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_points_per_axis", o.proposal.points_per_axis);
   f("proposal_delta_xy", o.proposal.delta_xy);
   f("proposal_delta_theta", o.proposal.delta_theta);
+  f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
+  f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
 }
 
 template <class T>
@@ -224,6 +226,8 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
     fail("proposal_points_per_axis", "must be in [2, 9], got " + str(proposal.points_per_axis));
   positive("proposal_delta_xy", proposal.delta_xy);
   positive("proposal_delta_theta", proposal.delta_theta);
+  nonNegative("proposal_min_sigma_xy", proposal.min_sigma_xy);
+  nonNegative("proposal_min_sigma_theta", proposal.min_sigma_theta);
 }
 
 }  // namespace gridtopo::slam

@@ -22,7 +22,7 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   double resample_threshold = 0.5;  ///< resample when N_eff < threshold · N
   /// The observation log-likelihood is divided by this before it enters τ_j and the weights (GMapping's
   /// softening of the over-confident independent-beam model).
-  double likelihood_gain = 3.0;
+  double likelihood_gain = 10.0;
 
   // Update policy (GMapping's linearUpdate / angularUpdate / temporalUpdate)
   double linear_update = 0.25;    ///< m of travelled distance since the last processed scan
