@@ -29,7 +29,10 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   if (o.proposal.type == ProposalType::Odometry) return plan;
   const double inv_gain = 1.0 / o.likelihood_gain;
   const Pose2 predicted = compose(prev, u);
-  const MatchResult m = matchScan(map, predicted, scan, o.matcher);
+  MatchPrior prior;
+  prior.likelihood_scale = inv_gain;
+  prior.log_prior = [&](const Pose2& x) { return motion.logDensity(x, prev, u, has_odometry); };
+  const MatchResult m = matchScan(map, predicted, scan, o.matcher, o.matcher.use_motion_prior ? &prior : nullptr);
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
@@ -42,7 +45,8 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
   std::vector<Pose2> xs;
-  std::vector<double> log_tau;
+  std::vector<double> log_tau, log_tau_weight;
+  const double inv_pgain = 1.0 / (o.proposal_gain > 0.0 ? o.proposal_gain : o.likelihood_gain);
   xs.reserve(static_cast<std::size_t>(n) * n * n);
   log_tau.reserve(xs.capacity());
   for (int i = 0; i < n; ++i)
@@ -54,7 +58,9 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
                               ? m.score.log_likelihood
                               : scoreScan(map, x, scan, o.matcher).log_likelihood;
         xs.push_back(x);
-        log_tau.push_back(ll * inv_gain + motion.logDensity(x, prev, u, has_odometry));
+        const double lm = motion.logDensity(x, prev, u, has_odometry);
+        log_tau.push_back(ll * inv_pgain + lm);
+        log_tau_weight.push_back(ll * inv_gain + lm);
       }
   plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
   plan.gaussian = fitProposal(xs, log_tau, m.pose);
@@ -62,7 +68,7 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.gaussian.cov(0, 0) += mx;
   plan.gaussian.cov(1, 1) += mx;
   plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
-  plan.log_weight_increment = plan.gaussian.log_eta;
+  plan.log_weight_increment = inv_pgain == inv_gain ? plan.gaussian.log_eta : logSumExp(log_tau_weight);
   if (std::getenv("GT_DEBUG"))
     std::fprintf(stderr, "mode-pred %.3f %.3f %.3f sd %.4f %.4f %.4f mu-mode %.4f %.4f ll %.1f matched %d/%zu ev %d\n",
                  m.pose.x - predicted.x, m.pose.y - predicted.y, m.pose.theta - predicted.theta,
