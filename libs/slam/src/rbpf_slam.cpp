@@ -27,6 +27,10 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   ProposalPlan plan;
   plan.type = o.proposal.type;
   if (o.proposal.type == ProposalType::Odometry) return plan;
+  if (o.proposal.type == ProposalType::ModeOnly) {
+    plan.matched = true;  // matched per particle in drawFromProposal (from its own motion sample)
+    return plan;
+  }
   const double inv_gain = 1.0 / o.likelihood_gain;
   const Pose2 predicted = compose(prev, u);
   MatchPrior prior;
@@ -36,11 +40,6 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
-  if (o.proposal.type == ProposalType::ModeOnly) {
-    plan.gaussian.mean = m.pose;
-    plan.log_weight_increment = m.score.log_likelihood * inv_gain;
-    return plan;
-  }
   // Informed proposal: K poses on a grid around the mode, τ_j = p(z|m,x_j)·p(x_j|x_{t-1},u).
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
@@ -80,6 +79,17 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
 double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
                         bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
                         const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose) {
+  if (plan.type == ProposalType::ModeOnly) {
+    // GMapping: draw from the motion model, climb to the likelihood mode from there, weight p(z|m,x̂).
+    const Pose2 start = motion.sample(prev, u, rng, has_odometry);
+    const MatchResult m = matchScan(map, start, scan, o.matcher);
+    if (m.ok) {
+      out_pose = m.pose;
+      return m.score.log_likelihood / o.likelihood_gain;
+    }
+    out_pose = start;
+    return scoreScan(map, start, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
   if (!plan.matched) {
     // Odometry proposal (also the fallback when matching failed): sample the motion model, weight by p(z|m,x).
     out_pose = motion.sample(prev, u, rng, has_odometry);
