@@ -106,13 +106,17 @@ MatchResult hillClimb(const GridMap& map, const MatchResult& from, const Prepare
   MatchResult r = from;
   double current = objective(r.score, r.pose, prior);
   int refinement = 0, iterations = 0;
+  int came_from = -1;  // the move that leads back to the previous pose (known to be worse): not re-evaluated
   while (refinement <= refinements && iterations < o.max_iterations) {
     ++iterations;
     Pose2 best_pose = r.pose;
     ScanScore best = r.score;
     double best_obj = current;
+    int best_move = -1;
     const Pose2 moves[6] = {{sxy, 0, 0}, {-sxy, 0, 0}, {0, sxy, 0}, {0, -sxy, 0}, {0, 0, sth}, {0, 0, -sth}};
-    for (const auto& m : moves) {
+    for (int mi = 0; mi < 6; ++mi) {
+      if (mi == came_from) continue;
+      const Pose2& m = moves[mi];
       const Pose2 cand{r.pose.x + m.x, r.pose.y + m.y, wrapAngle(r.pose.theta + m.theta)};
       const ScanScore sc = scoreScan(map, cand, scan, o);
       ++r.evaluations;
@@ -121,16 +125,19 @@ MatchResult hillClimb(const GridMap& map, const MatchResult& from, const Prepare
         best = sc;
         best_pose = cand;
         best_obj = obj;
+        best_move = mi;
       }
     }
     if (best_obj > current) {
       r.pose = best_pose;
       r.score = best;
       current = best_obj;
+      came_from = best_move ^ 1;  // moves come in ± pairs
     } else {
       sxy *= 0.5;
       sth *= 0.5;
       ++refinement;
+      came_from = -1;
     }
   }
   return r;
