@@ -55,7 +55,7 @@ std::string gzipString(const std::string& s) {
 const char* kTokens[] = {"nan", "-nan", "inf", "-inf", "1e999", "-1e999", "1e-999", "0", "-0", "-1", "+1",
                          "18446744073709551616", "99999999", "180", "181", "0x10", "", " ", "\t", "\r", "#",
                          "FLASER", "ODOM", "PARAM", "ROBOTLASER1", "RLASER", "\n", "1.0.0", "--1", "e5", ".",
-                         "\xff\xfe", std::string("\0", 1).c_str()};
+                         "\xff\xfe", "\x01"};  // NUL bytes come from the byte flips
 
 std::string mutate(std::string s, std::mt19937& rng) {
   auto pick = [&](std::size_t n) { return n == 0 ? std::size_t(0) : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };

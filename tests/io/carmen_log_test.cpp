@@ -379,3 +379,23 @@ TEST(CarmenLog, EmptyLogIsEmpty) {
   EXPECT_TRUE(log.odometry.empty());
   EXPECT_EQ(log.lines, 1u);
 }
+
+TEST(CarmenLog, ExtremeRangeValues) {
+  auto r = constantRanges(180, "1");
+  r[0] = "1e300";    // finite double beyond float: +inf, no return
+  r[1] = "-1e300";   // negative: no information
+  r[2] = "1e-999";   // underflow: zero, no information
+  r[3] = "+2.5";     // explicit sign
+  r[4] = "Infinity";
+  const CarmenLog log = parse(flaser(r, "0 0 0", "0 0 0", "1", "1"));
+  const LaserScan& s = log.scans.at(0).scan;
+  EXPECT_TRUE(std::isinf(s.ranges[0]) && s.ranges[0] > 0);
+  EXPECT_TRUE(s.isNoReturn(0));
+  EXPECT_FALSE(s.valid[1]);
+  EXPECT_FALSE(s.isNoReturn(1));
+  EXPECT_FALSE(s.valid[2]);
+  EXPECT_FALSE(s.isNoReturn(2));
+  EXPECT_TRUE(s.valid[3]);
+  EXPECT_FLOAT_EQ(s.ranges[3], 2.5f);
+  EXPECT_TRUE(s.isNoReturn(4));
+}

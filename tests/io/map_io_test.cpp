@@ -1,3 +1,5 @@
+#include "gridtopo/io/map_io.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -12,7 +14,6 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "synthetic_scans.h"
 
@@ -29,6 +30,15 @@ fs::path tmpDir() {
   return d;
 }
 
+// Removes this process's temporary directory when the tests are done.
+struct RemoveTmpDir : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(tmpDir(), ec);
+  }
+};
+const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
+
 std::string readText(const fs::path& p) {
   std::ifstream f(p);
   std::stringstream ss;
@@ -43,9 +53,12 @@ COccupancyGridMap2D::Ptr sampleGrid(float x0, float y0, float res = 0.05f) {
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) {
       float p = 0.5f;
-      if (x == 0 || y == 0 || x == 39) p = 0.0f;  // walls (occupied)
-      else if (y < 20) p = 1.0f;                  // free
-      else if (x == 7 && y == 25) p = 0.3f;
+      if (x == 0 || y == 0 || x == 39)
+        p = 0.0f;  // walls (occupied)
+      else if (y < 20)
+        p = 1.0f;  // free
+      else if (x == 7 && y == 25)
+        p = 0.3f;
       g->setCell(x, y, p);
     }
   return g;
@@ -147,11 +160,13 @@ TEST(MapIo, RosMapRoundTripKeepsExactOriginAndResolution) {
   // A gmapping-style origin half a cell off the resolution grid: MRPT's setSize() alone would move it.
   const float x0 = -51.225f, y0 = -12.375f;
   auto g = sampleGrid(0.0f, 0.0f);
-  const auto g2 = readGridMap([&] {
-    const fs::path png = tmpDir() / "tmp_src.png";
-    writeMapPng(*g, png.string());
-    return png.string();
-  }(), MapReadOptions{0.05, x0, y0});
+  const auto g2 = readGridMap(
+      [&] {
+        const fs::path png = tmpDir() / "tmp_src.png";
+        writeMapPng(*g, png.string());
+        return png.string();
+      }(),
+      MapReadOptions{0.05, x0, y0});
   EXPECT_EQ(g2->getXMin(), x0);
   EXPECT_EQ(g2->getYMin(), y0);
   const fs::path stem = tmpDir() / "rosmap";
@@ -192,7 +207,8 @@ TEST(MapIo, RosMapServerSemantics) {
   cv::imwrite((d / "m.pgm").string(), img);
   auto cells = [&](const std::string& extra) {
     std::ofstream(d / "m.yaml") << "image: m.pgm\nresolution: 0.1\norigin: [1.5, -2.0, 0.0]\n"
-                                << "occupied_thresh: 0.65\nfree_thresh: 0.196\n" << extra;
+                                << "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+                                << extra;
     const auto g = readGridMap((d / "m.yaml").string());
     std::vector<float> v;
     for (int i = 0; i < 6; ++i) v.push_back(g->getCell(i, 0));
@@ -201,10 +217,10 @@ TEST(MapIo, RosMapServerSemantics) {
   // trinary, negate 0: occupancy (255 - v) / 255 = 1, .80, .61, .196, .098, 0.
   auto t = cells("negate: 0\n");
   EXPECT_LT(t[0], 0.01f);
-  EXPECT_LT(t[1], 0.01f);    // 0.80 > 0.65: occupied
-  EXPECT_EQ(t[2], 0.5f);     // 0.61: unknown
-  EXPECT_EQ(t[3], 0.5f);     // 0.196 is not < 0.196: unknown (map_saver's 205)
-  EXPECT_GT(t[4], 0.99f);    // free
+  EXPECT_LT(t[1], 0.01f);  // 0.80 > 0.65: occupied
+  EXPECT_EQ(t[2], 0.5f);   // 0.61: unknown
+  EXPECT_EQ(t[3], 0.5f);   // 0.196 is not < 0.196: unknown (map_saver's 205)
+  EXPECT_GT(t[4], 0.99f);  // free
   EXPECT_GT(t[5], 0.99f);
   auto n = cells("negate: 1\n");  // occupancy v / 255
   EXPECT_GT(n[0], 0.99f);
@@ -297,4 +313,26 @@ TEST(MapIo, WriteGridMapPicksTheFormatAndFailsCleanly) {
   EXPECT_THROW(readGridMap((d / "missing.png").string()), gridtopo::InputError);
   std::ofstream(d / "not_an_image.png") << "hello";
   EXPECT_THROW(readGridMap((d / "not_an_image.png").string()), gridtopo::InputError);
+}
+
+TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
+  // MRPT's own loader (COccupancyGridMap2D deserialiser -> setSize()) moves an origin that is not a whole
+  // number of cells by up to half a cell; readGridMap gives the stored origin back.
+  const fs::path png = tmpDir() / "snap_src.png";
+  writeMapPng(*sampleGrid(0.0f, 0.0f), png.string());
+  const auto g = readGridMap(png.string(), MapReadOptions{0.05, -51.225, -12.375});
+  ASSERT_EQ(g->getXMin(), -51.225f);
+  const fs::path p = tmpDir() / "snap.gridmap.gz";
+  writeGridmapGz(*g, p.string());
+  const auto back = readGridMap(p.string());
+  EXPECT_EQ(back->getXMin(), -51.225f);
+  EXPECT_EQ(back->getYMin(), -12.375f);
+  EXPECT_EQ(back->getSizeX(), 40u);
+  EXPECT_EQ(back->getSizeY(), 30u);
+  expectSameCells(*g, *back);
+  mrpt::io::CFileGZInputStream in(p.string());
+  COccupancyGridMap2D m;
+  mrpt::serialization::archiveFrom(in) >> m;
+  EXPECT_NEAR(m.getXMin(), -51.2f, 1e-5);  // MRPT itself: half a cell off
+  EXPECT_NEAR(m.getYMin(), -12.4f, 1e-5);
 }

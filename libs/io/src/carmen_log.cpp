@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <charconv>
-#include <climits>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <string_view>
 
@@ -230,7 +230,10 @@ class Parser {
         // Slow path for '+', out-of-range exponents etc.; still reports a clear error.
         v = number(t, msg, " range " + std::to_string(k + 1), /*finite=*/false);
       }
-      scan.ranges[k] = static_cast<float>(v);
+      // Out of float range (a finite double such as 1e300) becomes ±inf rather than undefined behaviour.
+      scan.ranges[k] = !(std::abs(v) > static_cast<double>(std::numeric_limits<float>::max()))
+                           ? static_cast<float>(v)
+                           : (v > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
     }
   }
 

@@ -5,14 +5,14 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -62,8 +62,8 @@ COccupancyGridMap2D::Ptr makeGrid(int width, int height, float resolution, float
              y_min + static_cast<float>(height) * resolution, resolution, 0.5f);
   if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height)) {
     // setSize() computed the cell count from rounded limits; force the exact one.
-    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution,
-               resolution, 0.5f);
+    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution, resolution,
+               0.5f);
   }
   GridLimits::set(*g, x_min, y_min);
   return g;
@@ -127,8 +127,7 @@ RosMapYaml parseRosYaml(const std::string& path) {
   if (!y.has("origin")) throw InputError(path, 0, "origin", "missing");
   {
     const auto& o = y["origin"];
-    if (!o.isSequence() || o.asSequence().size() != 3)
-      throw InputError(path, 0, "origin", "expected [x, y, yaw]");
+    if (!o.isSequence() || o.asSequence().size() != 3) throw InputError(path, 0, "origin", "expected [x, y, yaw]");
     for (int i = 0; i < 3; ++i) {
       try {
         m.origin[i] = o.asSequence()[i].as<double>();
@@ -163,8 +162,10 @@ std::array<COccupancyGridMap2D::cellType, 256> rosLut(const RosMapYaml& m) {
       if (occ <= 100) p_free = 1.0 - occ / 100.0;
     } else {
       const double occ = m.negate ? v / 255.0 : (255 - v) / 255.0;
-      if (occ > m.occupied_thresh) p_free = 0.0;
-      else if (occ < m.free_thresh) p_free = 1.0;
+      if (occ > m.occupied_thresh)
+        p_free = 0.0;
+      else if (occ < m.free_thresh)
+        p_free = 1.0;
       else if (m.mode == "scale")
         p_free = 1.0 - (occ - m.free_thresh) / (m.occupied_thresh - m.free_thresh);
     }
@@ -187,6 +188,39 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, const std::str
   return g;
 }
 
+// MRPT's deserialiser passes the stored limits through setSize(), which moves an origin that is not a whole
+// number of cells by up to half a cell. The stored limits follow the object header as
+// [uint8 bits per cell][uint32 size_x][uint32 size_y][float x_min, x_max, y_min, y_max, resolution]
+// (little endian, COccupancyGridMap2D serialisation version 6): find that record in the first bytes of the
+// file and, if it matches the loaded grid, give the grid its exact stored origin back.
+void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
+  mrpt::io::CFileGZInputStream in;
+  if (!in.open(path)) return;
+  std::array<uint8_t, 256> head{};
+  const std::size_t n = in.Read(head.data(), head.size());
+  auto u32 = [&](std::size_t i) {
+    return static_cast<uint32_t>(head[i]) | static_cast<uint32_t>(head[i + 1]) << 8 |
+           static_cast<uint32_t>(head[i + 2]) << 16 | static_cast<uint32_t>(head[i + 3]) << 24;
+  };
+  auto f32 = [&](std::size_t i) {
+    const uint32_t bits = u32(i);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  };
+  for (std::size_t i = 0; i + 29 <= n; ++i) {
+    if ((head[i] != 8 && head[i] != 16) || u32(i + 1) != g.getSizeX() || u32(i + 5) != g.getSizeY()) continue;
+    const float x_min = f32(i + 9), x_max = f32(i + 13), y_min = f32(i + 17), y_max = f32(i + 21), res = f32(i + 25);
+    const float tol = 0.5f * res + 1e-4f;
+    if (res != g.getResolution() || !(std::abs(x_min - g.getXMin()) <= tol) ||
+        !(std::abs(y_min - g.getYMin()) <= tol) || !(std::abs(x_max - g.getXMax()) <= tol) ||
+        !(std::abs(y_max - g.getYMax()) <= tol))
+      continue;
+    GridLimits::set(g, x_min, y_min);
+    return;
+  }
+}
+
 COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
   mrpt::io::CFileGZInputStream in;
   if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
@@ -200,8 +234,10 @@ COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
   }
   auto g = std::dynamic_pointer_cast<COccupancyGridMap2D>(obj);
   if (!g)
-    throw InputError(path, 0, "", std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
-                                      ", not an mrpt::maps::COccupancyGridMap2D");
+    throw InputError(path, 0, "",
+                     std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
+                         ", not an mrpt::maps::COccupancyGridMap2D");
+  restoreExactLimits(path, *g);
   return g;
 }
 
@@ -226,8 +262,8 @@ mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const 
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
   const cv::Mat img = loadGrey(path);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution),
-                    static_cast<float>(options.origin_x), static_cast<float>(options.origin_y));
+  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution), static_cast<float>(options.origin_x),
+                    static_cast<float>(options.origin_y));
   // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.
   std::array<COccupancyGridMap2D::cellType, 256> lut{};
   for (int v = 0; v < 256; ++v) lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(v) / 255.0f);

@@ -1,0 +1,72 @@
+#pragma once
+// Observation likelihood p(z | m, x) and the search for its mode, as in GMapping (Grisetti et al. 2007,
+// section IV): each beam end point is associated with the nearest hit mean among the occupied cells of a
+// small window whose cell in front (towards the robot) is free; ln p = Σ_k max(−d_k²/(2σ²), null_log_likelihood).
+// The mode is found by hill climbing from the predicted pose with step halving, which converges to sub-cell
+// accuracy because the hit means are continuous.
+#include <functional>
+
+#include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/pose2.h"
+#include "gridtopo/slam/prepared_scan.h"
+
+namespace gridtopo::slam {
+
+enum class MatchMethod {
+  HillClimb,    ///< GMapping's search: ±step moves in x, y, θ, halving the step when no move improves
+  GaussNewton,  ///< Gauss-Newton on the end point-to-hit-mean distances, then a short hill-climbing polish
+};
+
+struct ScanMatcherOptions {
+  MatchMethod method = MatchMethod::HillClimb;  // Gauss-Newton is experimental (slower to converge here)
+  int gn_iterations = 8;              ///< Gauss-Newton iterations (re-association at each)
+  int gn_kernel = 2;                  ///< correspondence window half size (cells) during Gauss-Newton
+  double polish_step_xy = 0.01;       ///< m, first step of the hill-climbing polish after Gauss-Newton
+  double polish_step_theta = 0.005;   ///< rad
+  int polish_refinements = 3;         ///< step halvings of the polish
+  double sigma = 0.05;                ///< m, std-dev of the end point-to-obstacle distance
+  int kernel = 1;                     ///< window half size in cells for the correspondence search
+  double null_log_likelihood = -2.0;  ///< per-beam log-likelihood floor (no correspondence / outlier)
+  float occupied_log_odds = 0.0f;     ///< a cell is occupied when its log-odds exceeds this
+  /// GMapping's test: a correspondence counts only if the cell one step back along the beam is not occupied
+  /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
+  /// the match by up to half a cell, so it is off by default.
+  bool free_check = false;
+  double step_xy = 0.03;              ///< m, initial hill-climbing step
+  double step_theta = 0.02;           ///< rad, initial hill-climbing step
+  int refinements = 6;                ///< number of step halvings
+  int max_iterations = 200;           ///< safety cap on hill-climbing moves
+  /// Informed / mode-only proposals: search the mode of p(z|m,x)·p(x|x_{t-1},u) (true) or of p(z|m,x) (false).
+  bool use_motion_prior = false;
+  /// Matching fails when fewer than this fraction of the matching beams found a correspondence.
+  double min_match_fraction = 0.3;
+};
+
+struct ScanScore {
+  double log_likelihood = 0.0;  ///< Σ over matching beams (not divided by the gain)
+  int matched = 0;              ///< beams that found a correspondence
+};
+
+struct MatchResult {
+  Pose2 pose;
+  ScanScore score;
+  int evaluations = 0;
+  bool ok = false;  ///< enough beams matched
+};
+
+/// ln p(z | m, x) over the matching beams.
+ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o);
+
+/// Optional prior multiplied into the matched objective: the search then finds the mode of
+/// p(z|m,x)^likelihood_scale · prior(x) — with the motion model as prior, the mode of the informed proposal's
+/// target distribution rather than of the likelihood alone.
+struct MatchPrior {
+  double likelihood_scale = 1.0;                ///< e.g. 1 / gain
+  std::function<double(const Pose2&)> log_prior;  ///< ln prior(x)
+};
+
+/// Searches from `start` for the mode of the likelihood (or of likelihood × prior when `prior` is given).
+MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
+                      const ScanMatcherOptions& o, const MatchPrior* prior = nullptr);
+
+}  // namespace gridtopo::slam
