@@ -16,6 +16,10 @@ struct MapReadOptions {
 };
 
 /// Reads .png/.pgm/.jpg (with a ROS .yaml beside it if there is one), a ROS .yaml, or .gridmap / .gridmap.gz.
+/// Plain images: cell p_free = grey / 255. ROS maps: map_server semantics (negate, thresholds, trinary /
+/// scale / raw modes): occupied -> p_free 0, free -> 1, unknown -> 0.5. The origin and resolution are kept
+/// exactly (as floats, MRPT's cell geometry type), even when the origin is not a whole number of cells.
+/// Throws gridtopo::InputError naming the file (and YAML key) on bad input.
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options = {});
 
 /// Grey image of a grid (CV_8UC1, 255 = free, 0 = occupied, value = round(255 * p_free)); row 0 is the
@@ -27,6 +31,10 @@ void writeMapPng(const mrpt::maps::COccupancyGridMap2D& grid, const std::string&
 /// Writes `<stem>.pgm` and `<stem>.yaml` (map_server: resolution, origin, negate, occupied/free thresholds).
 void writeRosMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& stem);
 void writeGridmapGz(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path);
+/// CSimpleMap (poses + sensory frames) serialised and gzip-compressed, as MRPT's CSimpleMap::saveToFile does.
 void writeSimplemap(const mrpt::maps::CSimpleMap& map, const std::string& path);
+/// Picks the writer from the name: .png/.bmp/.jpg -> image, .yaml/.pgm -> ROS map (same stem),
+/// .gridmap/.gridmap.gz -> MRPT serialisation (gzip). Throws std::invalid_argument for other names.
+void writeGridMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path);
 
 }  // namespace gridtopo::io

@@ -1,0 +1,121 @@
+#include "gridtopo/io/log_reader.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/io/rawlog_io.h"
+
+namespace gridtopo::io {
+namespace {
+
+double wrapToPi(double a) {
+  a = std::fmod(a + M_PI, 2.0 * M_PI);
+  if (a < 0) a += 2.0 * M_PI;
+  return a - M_PI;
+}
+
+// Up to `n` leading bytes of the file, decompressed if it is gzip (zlib reads plain files as they are).
+std::string leadingBytes(const std::string& path, std::size_t n) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) throw InputError(path, "cannot open log file");
+  std::string buf(n, '\0');
+  const int got = gzread(f, buf.data(), static_cast<unsigned>(n));
+  gzclose(f);
+  // A gzip file truncated early still gives its first bytes; a hard error gives -1.
+  if (got < 0) throw InputError(path, 0, "gzip", "cannot decompress the start of the file");
+  buf.resize(static_cast<std::size_t>(got));
+  return buf;
+}
+
+}  // namespace
+
+const char* logFormatName(LogFormat format) {
+  switch (format) {
+    case LogFormat::Carmen: return "CARMEN";
+    case LogFormat::Rawlog: return "MRPT rawlog";
+    case LogFormat::Simulated: return "simulated";
+    default: return "empty";
+  }
+}
+
+LogFormat detectLogFormat(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "no such log file");
+  const std::string head = leadingBytes(path, 4096);
+  if (head.empty()) return LogFormat::Empty;
+  // CARMEN logs are plain ASCII lines; MRPT serialisation starts with a binary object header.
+  const bool text = std::all_of(head.begin(), head.end(), [](char ch) {
+    const auto c = static_cast<unsigned char>(ch);
+    return c == '\n' || c == '\r' || c == '\t' || (c >= 0x20 && c < 0x7f);
+  });
+  return text ? LogFormat::Carmen : LogFormat::Rawlog;
+}
+
+std::size_t interpolateOdometry(std::vector<ScanRecord>& scans, const std::vector<OdometryReading>& odometry) {
+  if (odometry.empty()) return scans.size();
+  std::vector<std::size_t> order(odometry.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return odometry[a].timestamp < odometry[b].timestamp; });
+  std::size_t fallbacks = 0;
+  for (auto& rec : scans) {
+    const double t = rec.scan.timestamp;
+    // First reading later than t; the one before it is the latest at or before t.
+    const auto it = std::upper_bound(order.begin(), order.end(), t,
+                                     [&](double v, std::size_t i) { return v < odometry[i].timestamp; });
+    if (it == order.begin()) {
+      ++fallbacks;
+      continue;
+    }
+    const OdometryReading& a = odometry[*(it - 1)];
+    if (a.timestamp == t) {
+      rec.odometry = a.pose;
+    } else if (it == order.end()) {
+      ++fallbacks;
+      continue;
+    } else {
+      const OdometryReading& b = odometry[*it];
+      const double f = (t - a.timestamp) / (b.timestamp - a.timestamp);
+      rec.odometry = {a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+                      wrapToPi(a.pose.phi + f * wrapToPi(b.pose.phi - a.pose.phi))};
+    }
+    rec.has_odometry = true;
+  }
+  return fallbacks;
+}
+
+std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOptions& options) {
+  ScanLogInfo info;
+  return readScanLog(path, options, info);
+}
+
+std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOptions& options, ScanLogInfo& info) {
+  info = ScanLogInfo{};
+  info.format = detectLogFormat(path);
+  switch (info.format) {
+    case LogFormat::Empty: return {};
+    case LogFormat::Rawlog: {
+      RawlogContents raw = readRawlog(path);
+      info.odometry_messages = raw.odometry_observations;
+      info.lines_or_entries = raw.entries;
+      info.rawlog_has_actions = raw.has_actions;
+      return std::move(raw.scans);
+    }
+    case LogFormat::Carmen:
+    case LogFormat::Simulated: break;
+  }
+  CarmenLog log = readCarmenLog(path, options.carmen);
+  info.odometry_messages = log.odometry.size();
+  info.lines_or_entries = log.lines;
+  info.skipped_lines = log.skipped_lines;
+  info.skipped = std::move(log.skipped);
+  if (options.odometry == OdometrySource::OdomLines)
+    info.odometry_fallbacks = interpolateOdometry(log.scans, log.odometry);
+  return std::move(log.scans);
+}
+
+}  // namespace gridtopo::io

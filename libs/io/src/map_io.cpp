@@ -1,0 +1,350 @@
+#include "gridtopo/io/map_io.h"
+
+#include <mrpt/containers/yaml.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstring>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
+
+namespace fs = std::filesystem;
+using mrpt::maps::COccupancyGridMap2D;
+
+namespace gridtopo::io {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// Shortest text that reads back to the same float (origins and resolutions are floats in MRPT grids).
+std::string formatFloat(float v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, res.ptr);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+// MRPT's COccupancyGridMap2D::setSize() rounds the grid's limits to whole multiples of the resolution. Maps
+// whose origin is not such a multiple (ROS maps often sit half a cell off) get their exact limits back through
+// this accessor of the protected members.
+struct GridLimits : COccupancyGridMap2D {
+  static void set(COccupancyGridMap2D& g, float x_min, float y_min) {
+    const float res = g.getResolution();
+    g.*(&GridLimits::m_xMin) = x_min;
+    g.*(&GridLimits::m_yMin) = y_min;
+    g.*(&GridLimits::m_xMax) = x_min + static_cast<float>(g.getSizeX()) * res;
+    g.*(&GridLimits::m_yMax) = y_min + static_cast<float>(g.getSizeY()) * res;
+  }
+};
+
+/// A grid of `width` x `height` cells of `resolution` m whose lower-left corner is (x_min, y_min), exactly.
+COccupancyGridMap2D::Ptr makeGrid(int width, int height, float resolution, float x_min, float y_min) {
+  auto g = COccupancyGridMap2D::Create();
+  g->setSize(x_min, x_min + static_cast<float>(width) * resolution, y_min,
+             y_min + static_cast<float>(height) * resolution, resolution, 0.5f);
+  if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height)) {
+    // setSize() computed the cell count from rounded limits; force the exact one.
+    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution,
+               resolution, 0.5f);
+  }
+  GridLimits::set(*g, x_min, y_min);
+  return g;
+}
+
+/// Fills the grid from a grey image (row 0 = top = largest y) through a per-grey-level table of raw cells.
+void fillFromImage(COccupancyGridMap2D& g, const cv::Mat& img,
+                   const std::array<COccupancyGridMap2D::cellType, 256>& lut) {
+  const int h = img.rows, w = img.cols;
+  for (int r = 0; r < h; ++r) {
+    const uint8_t* row = img.ptr<uint8_t>(r);
+    COccupancyGridMap2D::cellType* cells = g.getRow(h - 1 - r);
+    for (int c = 0; c < w; ++c) cells[c] = lut[row[c]];
+  }
+}
+
+cv::Mat loadGrey(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "no such image file");
+  cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (img.empty()) throw InputError(path, "cannot decode the image (not a PNG/PGM/JPG/BMP file?)");
+  return img;
+}
+
+struct RosMapYaml {
+  std::string image;
+  double resolution = 0;
+  double origin[3] = {0, 0, 0};
+  bool negate = false;
+  double occupied_thresh = 0.65, free_thresh = 0.196;
+  std::string mode = "trinary";
+};
+
+RosMapYaml parseRosYaml(const std::string& path) {
+  mrpt::containers::yaml y;
+  try {
+    y = mrpt::containers::yaml::FromFile(path);
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, "", std::string("cannot parse YAML: ") + e.what());
+  }
+  if (!y.isMap()) throw InputError(path, "not a ROS map_server YAML file (expected key: value pairs)");
+  RosMapYaml m;
+  auto number = [&](const char* key, bool required, double def) {
+    if (!y.has(key)) {
+      if (required) throw InputError(path, 0, key, "missing");
+      return def;
+    }
+    double v = 0;
+    try {
+      v = y[key].as<double>();
+    } catch (const std::exception&) {
+      throw InputError(path, 0, key, "expected a number");
+    }
+    if (!std::isfinite(v)) throw InputError(path, 0, key, "expected a finite number");
+    return v;
+  };
+  if (!y.has("image")) throw InputError(path, 0, "image", "missing");
+  m.image = y["image"].as<std::string>();
+  if (m.image.empty()) throw InputError(path, 0, "image", "empty image file name");
+  m.resolution = number("resolution", true, 0);
+  if (!(m.resolution > 0)) throw InputError(path, 0, "resolution", "must be positive");
+  if (!y.has("origin")) throw InputError(path, 0, "origin", "missing");
+  {
+    const auto& o = y["origin"];
+    if (!o.isSequence() || o.asSequence().size() != 3)
+      throw InputError(path, 0, "origin", "expected [x, y, yaw]");
+    for (int i = 0; i < 3; ++i) {
+      try {
+        m.origin[i] = o.asSequence()[i].as<double>();
+      } catch (const std::exception&) {
+        throw InputError(path, 0, "origin", "expected three numbers [x, y, yaw]");
+      }
+      if (!std::isfinite(m.origin[i])) throw InputError(path, 0, "origin", "expected finite numbers");
+    }
+    if (std::abs(m.origin[2]) > 1e-9)
+      throw InputError(path, 0, "origin", "a rotated map (non-zero yaw) cannot be held by an MRPT grid");
+  }
+  m.negate = number("negate", false, 0) != 0.0;
+  m.occupied_thresh = number("occupied_thresh", false, 0.65);
+  m.free_thresh = number("free_thresh", false, 0.196);
+  if (!(m.free_thresh >= 0 && m.free_thresh < m.occupied_thresh && m.occupied_thresh <= 1))
+    throw InputError(path, 0, "free_thresh", "need 0 <= free_thresh < occupied_thresh <= 1");
+  if (y.has("mode")) m.mode = y["mode"].as<std::string>();
+  if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw")
+    throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + m.mode + "'");
+  return m;
+}
+
+/// map_server semantics: grey v -> occupancy p = (255 - v) / 255 (v / 255 if negate); p > occupied_thresh is
+/// occupied, p < free_thresh free, otherwise unknown (trinary) or p rescaled between the thresholds (scale).
+/// raw: v is the occupancy in percent (0..100), anything else unknown.
+std::array<COccupancyGridMap2D::cellType, 256> rosLut(const RosMapYaml& m) {
+  std::array<COccupancyGridMap2D::cellType, 256> lut{};
+  for (int v = 0; v < 256; ++v) {
+    double p_free = 0.5;  // unknown
+    if (m.mode == "raw") {
+      const int occ = m.negate ? 255 - v : v;
+      if (occ <= 100) p_free = 1.0 - occ / 100.0;
+    } else {
+      const double occ = m.negate ? v / 255.0 : (255 - v) / 255.0;
+      if (occ > m.occupied_thresh) p_free = 0.0;
+      else if (occ < m.free_thresh) p_free = 1.0;
+      else if (m.mode == "scale")
+        p_free = 1.0 - (occ - m.free_thresh) / (m.occupied_thresh - m.free_thresh);
+    }
+    lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(p_free));
+  }
+  return lut;
+}
+
+COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, const std::string& image_override = "") {
+  const RosMapYaml m = parseRosYaml(yaml_path);
+  std::string image = image_override;
+  if (image.empty()) {
+    const fs::path ip(m.image);
+    image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
+  }
+  const cv::Mat img = loadGrey(image);
+  auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
+                    static_cast<float>(m.origin[1]));
+  fillFromImage(*g, img, rosLut(m));
+  return g;
+}
+
+// MRPT's deserialiser passes the stored limits through setSize(), which moves an origin that is not a whole
+// number of cells by up to half a cell. The stored limits follow the object header as
+// [uint8 bits per cell][uint32 size_x][uint32 size_y][float x_min, x_max, y_min, y_max, resolution]
+// (little endian, COccupancyGridMap2D serialisation version 6): find that record in the first bytes of the
+// file and, if it matches the loaded grid, give the grid its exact stored origin back.
+void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
+  mrpt::io::CFileGZInputStream in;
+  if (!in.open(path)) return;
+  std::array<uint8_t, 256> head{};
+  const std::size_t n = in.Read(head.data(), head.size());
+  auto u32 = [&](std::size_t i) {
+    return static_cast<uint32_t>(head[i]) | static_cast<uint32_t>(head[i + 1]) << 8 |
+           static_cast<uint32_t>(head[i + 2]) << 16 | static_cast<uint32_t>(head[i + 3]) << 24;
+  };
+  auto f32 = [&](std::size_t i) {
+    const uint32_t bits = u32(i);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  };
+  for (std::size_t i = 0; i + 29 <= n; ++i) {
+    if ((head[i] != 8 && head[i] != 16) || u32(i + 1) != g.getSizeX() || u32(i + 5) != g.getSizeY()) continue;
+    const float x_min = f32(i + 9), x_max = f32(i + 13), y_min = f32(i + 17), y_max = f32(i + 21), res = f32(i + 25);
+    const float tol = 0.5f * res + 1e-4f;
+    if (res != g.getResolution() || !(std::abs(x_min - g.getXMin()) <= tol) ||
+        !(std::abs(y_min - g.getYMin()) <= tol) || !(std::abs(x_max - g.getXMax()) <= tol) ||
+        !(std::abs(y_max - g.getYMax()) <= tol))
+      continue;
+    GridLimits::set(g, x_min, y_min);
+    return;
+  }
+}
+
+COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
+  mrpt::io::CFileGZInputStream in;
+  if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
+  mrpt::serialization::CSerializable::Ptr obj;
+  try {
+    obj = mrpt::serialization::archiveFrom(in).ReadObject();
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    if (const auto nl = msg.find('\n'); nl != std::string::npos && nl > 0) msg = msg.substr(0, nl);
+    throw InputError(path, 0, "", "cannot read an MRPT serialized object (corrupt or truncated?): " + msg);
+  }
+  auto g = std::dynamic_pointer_cast<COccupancyGridMap2D>(obj);
+  if (!g)
+    throw InputError(path, 0, "", std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
+                                      ", not an mrpt::maps::COccupancyGridMap2D");
+  restoreExactLimits(path, *g);
+  return g;
+}
+
+void writeGz(const std::string& tmp, const mrpt::serialization::CSerializable& obj) {
+  mrpt::io::CFileGZOutputStream out;
+  if (!out.open(tmp, 1)) throw std::runtime_error("cannot open " + tmp + " for writing");
+  mrpt::serialization::archiveFrom(out) << obj;
+  out.close();
+}
+
+}  // namespace
+
+mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options) {
+  const std::string l = lower(path);
+  if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path);
+  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return readGridmapFile(path);
+  // An image: a ROS YAML with the same stem beside it gives resolution, origin and thresholds.
+  for (const char* ext : {".yaml", ".yml"}) {
+    const fs::path yaml = fs::path(path).replace_extension(ext);
+    if (fs::is_regular_file(yaml)) return readRosMap(yaml.string(), path);
+  }
+  if (!(options.resolution > 0) || !std::isfinite(options.resolution))
+    throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
+  const cv::Mat img = loadGrey(path);
+  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution),
+                    static_cast<float>(options.origin_x), static_cast<float>(options.origin_y));
+  // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.
+  std::array<COccupancyGridMap2D::cellType, 256> lut{};
+  for (int v = 0; v < 256; ++v) lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(v) / 255.0f);
+  fillFromImage(*g, img, lut);
+  return g;
+}
+
+cv::Mat gridToImage(const mrpt::maps::COccupancyGridMap2D& grid) {
+  const int w = static_cast<int>(grid.getSizeX()), h = static_cast<int>(grid.getSizeY());
+  cv::Mat img(h, w, CV_8UC1);
+  // round(255 * p_free) per raw cell value (MRPT's l2p_255 truncates: 255 would come back as 254).
+  using Cell = COccupancyGridMap2D::cellType;
+  using Unsigned = COccupancyGridMap2D::cellTypeUnsigned;
+  std::vector<uint8_t> lut(std::size_t{1} << (8 * sizeof(Cell)));
+  for (std::size_t u = 0; u < lut.size(); ++u) {
+    const Cell c = static_cast<Cell>(static_cast<Unsigned>(u));
+    lut[u] = static_cast<uint8_t>(std::lround(255.0 * COccupancyGridMap2D::l2p(c)));
+  }
+  for (int r = 0; r < h; ++r) {
+    const Cell* cells = grid.getRow(h - 1 - r);
+    uint8_t* row = img.ptr<uint8_t>(r);
+    for (int c = 0; c < w; ++c) row[c] = lut[static_cast<Unsigned>(cells[c])];
+  }
+  return img;
+}
+
+void writeMapPng(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path) {
+  const cv::Mat img = gridToImage(grid);
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write image " + path);
+  });
+}
+
+void writeRosMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& stem) {
+  // map_saver convention: occupied (p_occ > 0.65) = 0, free (p_occ < 0.196) = 254, unknown = 205.
+  const int w = static_cast<int>(grid.getSizeX()), h = static_cast<int>(grid.getSizeY());
+  cv::Mat img(h, w, CV_8UC1);
+  for (int r = 0; r < h; ++r) {
+    uint8_t* row = img.ptr<uint8_t>(r);
+    for (int c = 0; c < w; ++c) {
+      const double p_occ = 1.0 - static_cast<double>(grid.getCell(c, h - 1 - r));
+      row[c] = p_occ > 0.65 ? 0 : (p_occ < 0.196 ? 254 : 205);
+    }
+  }
+  const std::string pgm = stem + ".pgm", yaml = stem + ".yaml";
+  std::ostringstream y;
+  y << "image: " << fs::path(pgm).filename().string() << "\n"
+    << "resolution: " << formatFloat(grid.getResolution()) << "\n"
+    << "origin: [" << formatFloat(grid.getXMin()) << ", " << formatFloat(grid.getYMin()) << ", 0.0]\n"
+    << "negate: 0\n"
+    << "occupied_thresh: 0.65\n"
+    << "free_thresh: 0.196\n";
+  OutputSet out;
+  out.write(pgm, [&](const std::string& tmp) {
+    // Binary PGM (P5), what map_server's map_saver writes.
+    if (!cv::imwrite(tmp, img, {cv::IMWRITE_PXM_BINARY, 1})) throw std::runtime_error("cannot write " + pgm);
+  });
+  out.write(yaml, [&](const std::string& tmp) {
+    std::ofstream f(tmp);
+    f << y.str();
+    if (!f.flush()) throw std::runtime_error("cannot write " + yaml);
+  });
+  out.commit();
+}
+
+void writeGridmapGz(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path) {
+  writeFileAtomically(path, [&](const std::string& tmp) { writeGz(tmp, grid); });
+}
+
+void writeSimplemap(const mrpt::maps::CSimpleMap& map, const std::string& path) {
+  writeFileAtomically(path, [&](const std::string& tmp) { writeGz(tmp, map); });
+}
+
+void writeGridMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path) {
+  const std::string l = lower(path);
+  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return writeGridmapGz(grid, path);
+  if (endsWith(l, ".yaml") || endsWith(l, ".pgm"))
+    return writeRosMap(grid, fs::path(path).replace_extension().string());
+  if (endsWith(l, ".png") || endsWith(l, ".bmp") || endsWith(l, ".jpg") || endsWith(l, ".jpeg"))
+    return writeMapPng(grid, path);
+  throw std::invalid_argument("unknown map format for '" + path +
+                              "' (expected .png, .yaml/.pgm, .gridmap or .gridmap.gz)");
+}
+
+}  // namespace gridtopo::io
