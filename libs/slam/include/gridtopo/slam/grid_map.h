@@ -1,0 +1,85 @@
+#pragma once
+// The particle map: an occupancy grid in log-odds made of square tiles shared between particles and copied
+// on the first write (copy-on-write), so particles that descend from one parent share every tile neither of
+// them changed since. The grid grows as the robot explores (no fixed bounds). Each cell also keeps the mean of
+// the beam endpoints that hit it (as GMapping does), which gives the scan matcher sub-cell accuracy.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "gridtopo/slam/pose2.h"
+
+namespace gridtopo::slam {
+
+struct Cell {
+  float log_odds = 0.0f;  ///< ln(p / (1 - p)); 0 = unknown
+  float hit_x = 0.0f;     ///< sum of the world x of the endpoints that hit this cell
+  float hit_y = 0.0f;
+  std::uint32_t hits = 0;
+};
+
+struct MapUpdateOptions {
+  float log_odds_hit = 0.85f;    ///< added to a cell where a beam ends
+  float log_odds_free = -0.4f;   ///< added to every cell a beam crosses before its end
+  float log_odds_min = -4.0f;    ///< clamp
+  float log_odds_max = 4.0f;     ///< clamp
+};
+
+/// A beam ready to insert: its end in the sensor frame and whether it ends on an obstacle.
+struct MapBeam {
+  double ex, ey;  ///< end point in the robot frame (metres)
+  bool hit;       ///< true: obstacle at the end; false: free space up to the end (no return / clipped)
+};
+
+class GridMap {
+ public:
+  static constexpr int kTileBits = 4;
+  static constexpr int kTileSize = 1 << kTileBits;  ///< cells per tile side
+  static constexpr int kTileMask = kTileSize - 1;
+  struct Tile {
+    std::array<Cell, kTileSize * kTileSize> cells{};
+  };
+
+  explicit GridMap(double resolution = 0.05);
+
+  double resolution() const { return res_; }
+  int cellIndex(double w) const { return static_cast<int>(std::floor(w * inv_res_)); }
+  double cellCenter(int c) const { return (c + 0.5) * res_; }
+
+  /// The cell at integer cell coordinates, or nullptr when it was never observed (outside / no tile).
+  const Cell* cell(int cx, int cy) const {
+    const int tx = (cx >> kTileBits) - tx0_, ty = (cy >> kTileBits) - ty0_;
+    if (static_cast<unsigned>(tx) >= static_cast<unsigned>(ntx_) ||
+        static_cast<unsigned>(ty) >= static_cast<unsigned>(nty_))
+      return nullptr;
+    const Tile* t = tiles_[static_cast<std::size_t>(ty) * ntx_ + tx].get();
+    if (!t) return nullptr;
+    return &t->cells[((cy & kTileMask) << kTileBits) | (cx & kTileMask)];
+  }
+  /// The cell, made writable: grows the grid if needed and copies a shared tile first.
+  Cell& mutableCell(int cx, int cy);
+
+  /// Inserts one scan taken with the robot at `robot` and the laser at `sensor` (robot frame): every beam
+  /// marks the cells it crosses free (Bresenham) and, for a hit, its last cell occupied.
+  void insertScan(const Pose2& robot, const Pose2& sensor, const std::vector<MapBeam>& beams,
+                  const MapUpdateOptions& o);
+
+  /// Bounding box of allocated tiles in cell coordinates [min, max); empty map: all zeros.
+  void cellBounds(int& min_cx, int& min_cy, int& max_cx, int& max_cy) const;
+  std::size_t tileCount() const;  ///< allocated tiles
+  const std::vector<std::shared_ptr<Tile>>& tiles() const { return tiles_; }
+  /// Occupancy probability of a cell (0.5 when unknown).
+  double probability(int cx, int cy) const;
+
+ private:
+  void ensureTileRange(int tx_min, int ty_min, int tx_max, int ty_max);  // inclusive tile coordinates
+  Tile* writableTile(int cx, int cy);
+
+  double res_, inv_res_;
+  int tx0_ = 0, ty0_ = 0, ntx_ = 0, nty_ = 0;
+  std::vector<std::shared_ptr<Tile>> tiles_;
+};
+
+}  // namespace gridtopo::slam

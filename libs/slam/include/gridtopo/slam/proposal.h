@@ -1,0 +1,45 @@
+#pragma once
+// The improved proposal of Grisetti, Stachniss, Burgard (IEEE T-RO 2007, eq. 9-13): around the scan-matching
+// mode x̂, K poses x_j are weighted by τ_j = p(z|m,x_j)·p(x_j|x_{t-1},u); the Gaussian N(μ, Σ) fitted to them
+// is the proposal, and η = Σ_j τ_j is the particle's weight factor. Everything in log space.
+#include <Eigen/Core>
+#include <vector>
+
+#include "gridtopo/slam/pose2.h"
+#include "gridtopo/slam/random.h"
+
+namespace gridtopo::slam {
+
+enum class ProposalType {
+  Informed,  ///< Gaussian fitted around the mode (the paper's proposal)
+  ModeOnly,  ///< the particle jumps to the mode, weight p(z|m,x̂) (what GMapping ships)
+  Odometry,  ///< classic SIR: sample the motion model, weight p(z|m,x)
+};
+
+struct ProposalOptions {
+  ProposalType type = ProposalType::Informed;
+  int points_per_axis = 3;     ///< K = points_per_axis³ poses on a grid around the mode
+  double delta_xy = 0.02;      ///< m, grid spacing in x and y
+  double delta_theta = 0.01;   ///< rad, grid spacing in θ
+  double min_sigma_xy = 1e-3;  ///< m, floor on the proposal's standard deviations (numerical safety)
+  double min_sigma_theta = 5e-4;
+};
+
+struct GaussianProposal {
+  Pose2 mean;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  double log_eta = 0.0;  ///< ln Σ_j τ_j
+};
+
+/// Fits μ, Σ and ln η to poses with log-weights ln τ_j. Angles are averaged relative to `reference` (the mode),
+/// with wrapped differences, so poses on both sides of ±π are handled.
+GaussianProposal fitProposal(const std::vector<Pose2>& poses, const std::vector<double>& log_tau,
+                             const Pose2& reference);
+
+/// Draws from N(mean, cov) (3×3, positive semi-definite), angle wrapped.
+Pose2 sampleGaussian(const GaussianProposal& g, Rng& rng);
+
+/// ln Σ exp(v).
+double logSumExp(const std::vector<double>& v);
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,94 @@
+#pragma once
+// Rao-Blackwellized particle filter grid SLAM with the informed proposal and adaptive resampling
+// (Grisetti, Stachniss, Burgard, "Improved techniques for grid mapping with Rao-Blackwellized particle filters",
+// IEEE T-RO 23(1), 2007). Feed scans in log order with processScan(); read the trajectory of every scan and the
+// best particle's map at any time.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "gridtopo/io/scan_record.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/motion_model.h"
+#include "gridtopo/slam/slam_options.h"
+#include "gridtopo/slam/thread_pool.h"
+#include "gridtopo/slam/trajectory_tree.h"
+
+namespace gridtopo::slam {
+
+struct Particle {
+  Pose2 pose;
+  double log_weight = 0.0;        ///< since the last resampling (relative; normalised every step)
+  double log_weight_total = 0.0;  ///< accumulated over the whole run, inherited at resampling (best-particle choice)
+  TrajectoryNodePtr node;
+  GridMap map;
+};
+
+/// What happened at one processed scan (one line of the stats file).
+struct StepStats {
+  std::size_t step = 0;        ///< processed-scan counter
+  std::size_t scan_index = 0;  ///< input index of the scan
+  double timestamp = 0.0;
+  double time_s = 0.0;         ///< wall time of the step
+  double neff = 0.0;           ///< before resampling
+  bool resampled = false;
+  int particles = 0;
+  int failed_matches = 0;      ///< particles that fell back to the odometry proposal
+  std::size_t unique_tiles = 0;  ///< distinct map tiles over all particles (copy-on-write sharing)
+  std::size_t map_bytes = 0;     ///< memory of those tiles
+};
+
+/// Step outcome for one particle (exposed for tests and the MRPT builder).
+struct ParticleStep {
+  bool matched = false;
+  double log_weight_increment = 0.0;
+};
+
+/// Per-particle proposal + weight: the pure core of one filter step (predict, match, sample around the mode,
+/// fit the proposal, draw, weight). `u` is the odometry increment in the frame of `prev`.
+ParticleStep proposeAndWeight(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                              const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                              Rng& rng, Pose2& out_pose);
+
+class RbpfSlam {
+ public:
+  explicit RbpfSlam(const SlamOptions& options);
+
+  /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy).
+  bool processScan(const io::ScanRecord& record);
+
+  /// A pose for every scan fed so far: processed scans from the best particle's path, the others from the
+  /// neighbouring processed poses plus odometry (blended between the previous and the next processed scan).
+  std::vector<io::TimedPose> trajectory() const;
+  std::size_t bestParticleIndex() const;
+  const Particle& bestParticle() const { return particles_[bestParticleIndex()]; }
+  const std::vector<Particle>& particles() const { return particles_; }
+  const std::vector<StepStats>& stats() const { return stats_; }
+  const SlamOptions& options() const { return o_; }
+  std::size_t scansSeen() const { return scans_.size(); }
+  std::size_t stepsProcessed() const { return stats_.size(); }
+  /// Distinct tiles over all particles and their bytes.
+  std::size_t uniqueTiles() const;
+
+ private:
+  struct ScanInfo {
+    double timestamp;
+    bool has_odometry;
+    Pose2 odometry;
+  };
+  bool shouldProcess(const io::ScanRecord& r) const;
+  void resample(const std::vector<double>& w);
+
+  SlamOptions o_;
+  OdometryMotionModel motion_;
+  std::unique_ptr<ThreadPool> pool_;
+  std::vector<Particle> particles_;
+  std::vector<ScanInfo> scans_;
+  std::vector<StepStats> stats_;
+  bool initialized_ = false;
+  std::size_t last_processed_ = 0;  // scan index
+  double acc_linear_ = 0.0, acc_angular_ = 0.0;
+};
+
+}  // namespace gridtopo::slam

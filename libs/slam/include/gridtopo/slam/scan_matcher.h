@@ -1,0 +1,45 @@
+#pragma once
+// Observation likelihood p(z | m, x) and the search for its mode, as in GMapping (Grisetti et al. 2007,
+// section IV): each beam end point is associated with the nearest hit mean among the occupied cells of a
+// small window whose cell in front (towards the robot) is free; ln p = Σ_k max(−d_k²/(2σ²), null_log_likelihood).
+// The mode is found by hill climbing from the predicted pose with step halving, which converges to sub-cell
+// accuracy because the hit means are continuous.
+#include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/pose2.h"
+#include "gridtopo/slam/prepared_scan.h"
+
+namespace gridtopo::slam {
+
+struct ScanMatcherOptions {
+  double sigma = 0.05;                ///< m, std-dev of the end point-to-obstacle distance
+  int kernel = 1;                     ///< window half size in cells for the correspondence search
+  double null_log_likelihood = -2.0;  ///< per-beam log-likelihood floor (no correspondence / outlier)
+  float occupied_log_odds = 0.0f;     ///< a cell is occupied when its log-odds exceeds this
+  double step_xy = 0.05;              ///< m, initial hill-climbing step
+  double step_theta = 0.05;           ///< rad, initial hill-climbing step
+  int refinements = 6;                ///< number of step halvings
+  int max_iterations = 200;           ///< safety cap on hill-climbing moves
+  /// Matching fails when fewer than this fraction of the matching beams found a correspondence.
+  double min_match_fraction = 0.3;
+};
+
+struct ScanScore {
+  double log_likelihood = 0.0;  ///< Σ over matching beams (not divided by the gain)
+  int matched = 0;              ///< beams that found a correspondence
+};
+
+struct MatchResult {
+  Pose2 pose;
+  ScanScore score;
+  int evaluations = 0;
+  bool ok = false;  ///< enough beams matched
+};
+
+/// ln p(z | m, x) over the matching beams.
+ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o);
+
+/// Hill climbing from `start` to the mode of the likelihood.
+MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
+                      const ScanMatcherOptions& o);
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,30 @@
+#pragma once
+// Particle trajectories as a tree: each particle points at its newest node; nodes point at their parent.
+// Resampling copies a pointer, never a path, so descendants of one particle share its whole history.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "gridtopo/slam/pose2.h"
+
+namespace gridtopo::slam {
+
+struct TrajectoryNode {
+  Pose2 pose;
+  std::size_t scan_index = 0;  ///< index of the scan (in input order) this pose belongs to
+  std::shared_ptr<const TrajectoryNode> parent;
+
+  TrajectoryNode(const Pose2& p, std::size_t scan, std::shared_ptr<const TrajectoryNode> par)
+      : pose(p), scan_index(scan), parent(std::move(par)) {}
+  TrajectoryNode(const TrajectoryNode&) = delete;
+  TrajectoryNode& operator=(const TrajectoryNode&) = delete;
+  /// Releases long chains iteratively (a recursive release of a 10⁵-node path would overflow the stack).
+  ~TrajectoryNode();
+};
+
+using TrajectoryNodePtr = std::shared_ptr<const TrajectoryNode>;
+
+/// The path from the root to `leaf`, oldest first.
+std::vector<const TrajectoryNode*> pathOf(const TrajectoryNodePtr& leaf);
+
+}  // namespace gridtopo::slam

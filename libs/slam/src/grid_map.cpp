@@ -1,0 +1,157 @@
+#include "gridtopo/slam/grid_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace gridtopo::slam {
+
+GridMap::GridMap(double resolution) : res_(resolution), inv_res_(1.0 / resolution) {}
+
+void GridMap::ensureTileRange(int tx_min, int ty_min, int tx_max, int ty_max) {
+  if (ntx_ > 0 && tx_min >= tx0_ && ty_min >= ty0_ && tx_max < tx0_ + ntx_ && ty_max < ty0_ + nty_) return;
+  int nx0 = tx_min, ny0 = ty_min, nx1 = tx_max, ny1 = ty_max;
+  if (ntx_ > 0) {
+    nx0 = std::min(nx0, tx0_);
+    ny0 = std::min(ny0, ty0_);
+    nx1 = std::max(nx1, tx0_ + ntx_ - 1);
+    ny1 = std::max(ny1, ty0_ + nty_ - 1);
+  }
+  // Grow with a margin so that exploring does not reallocate at every scan.
+  constexpr int kMargin = 8;
+  if (nx0 < tx0_ || ntx_ == 0) nx0 -= kMargin;
+  if (ny0 < ty0_ || nty_ == 0) ny0 -= kMargin;
+  if (ntx_ == 0 || nx1 >= tx0_ + ntx_) nx1 += kMargin;
+  if (nty_ == 0 || ny1 >= ty0_ + nty_) ny1 += kMargin;
+  const int nntx = nx1 - nx0 + 1, nnty = ny1 - ny0 + 1;
+  std::vector<std::shared_ptr<Tile>> nt(static_cast<std::size_t>(nntx) * nnty);
+  for (int ty = 0; ty < nty_; ++ty)
+    for (int tx = 0; tx < ntx_; ++tx)
+      nt[static_cast<std::size_t>(ty + ty0_ - ny0) * nntx + (tx + tx0_ - nx0)] =
+          std::move(tiles_[static_cast<std::size_t>(ty) * ntx_ + tx]);
+  tiles_ = std::move(nt);
+  tx0_ = nx0;
+  ty0_ = ny0;
+  ntx_ = nntx;
+  nty_ = nnty;
+}
+
+GridMap::Tile* GridMap::writableTile(int cx, int cy) {
+  const int tx = cx >> kTileBits, ty = cy >> kTileBits;
+  ensureTileRange(tx, ty, tx, ty);
+  auto& slot = tiles_[static_cast<std::size_t>(ty - ty0_) * ntx_ + (tx - tx0_)];
+  if (!slot) {
+    slot = std::make_shared<Tile>();
+  } else if (slot.use_count() > 1) {
+    slot = std::make_shared<Tile>(*slot);  // copy on write
+  }
+  return slot.get();
+}
+
+Cell& GridMap::mutableCell(int cx, int cy) {
+  return writableTile(cx, cy)->cells[((cy & kTileMask) << kTileBits) | (cx & kTileMask)];
+}
+
+namespace {
+inline void addLogOdds(Cell& c, float delta, const MapUpdateOptions& o) {
+  c.log_odds = std::clamp(c.log_odds + delta, o.log_odds_min, o.log_odds_max);
+}
+}  // namespace
+
+void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vector<MapBeam>& beams,
+                         const MapUpdateOptions& o) {
+  const Pose2 sp = compose(robot, sensor);
+  const double c = std::cos(robot.theta), s = std::sin(robot.theta);
+  const int x0 = cellIndex(sp.x), y0 = cellIndex(sp.y);
+  // World end points and the bounding box, so the grid grows once per scan.
+  std::vector<std::array<double, 2>> ends(beams.size());
+  int minx = x0, maxx = x0, miny = y0, maxy = y0;
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    const double wx = robot.x + c * beams[k].ex - s * beams[k].ey;
+    const double wy = robot.y + s * beams[k].ex + c * beams[k].ey;
+    ends[k] = {wx, wy};
+    const int ex = cellIndex(wx), ey = cellIndex(wy);
+    minx = std::min(minx, ex);
+    maxx = std::max(maxx, ex);
+    miny = std::min(miny, ey);
+    maxy = std::max(maxy, ey);
+  }
+  ensureTileRange(minx >> kTileBits, miny >> kTileBits, maxx >> kTileBits, maxy >> kTileBits);
+
+  // Cache of the last writable tile (consecutive cells of a beam mostly share a tile).
+  int cached_tx = 0x7fffffff, cached_ty = 0x7fffffff;
+  Tile* cached = nullptr;
+  auto cellRef = [&](int cx, int cy) -> Cell& {
+    const int tx = cx >> kTileBits, ty = cy >> kTileBits;
+    if (tx != cached_tx || ty != cached_ty) {
+      cached = writableTile(cx, cy);
+      cached_tx = tx;
+      cached_ty = ty;
+    }
+    return cached->cells[((cy & kTileMask) << kTileBits) | (cx & kTileMask)];
+  };
+
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    const int x1 = cellIndex(ends[k][0]), y1 = cellIndex(ends[k][1]);
+    // Bresenham from the sensor cell to the end cell; every cell before the end is free.
+    int x = x0, y = y0;
+    const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
+    const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
+    int err = dx + dy;
+    while (x != x1 || y != y1) {
+      addLogOdds(cellRef(x, y), o.log_odds_free, o);
+      const int e2 = 2 * err;
+      if (e2 >= dy) {
+        err += dy;
+        x += sx;
+      }
+      if (e2 <= dx) {
+        err += dx;
+        y += sy;
+      }
+    }
+    Cell& end = cellRef(x1, y1);
+    if (beams[k].hit) {
+      addLogOdds(end, o.log_odds_hit, o);
+      end.hit_x += static_cast<float>(ends[k][0]);
+      end.hit_y += static_cast<float>(ends[k][1]);
+      ++end.hits;
+    } else {
+      addLogOdds(end, o.log_odds_free, o);
+    }
+  }
+}
+
+void GridMap::cellBounds(int& min_cx, int& min_cy, int& max_cx, int& max_cy) const {
+  int a = 0x7fffffff, b = 0x7fffffff, cmax = -0x7fffffff, d = -0x7fffffff;
+  for (int ty = 0; ty < nty_; ++ty)
+    for (int tx = 0; tx < ntx_; ++tx)
+      if (tiles_[static_cast<std::size_t>(ty) * ntx_ + tx]) {
+        a = std::min(a, tx + tx0_);
+        b = std::min(b, ty + ty0_);
+        cmax = std::max(cmax, tx + tx0_ + 1);
+        d = std::max(d, ty + ty0_ + 1);
+      }
+  if (cmax < a) {
+    min_cx = min_cy = max_cx = max_cy = 0;
+    return;
+  }
+  min_cx = a * kTileSize;
+  min_cy = b * kTileSize;
+  max_cx = cmax * kTileSize;
+  max_cy = d * kTileSize;
+}
+
+std::size_t GridMap::tileCount() const {
+  std::size_t n = 0;
+  for (const auto& t : tiles_) n += t != nullptr;
+  return n;
+}
+
+double GridMap::probability(int cx, int cy) const {
+  const Cell* c = cell(cx, cy);
+  if (!c) return 0.5;
+  return 1.0 / (1.0 + std::exp(-static_cast<double>(c->log_odds)));
+}
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,214 @@
+#include "gridtopo/slam/rbpf_slam.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_set>
+
+#include "gridtopo/slam/prepared_scan.h"
+#include "gridtopo/slam/proposal.h"
+#include "gridtopo/slam/resampling.h"
+#include "gridtopo/slam/scan_matcher.h"
+
+namespace gridtopo::slam {
+
+namespace {
+Pose2 toPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
+constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2;
+}  // namespace
+
+ParticleStep proposeAndWeight(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                              const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                              Rng& rng, Pose2& out_pose) {
+  ParticleStep r;
+  const double inv_gain = 1.0 / o.likelihood_gain;
+  auto odometryProposal = [&] {
+    out_pose = motion.sample(prev, u, rng, has_odometry);
+    r.log_weight_increment = scoreScan(map, out_pose, scan, o.matcher).log_likelihood * inv_gain;
+    return r;
+  };
+  if (o.proposal.type == ProposalType::Odometry) return odometryProposal();
+
+  const Pose2 predicted = compose(prev, u);
+  const MatchResult m = matchScan(map, predicted, scan, o.matcher);
+  if (!m.ok) return odometryProposal();
+  r.matched = true;
+  if (o.proposal.type == ProposalType::ModeOnly) {
+    out_pose = m.pose;
+    r.log_weight_increment = m.score.log_likelihood * inv_gain;
+    return r;
+  }
+  // Informed proposal: K poses on a grid around the mode.
+  const int n = o.proposal.points_per_axis;
+  const double half = 0.5 * (n - 1);
+  std::vector<Pose2> xs;
+  std::vector<double> log_tau;
+  xs.reserve(static_cast<std::size_t>(n) * n * n);
+  log_tau.reserve(xs.capacity());
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Pose2 x{m.pose.x + (i - half) * o.proposal.delta_xy, m.pose.y + (j - half) * o.proposal.delta_xy,
+                      wrapAngle(m.pose.theta + (k - half) * o.proposal.delta_theta)};
+        const double ll = scoreScan(map, x, scan, o.matcher).log_likelihood * inv_gain;
+        xs.push_back(x);
+        log_tau.push_back(ll + motion.logDensity(x, prev, u, has_odometry));
+      }
+  GaussianProposal g = fitProposal(xs, log_tau, m.pose);
+  const double mx = o.proposal.min_sigma_xy * o.proposal.min_sigma_xy;
+  g.cov(0, 0) += mx;
+  g.cov(1, 1) += mx;
+  g.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
+  out_pose = sampleGaussian(g, rng);
+  r.log_weight_increment = g.log_eta;
+  return r;
+}
+
+RbpfSlam::RbpfSlam(const SlamOptions& options) : o_(options), motion_(options.motion) {
+  o_.validate();
+  pool_ = std::make_unique<ThreadPool>(o_.threads);
+}
+
+bool RbpfSlam::shouldProcess(const io::ScanRecord& r) const {
+  if (!initialized_) return true;
+  const ScanInfo& last = scans_[last_processed_];
+  if (!r.has_odometry || !last.has_odometry) {
+    return r.scan.timestamp - last.timestamp >= o_.no_odometry_period;
+  }
+  if (acc_linear_ >= o_.linear_update || acc_angular_ >= o_.angular_update) return true;
+  if (o_.temporal_update >= 0.0 && r.scan.timestamp - last.timestamp >= o_.temporal_update) return true;
+  return false;
+}
+
+bool RbpfSlam::processScan(const io::ScanRecord& record) {
+  const std::size_t index = scans_.size();
+  if (index > 0 && record.has_odometry && scans_.back().has_odometry) {
+    const Pose2 d = relative(scans_.back().odometry, toPose(record.odometry));
+    acc_linear_ += std::hypot(d.x, d.y);
+    acc_angular_ += std::abs(d.theta);
+  }
+  const bool process = shouldProcess(record);
+  scans_.push_back({record.scan.timestamp, record.has_odometry, toPose(record.odometry)});
+  if (!process) return false;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const PreparedScan scan = prepareScan(record.scan, o_.beams, o_.resolution);
+  StepStats st;
+  st.step = stats_.size();
+  st.scan_index = index;
+  st.timestamp = record.scan.timestamp;
+  const std::size_t n = static_cast<std::size_t>(o_.particles);
+
+  if (!initialized_) {
+    // The map frame starts at the first odometry pose (identity without odometry).
+    const Pose2 start = record.has_odometry ? toPose(record.odometry) : Pose2{};
+    GridMap map(o_.resolution);
+    map.insertScan(start, scan.sensor, scan.map_beams, o_.map);
+    auto node = std::make_shared<const TrajectoryNode>(start, index, nullptr);
+    particles_.assign(n, Particle{start, 0.0, 0.0, node, map});
+    initialized_ = true;
+    st.neff = static_cast<double>(n);
+  } else {
+    const ScanInfo& last = scans_[last_processed_];
+    const bool has_odo = record.has_odometry && last.has_odometry;
+    const Pose2 u = has_odo ? relative(last.odometry, toPose(record.odometry)) : Pose2{};
+    std::vector<char> matched(n, 0);
+    const std::size_t step = stats_.size();
+    pool_->parallelFor(n, [&](std::size_t i) {
+      Particle& p = particles_[i];
+      Rng rng(o_.seed, step, i, kPurposeParticle);
+      Pose2 x;
+      const ParticleStep ps = proposeAndWeight(p.map, p.pose, u, has_odo, scan, o_, motion_, rng, x);
+      matched[i] = ps.matched;
+      p.log_weight += ps.log_weight_increment;
+      p.log_weight_total += ps.log_weight_increment;
+      p.pose = x;
+      p.map.insertScan(x, scan.sensor, scan.map_beams, o_.map);
+      p.node = std::make_shared<const TrajectoryNode>(x, index, p.node);
+    });
+    for (char m : matched) st.failed_matches += !m;
+    std::vector<double> lw(n);
+    for (std::size_t i = 0; i < n; ++i) lw[i] = particles_[i].log_weight;
+    const std::vector<double> w = normalizedWeights(lw);
+    st.neff = effectiveSampleSize(w);
+    // Keep the relative weights bounded: subtract the maximum (a common factor).
+    const double mx = *std::max_element(lw.begin(), lw.end());
+    for (auto& p : particles_) p.log_weight -= mx;
+    if (st.neff < o_.resample_threshold * static_cast<double>(n)) {
+      resample(w);
+      st.resampled = true;
+    }
+  }
+  acc_linear_ = acc_angular_ = 0.0;
+  last_processed_ = index;
+  st.particles = static_cast<int>(n);
+  st.unique_tiles = uniqueTiles();
+  st.map_bytes = st.unique_tiles * sizeof(GridMap::Tile);
+  st.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats_.push_back(st);
+  return true;
+}
+
+void RbpfSlam::resample(const std::vector<double>& w) {
+  Rng rng(o_.seed, stats_.size(), 0, kPurposeResample);
+  const std::vector<std::size_t> keep = lowVarianceResample(w, rng);
+  std::vector<Particle> next;
+  next.reserve(keep.size());
+  for (std::size_t i : keep) {
+    next.push_back(particles_[i]);  // shares the map tiles and the trajectory
+    next.back().log_weight = 0.0;
+  }
+  particles_ = std::move(next);
+}
+
+std::size_t RbpfSlam::bestParticleIndex() const {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < particles_.size(); ++i)
+    if (particles_[i].log_weight_total > particles_[best].log_weight_total) best = i;
+  return best;
+}
+
+std::size_t RbpfSlam::uniqueTiles() const {
+  std::unordered_set<const void*> seen;
+  for (const auto& p : particles_)
+    for (const auto& t : p.map.tiles())
+      if (t) seen.insert(t.get());
+  return seen.size();
+}
+
+std::vector<io::TimedPose> RbpfSlam::trajectory() const {
+  std::vector<io::TimedPose> out(scans_.size());
+  if (scans_.empty() || particles_.empty()) return out;
+  const auto path = pathOf(bestParticle().node);
+  // processed scan index -> pose
+  std::vector<long> proc_at(scans_.size(), -1);
+  for (std::size_t k = 0; k < path.size(); ++k) proc_at[path[k]->scan_index] = static_cast<long>(k);
+  auto fromAnchor = [&](std::size_t k, std::size_t i) {
+    const ScanInfo& a = scans_[path[k]->scan_index];
+    const ScanInfo& b = scans_[i];
+    if (a.has_odometry && b.has_odometry) return compose(path[k]->pose, relative(a.odometry, b.odometry));
+    return path[k]->pose;
+  };
+  std::size_t prev = 0;  // index into path
+  for (std::size_t i = 0; i < scans_.size(); ++i) {
+    out[i].timestamp = scans_[i].timestamp;
+    Pose2 p;
+    if (proc_at[i] >= 0) {
+      prev = static_cast<std::size_t>(proc_at[i]);
+      p = path[prev]->pose;
+    } else if (prev + 1 < path.size()) {
+      // Blend the odometry extrapolations from the previous and the next processed scan.
+      const std::size_t i0 = path[prev]->scan_index, i1 = path[prev + 1]->scan_index;
+      const double f = static_cast<double>(i - i0) / static_cast<double>(i1 - i0);
+      const Pose2 a = fromAnchor(prev, i), b = fromAnchor(prev + 1, i);
+      p = {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), wrapAngle(a.theta + f * wrapAngle(b.theta - a.theta))};
+    } else {
+      p = fromAnchor(prev, i);
+    }
+    out[i].pose = {p.x, p.y, p.theta};
+  }
+  return out;
+}
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gridtopo/sim/simulator.h"
+#include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/rbpf_slam.h"
+#include <opencv2/imgcodecs.hpp>
+
+using namespace gridtopo;
+
+namespace {
+struct Errors {
+  double mean_xy = 0, max_xy = 0, mean_th = 0;
+};
+Errors compare(const std::vector<io::TimedPose>& est, const std::vector<mrpt::math::TPose2D>& truth) {
+  Errors e;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    const double d = std::hypot(est[i].pose.x - truth[i].x, est[i].pose.y - truth[i].y);
+    e.mean_xy += d;
+    e.max_xy = std::max(e.max_xy, d);
+    e.mean_th += std::abs(slam::wrapAngle(est[i].pose.phi - truth[i].phi));
+  }
+  e.mean_xy /= est.size();
+  e.mean_th /= est.size();
+  return e;
+}
+}  // namespace
+
+TEST(SimulatedSlam, LoopAroundOfficeStaysCloseToGroundTruth) {
+  const auto plan = sim::FloorPlan::officeLoop();
+  sim::SimOptions so;
+  const auto log = sim::simulate(plan, sim::officeLoopWaypoints(1), so);
+  ASSERT_GT(log.records.size(), 300u);
+  slam::SlamOptions o;
+  o.particles = 15;
+  slam::RbpfSlam slam(o);
+  for (const auto& r : log.records) slam.processScan(r);
+  const auto traj = slam.trajectory();
+  ASSERT_EQ(traj.size(), log.records.size());
+  std::vector<io::TimedPose> odo(log.records.size());
+  for (std::size_t i = 0; i < odo.size(); ++i) odo[i].pose = log.records[i].odometry;
+  const Errors e = compare(traj, log.truth), eo = compare(odo, log.truth);
+  std::printf("slam: mean %.4f m max %.4f m %.3f deg; odometry: mean %.4f m max %.4f m; steps %zu\n", e.mean_xy,
+              e.max_xy, e.mean_th * 180 / M_PI, eo.mean_xy, eo.max_xy, slam.stepsProcessed());
+  if (const char* dir = std::getenv("GRIDTOPO_TEST_PICTURES"))
+    cv::imwrite(std::string(dir) + "/sim_slam.png", slam::renderMap(slam::toOccupancyGrid(slam.bestParticle().map), traj));
+  EXPECT_GT(eo.mean_xy, 0.3);  // the odometry really is bad
+  EXPECT_LT(e.mean_xy, 0.05);
+  EXPECT_LT(e.max_xy, 0.15);
+  EXPECT_LT(e.mean_th, 0.5 * M_PI / 180);
+}
