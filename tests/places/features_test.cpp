@@ -1,0 +1,62 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gridtopo/places/features.h"
+#include "synthetic.h"
+
+using namespace gridtopo::places;
+
+namespace {
+std::vector<float> featuresAt(const OccupancyImage& occ, cv::Point p) {
+  ScanSimulationOptions o;
+  const auto scans = simulateScans(occ, {p}, o);
+  const cv::Mat f = extractFeatures(scans, FeatureOptions(), 1);
+  return std::vector<float>(f.ptr<float>(0), f.ptr<float>(0) + f.cols);
+}
+int idx(const std::string& name) {
+  const auto n = featureNames();
+  return static_cast<int>(std::find(n.begin(), n.end(), name) - n.begin());
+}
+}  // namespace
+
+TEST(Features, EveryFeatureDocumented) {
+  EXPECT_EQ(featureNames().size(), numFeatures());
+  for (const auto& d : featureDescriptions()) EXPECT_NE(d.find(": "), std::string::npos) << d;
+}
+
+TEST(Features, SquareRoom) {
+  const auto occ = test::rectangleRoom(4.0, 4.0, 0.05);
+  const auto f = featuresAt(occ, {45, 45});
+  EXPECT_NEAR(f[idx("area")], 16.0, 0.6);
+  EXPECT_NEAR(f[idx("perimeter")], 16.0, 0.6);
+  EXPECT_NEAR(f[idx("compactness")], 16.0, 0.5);
+  EXPECT_NEAR(f[idx("min_chord")], 4.0, 0.1);
+  EXPECT_NEAR(f[idx("max_chord")], 4.0 * std::sqrt(2.0), 0.15);
+  EXPECT_NEAR(f[idx("ellipse_ratio")], 1.0, 0.03);
+  // A uniform square of side 4 has second moment 4^2/12 per axis: ellipse semi-axis 2 sqrt(16/12) = 2.31 m.
+  EXPECT_NEAR(f[idx("ellipse_major")], 2.309, 0.08);
+  EXPECT_NEAR(f[idx("min_beam")], 2.0, 0.06);
+  EXPECT_NEAR(f[idx("centroid_offset")], 0.0, 0.1);
+  EXPECT_NEAR(f[idx("hu1")], 1.0 / 6.0, 0.01);  // Hu1 of a square
+  EXPECT_EQ(f[idx("gaps_large")], 0.0f);
+}
+
+TEST(Features, LongCorridor) {
+  const auto occ = test::rectangleRoom(20.0, 2.0, 0.05);
+  const auto f = featuresAt(occ, {205, 25});
+  EXPECT_NEAR(f[idx("min_chord")], 2.0, 0.1);
+  EXPECT_NEAR(f[idx("perp_chord")], 20.0, 0.3);
+  EXPECT_NEAR(f[idx("area")], 40.0, 1.5);
+  EXPECT_LT(f[idx("ellipse_ratio")], 0.15);
+  EXPECT_NEAR(f[idx("chord_centering")], 0.5, 0.05);
+  EXPECT_GT(f[idx("kurtosis")], 0.0);  // a few very long beams along the corridor
+}
+
+TEST(Features, IndependentOfResolution) {
+  const auto a = featuresAt(test::rectangleRoom(6.0, 3.0, 0.05), {5 + 40, 5 + 20});
+  const auto b = featuresAt(test::rectangleRoom(6.0, 3.0, 0.025), {5 + 80, 5 + 40});
+  for (const char* n : {"area", "perimeter", "mean_beam", "min_chord", "max_chord", "ellipse_major", "ellipse_minor"})
+    EXPECT_NEAR(a[idx(n)], b[idx(n)], 0.05 * std::max(1.0f, std::abs(a[idx(n)]))) << n;
+}
