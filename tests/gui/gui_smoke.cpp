@@ -70,6 +70,11 @@ TEST(GuiSmoke, SlamViewShowsMapParticlesAndTrajectory) {
   EXPECT_GT(wall_px, 200);
   EXPECT_GE(best_particle, 15);
   EXPECT_GE(path_px, 30);
+  // The other particles: colour (255 (1 - w), 60, 255 w) by weight.
+  const int other_particles = countIf(shot, [](const cv::Vec3b& v) { return v[1] == 60 && std::abs(v[0] + v[2] - 255) <= 3; });
+  EXPECT_GE(other_particles, 5);
+  std::cerr << "free " << free_px << " walls " << wall_px << " best particle " << best_particle << " other particles "
+            << other_particles << " path " << path_px << "\n";
   // The exported view is the canvas alone and shows the same layers.
   const cv::Mat view = cv::imread(tmp / "view.png", cv::IMREAD_COLOR);
   ASSERT_FALSE(view.empty());

@@ -524,15 +524,16 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
       if (layers.particles) {
         double wmax = 0;
         for (const auto& p : s->particles) wmax = std::max(wmax, p.weight);
-        // Colour by weight (blue light .. magenta heavy); the best particle red, drawn last.
+        // The best particle as a red disc (radius 5), the others on top coloured by weight (blue light ..
+        // magenta heavy, radius 3), so both stay visible when the cloud is tight.
+        const auto& b = s->particles[s->best];
+        drawPose(screen, v, b.pose.x, b.pose.y, b.pose.theta, cv::Scalar(0, 0, 255), 5);
         for (std::size_t i = 0; i < s->particles.size(); ++i) {
           if (i == s->best) continue;
           const auto& p = s->particles[i];
           const double f = wmax > 0 ? p.weight / wmax : 1;
-          drawPose(screen, v, p.pose.x, p.pose.y, p.pose.theta, cv::Scalar(255 * (1 - f), 60, 255 * f), 3);
+          drawPose(screen, v, p.pose.x, p.pose.y, p.pose.theta, cv::Scalar(255 * (1 - f), 60, 255 * f), 2);
         }
-        const auto& b = s->particles[s->best];
-        drawPose(screen, v, b.pose.x, b.pose.y, b.pose.theta, cv::Scalar(0, 0, 255), 4);
       }
     }
     if (layers.inspection && selection_.kind == Selection::Kind::Particle) {
