@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/log_reader.h"
-#include "gridtopo/core/output_set.h"
 #include "gridtopo/io/rawlog_io.h"
 #include "gridtopo/io/simulated_log.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -38,8 +38,10 @@ Summary summarize(const std::vector<io::ScanRecord>& scans) {
     s.beams += l.size();
     for (std::size_t k = 0; k < l.size(); ++k) {
       if (l.valid[k]) continue;
-      if (l.isNoReturn(k)) ++s.no_return;
-      else ++s.no_information;
+      if (l.isNoReturn(k))
+        ++s.no_return;
+      else
+        ++s.no_information;
     }
     const double t = l.timestamp;
     if (i == 0) {
@@ -61,10 +63,11 @@ Summary summarize(const std::vector<io::ScanRecord>& scans) {
 void printSummary(std::ostream& os, const std::string& input, const io::ScanLogInfo& info, const Summary& s,
                   const io::LaserScan& first) {
   os << "input:              " << input;
-  if (info.format != io::LogFormat::Simulated) os << " (" << io::logFormatName(info.format)
-     << (info.format == io::LogFormat::Rawlog ? (info.rawlog_has_actions ? ", action/sensory-frame layout"
-                                                                          : ", observation-only layout")
-                                              : "")
+  if (info.format != io::LogFormat::Simulated)
+    os << " (" << io::logFormatName(info.format)
+       << (info.format == io::LogFormat::Rawlog
+               ? (info.rawlog_has_actions ? ", action/sensory-frame layout" : ", observation-only layout")
+               : "")
        << ")";
   os << "\n";
   os << "scans:              " << s.scans << "\n";
@@ -90,8 +93,8 @@ void printSummary(std::ostream& os, const std::string& input, const io::ScanLogI
   for (const auto& [n, count] : s.beams_per_scan) os << ' ' << n << " x " << count;
   os << "\n";
   if (s.scans) {
-    os << "time span:          " << io::formatDouble(s.t_first) << " .. " << io::formatDouble(s.t_last)
-       << " (min " << io::formatDouble(s.t_min) << ", max " << io::formatDouble(s.t_max) << ", "
+    os << "time span:          " << io::formatDouble(s.t_first) << " .. " << io::formatDouble(s.t_last) << " (min "
+       << io::formatDouble(s.t_min) << ", max " << io::formatDouble(s.t_max) << ", "
        << io::formatDouble(std::round((s.t_max - s.t_min) * 1e6) / 1e6) << " s)\n";
   }
   os << "backward steps:     " << s.backward_steps;
@@ -117,8 +120,8 @@ int main(int argc, char** argv) {
         "in the action/sensory-frame layout (what rbpf-slam / icp-slam read) or the observation-only layout, "
         "and prints a summary of the log. The input format is detected from the file's content.",
         ' ', "0.1");
-    TCLAP::ValueArg<std::string> in_arg("i", "input", "input log: CARMEN (.clf/.log[.gz]) or MRPT rawlog", false,
-                                        "", "file", cmd);
+    TCLAP::ValueArg<std::string> in_arg("i", "input", "input log: CARMEN (.clf/.log[.gz]) or MRPT rawlog", false, "",
+                                        "file", cmd);
     TCLAP::ValueArg<unsigned> sim_arg("", "simulate",
                                       "instead of --input: simulate N scans of a robot looping around two pillars "
                                       "in a 12 m x 6 m room (noisy odometry, off-centre laser, no-return beams)",
@@ -126,10 +129,13 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<unsigned> seed_arg("", "seed", "random seed of --simulate (default 42)", false, 42, "seed", cmd);
     TCLAP::ValueArg<std::string> gt_arg("", "ground-truth",
                                         "with --simulate: write the true poses as a trajectory file "
-                                        "(timestamp x y theta)", false, "", "file", cmd);
+                                        "(timestamp x y theta)",
+                                        false, "", "file", cmd);
     TCLAP::ValueArg<std::string> out_arg(
-        "o", "output", "output rawlog (.rawlog; gzip-compressed if it ends in .gz or with --gz); omit to only "
-        "print the summary", false, "", "file", cmd);
+        "o", "output",
+        "output rawlog (.rawlog; gzip-compressed if it ends in .gz or with --gz); omit to only "
+        "print the summary",
+        false, "", "file", cmd);
     TCLAP::ValueArg<std::string> layout_arg("l", "layout",
                                             "rawlog layout: 'sf' (CActionCollection + CSensoryFrame pairs, "
                                             "default) or 'obs' (CObservationOdometry + CObservation2DRangeScan)",
@@ -140,17 +146,21 @@ int main(int argc, char** argv) {
                                          false, "laser", "laser|odom", cmd);
     TCLAP::ValueArg<std::string> model_arg("", "motion-model",
                                            "motion model of the actions (sf layout): 'gaussian' (default) or "
-                                           "'thrun' (MRPT's defaults)", false, "gaussian", "gaussian|thrun", cmd);
-    TCLAP::ValueArg<int> level_arg("", "compression", "gzip level 0-9 of the output (default: 1 if the name "
-                                   "ends in .gz, else 0 = plain)", false, -1, "level", cmd);
+                                           "'thrun' (MRPT's defaults)",
+                                           false, "gaussian", "gaussian|thrun", cmd);
+    TCLAP::ValueArg<int> level_arg("", "compression",
+                                   "gzip level 0-9 of the output (default: 1 if the name "
+                                   "ends in .gz, else 0 = plain)",
+                                   false, -1, "level", cmd);
     TCLAP::SwitchArg gz_arg("", "gz", "gzip-compress the output (level 1, like MRPT's tools)", cmd);
     TCLAP::ValueArg<std::string> label_arg("", "sensor-label", "sensorLabel of the scans (default LASER)", false,
                                            "LASER", "label", cmd);
-    TCLAP::ValueArg<double> maxr_arg("", "max-range",
-                                     "CARMEN: laser max range (m) when no PARAM gives it (default 50)", false, 50.0,
-                                     "metres", cmd);
-    TCLAP::SwitchArg skip_arg("", "skip-bad-lines", "CARMEN: skip malformed lines (counted and reported) "
-                              "instead of stopping at the first one", cmd);
+    TCLAP::ValueArg<double> maxr_arg("", "max-range", "CARMEN: laser max range (m) when no PARAM gives it (default 50)",
+                                     false, 50.0, "metres", cmd);
+    TCLAP::SwitchArg skip_arg("", "skip-bad-lines",
+                              "CARMEN: skip malformed lines (counted and reported) "
+                              "instead of stopping at the first one",
+                              cmd);
     TCLAP::SwitchArg rear_arg("", "rear-laser", "CARMEN: also import RLASER (rear laser) scans", cmd);
     TCLAP::SwitchArg quiet_arg("q", "quiet", "no summary, no progress bar", cmd);
     cmd.parse(argc, argv);
@@ -161,15 +171,21 @@ int main(int argc, char** argv) {
     if (!(maxr_arg.getValue() > 0.0) || !std::isfinite(maxr_arg.getValue()))
       throw std::invalid_argument("--max-range must be a positive number of metres");
     ropt.carmen.default_max_range = maxr_arg.getValue();
-    if (odo_arg.getValue() == "laser") ropt.odometry = io::OdometrySource::LaserLines;
-    else if (odo_arg.getValue() == "odom") ropt.odometry = io::OdometrySource::OdomLines;
-    else throw std::invalid_argument("--odometry must be 'laser' or 'odom', not '" + odo_arg.getValue() + "'");
+    if (odo_arg.getValue() == "laser")
+      ropt.odometry = io::OdometrySource::LaserLines;
+    else if (odo_arg.getValue() == "odom")
+      ropt.odometry = io::OdometrySource::OdomLines;
+    else
+      throw std::invalid_argument("--odometry must be 'laser' or 'odom', not '" + odo_arg.getValue() + "'");
 
     io::RawlogWriteOptions wopt;
     wopt.layout = io::parseRawlogLayout(layout_arg.getValue());
-    if (model_arg.getValue() == "gaussian") wopt.motion_model = io::MotionModel::Gaussian;
-    else if (model_arg.getValue() == "thrun") wopt.motion_model = io::MotionModel::Thrun;
-    else throw std::invalid_argument("--motion-model must be 'gaussian' or 'thrun'");
+    if (model_arg.getValue() == "gaussian")
+      wopt.motion_model = io::MotionModel::Gaussian;
+    else if (model_arg.getValue() == "thrun")
+      wopt.motion_model = io::MotionModel::Thrun;
+    else
+      throw std::invalid_argument("--motion-model must be 'gaussian' or 'thrun'");
     wopt.compression_level = level_arg.getValue();
     if (wopt.compression_level > 9 || wopt.compression_level < -1)
       throw std::invalid_argument("--compression must be 0..9");
@@ -195,14 +211,14 @@ int main(int argc, char** argv) {
       if (gt_arg.isSet()) {
         const std::string header = "ground truth of gridtopo-import --simulate " + std::to_string(sopt.scans) +
                                    " --seed " + std::to_string(sopt.seed);
-        outputs.write(gt_arg.getValue(), [&](const std::string& tmp) {
-          io::writeTrajectory(tmp, sim.ground_truth, {header});
-        });
+        outputs.write(gt_arg.getValue(),
+                      [&](const std::string& tmp) { io::writeTrajectory(tmp, sim.ground_truth, {header}); });
       }
     } else {
       scans = io::readScanLog(input, ropt, info);
     }
-    if (!quiet) printSummary(std::cout, input, info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
+    if (!quiet)
+      printSummary(std::cout, input, info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
 
     if (!out_arg.getValue().empty()) {
       if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");
@@ -213,8 +229,8 @@ int main(int argc, char** argv) {
       bar.finish();
       if (!quiet)
         std::cout << "output:             " << out_arg.getValue() << " (" << io::rawlogLayoutName(wopt.layout)
-                  << " layout, " << stats.entries << " entries, " << stats.scans << " scans, "
-                  << stats.with_odometry << " with odometry)\n";
+                  << " layout, " << stats.entries << " entries, " << stats.scans << " scans, " << stats.with_odometry
+                  << " with odometry)\n";
     }
     outputs.commit();
     return 0;

@@ -111,7 +111,7 @@ TEST(ImportApp, QuirkyCarmenLogSummaryAndBadLines) {
     f << "# a comment\nPARAM robot_front_laser_max 50.0 host 0\n"
       << "ODOM 0 0 0 0 0 0 100.0 host 100.0\n"
       << flaser(100.1, 0.0) << flaser(100.3, 0.1) << flaser(100.2, 0.2)  // timestamp steps back 0.1 s
-      << "FLASER 180 1 2 oops\n"                                          // malformed: line 7
+      << "FLASER 180 1 2 oops\n"                                         // malformed: line 7
       << flaser(100.5, 0.3, 181) << "ODOM 1 0 0 0 0 0 101.0 host 101.0\n";
   }
   auto r = run("-i " + log.string());
@@ -128,8 +128,7 @@ TEST(ImportApp, QuirkyCarmenLogSummaryAndBadLines) {
   EXPECT_NE(r.out.find("no-info readings:   4 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("skipped bad lines:  1\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("odometry messages:  2 (ODOM lines)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("time span:          100.1 .. 100.5 (min 100.1, max 100.5, 0.4 s)"), std::string::npos)
-      << r.out;
+  EXPECT_NE(r.out.find("time span:          100.1 .. 100.5 (min 100.1, max 100.5, 0.4 s)"), std::string::npos) << r.out;
 
   mrpt::obs::CRawlog raw;
   ASSERT_TRUE(raw.loadFromRawLogFile(out.string()));
@@ -174,7 +173,8 @@ TEST(ImportApp, IntelToBothLayoutsIsAcceptedByMrpt) {
   ASSERT_EQ(raw.size(), 27262u);
   std::size_t scans = 0, actions = 0;
   for (std::size_t i = 0; i < raw.size(); ++i) {
-    if (raw.getType(i) == mrpt::obs::CRawlog::etActionCollection) ++actions;
+    if (raw.getType(i) == mrpt::obs::CRawlog::etActionCollection)
+      ++actions;
     else if (raw.getType(i) == mrpt::obs::CRawlog::etSensoryFrame)
       scans += raw.getAsObservations(i)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>() != nullptr;
   }
@@ -204,4 +204,24 @@ TEST(ImportApp, IntelToBothLayoutsIsAcceptedByMrpt) {
   EXPECT_NE(r.out.find("(MRPT rawlog, observation-only layout)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("backward steps:     631 (largest 0.897325 s)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no-return readings: 68313"), std::string::npos) << r.out;
+}
+
+TEST(ImportApp, AcesWithRelativeTimestamps) {
+  const fs::path sf = tmpDir() / "aces_sf.rawlog.gz";
+  const auto r = run("-i " + std::string(GRIDTOPO_DATA_DIR) + "/slam/aces.clf.gz -o " + sf.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("scans:              7374\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("odometry messages:  7375 (ODOM lines)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("time span:          70.2899 .. 1435.809999"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("backward steps:     0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no-return readings: 11139 "), std::string::npos) << r.out;
+  mrpt::obs::CRawlog raw;
+  ASSERT_TRUE(raw.loadFromRawLogFile(sf.string()));
+  ASSERT_EQ(raw.size(), 14748u);
+  const auto first = raw.getAsObservations(1)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(mrpt::Clock::toDouble(first->timestamp), 70.2899);
+  EXPECT_FLOAT_EQ(first->maxRange, 50.0f);
+  const auto last = raw.getAsObservations(14747)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+  EXPECT_EQ(mrpt::Clock::toDouble(last->timestamp), 1435.809999);
 }

@@ -1,3 +1,5 @@
+#include "gridtopo/io/log_reader.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/poses/CPose2D.h>
 
@@ -6,7 +8,6 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/rawlog_io.h"
 #include "synthetic_scans.h"
 
@@ -182,4 +183,22 @@ TEST(LogReader, MalformedCarmenLineNamesFileLineAndField) {
   ScanLogInfo info;
   EXPECT_EQ(readScanLog(p.string(), opt, info).size(), 1u);
   EXPECT_EQ(info.skipped_lines, 1u);
+}
+
+TEST(LogReader, CarmenWithNonAsciiCommentsIsStillCarmen) {
+  const fs::path p = tmpDir() / "utf8.clf";
+  std::ofstream(p) << "# recorded by Dirk H\xc3\xa4hnel, \xc2\xb0 and \xc3\xa9\n"
+                   << "FLASER 3 1 2 3 0 0 0 0 0 0 5.5 host 5.5\n";
+  EXPECT_EQ(detectLogFormat(p.string()), LogFormat::Carmen);
+  EXPECT_EQ(readScanLog(p.string()).size(), 1u);
+  // Binary junk that is no MRPT object is handed to the CARMEN parser, which names the line.
+  const fs::path junk = tmpDir() / "junk.bin";
+  std::ofstream(junk, std::ios::binary) << std::string("\x01\x02\x03\xff\xfe garbage\n", 14);
+  EXPECT_EQ(detectLogFormat(junk.string()), LogFormat::Carmen);
+  try {
+    readScanLog(junk.string());
+    FAIL() << "junk accepted";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_EQ(e.line(), 1u);
+  }
 }

@@ -1,3 +1,5 @@
+#include "gridtopo/io/map_io.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -12,7 +14,6 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "synthetic_scans.h"
 
@@ -52,9 +53,12 @@ COccupancyGridMap2D::Ptr sampleGrid(float x0, float y0, float res = 0.05f) {
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) {
       float p = 0.5f;
-      if (x == 0 || y == 0 || x == 39) p = 0.0f;  // walls (occupied)
-      else if (y < 20) p = 1.0f;                  // free
-      else if (x == 7 && y == 25) p = 0.3f;
+      if (x == 0 || y == 0 || x == 39)
+        p = 0.0f;  // walls (occupied)
+      else if (y < 20)
+        p = 1.0f;  // free
+      else if (x == 7 && y == 25)
+        p = 0.3f;
       g->setCell(x, y, p);
     }
   return g;
@@ -156,11 +160,13 @@ TEST(MapIo, RosMapRoundTripKeepsExactOriginAndResolution) {
   // A gmapping-style origin half a cell off the resolution grid: MRPT's setSize() alone would move it.
   const float x0 = -51.225f, y0 = -12.375f;
   auto g = sampleGrid(0.0f, 0.0f);
-  const auto g2 = readGridMap([&] {
-    const fs::path png = tmpDir() / "tmp_src.png";
-    writeMapPng(*g, png.string());
-    return png.string();
-  }(), MapReadOptions{0.05, x0, y0});
+  const auto g2 = readGridMap(
+      [&] {
+        const fs::path png = tmpDir() / "tmp_src.png";
+        writeMapPng(*g, png.string());
+        return png.string();
+      }(),
+      MapReadOptions{0.05, x0, y0});
   EXPECT_EQ(g2->getXMin(), x0);
   EXPECT_EQ(g2->getYMin(), y0);
   const fs::path stem = tmpDir() / "rosmap";
@@ -201,7 +207,8 @@ TEST(MapIo, RosMapServerSemantics) {
   cv::imwrite((d / "m.pgm").string(), img);
   auto cells = [&](const std::string& extra) {
     std::ofstream(d / "m.yaml") << "image: m.pgm\nresolution: 0.1\norigin: [1.5, -2.0, 0.0]\n"
-                                << "occupied_thresh: 0.65\nfree_thresh: 0.196\n" << extra;
+                                << "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+                                << extra;
     const auto g = readGridMap((d / "m.yaml").string());
     std::vector<float> v;
     for (int i = 0; i < 6; ++i) v.push_back(g->getCell(i, 0));
@@ -210,10 +217,10 @@ TEST(MapIo, RosMapServerSemantics) {
   // trinary, negate 0: occupancy (255 - v) / 255 = 1, .80, .61, .196, .098, 0.
   auto t = cells("negate: 0\n");
   EXPECT_LT(t[0], 0.01f);
-  EXPECT_LT(t[1], 0.01f);    // 0.80 > 0.65: occupied
-  EXPECT_EQ(t[2], 0.5f);     // 0.61: unknown
-  EXPECT_EQ(t[3], 0.5f);     // 0.196 is not < 0.196: unknown (map_saver's 205)
-  EXPECT_GT(t[4], 0.99f);    // free
+  EXPECT_LT(t[1], 0.01f);  // 0.80 > 0.65: occupied
+  EXPECT_EQ(t[2], 0.5f);   // 0.61: unknown
+  EXPECT_EQ(t[3], 0.5f);   // 0.196 is not < 0.196: unknown (map_saver's 205)
+  EXPECT_GT(t[4], 0.99f);  // free
   EXPECT_GT(t[5], 0.99f);
   auto n = cells("negate: 1\n");  // occupancy v / 255
   EXPECT_GT(n[0], 0.99f);

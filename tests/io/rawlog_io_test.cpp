@@ -1,3 +1,5 @@
+#include "gridtopo/io/rawlog_io.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -14,7 +16,6 @@
 #include <iterator>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/rawlog_io.h"
 #include "synthetic_scans.h"
 
 namespace fs = std::filesystem;

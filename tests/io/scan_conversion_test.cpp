@@ -1,11 +1,11 @@
+#include "gridtopo/io/scan_conversion.h"
+
 #include <gtest/gtest.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <cmath>
 #include <limits>
-
-#include "gridtopo/io/scan_conversion.h"
 
 using namespace gridtopo::io;
 
@@ -187,5 +187,11 @@ TEST(ScanConversion, RejectsScansMrptCannotHold) {
   EXPECT_THROW(toMrptScan(s), std::invalid_argument);
   s = makeScan(10, 0.0, 1.0);
   s.max_range = 0;
+  EXPECT_THROW(toMrptScan(s), std::invalid_argument);
+  s = makeScan(10, 0.0, 1.0);
+  s.sensor_pose.phi = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(toMrptScan(s), std::invalid_argument);
+  s = makeScan(10, 0.0, 1.0);
+  s.timestamp = std::numeric_limits<double>::infinity();
   EXPECT_THROW(toMrptScan(s), std::invalid_argument);
 }

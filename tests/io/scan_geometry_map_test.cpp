@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdio>
-
 #include <filesystem>
 
 #include "gridtopo/io/carmen_log.h"
@@ -37,7 +36,8 @@ double hitRate(const std::vector<ScanRecord>& scans, Geometry geometry, double e
   grid.insertionOptions.maxDistanceInsertion = 15.0f;
   for (std::size_t i = 0; i < scans.size(); i += 2) {
     const auto& r = scans[i];
-    grid.insertObservation(*convert(r.scan, geometry, extra_yaw), mrpt::poses::CPose3D(r.odometry.x, r.odometry.y, 0, r.odometry.phi, 0, 0));
+    grid.insertObservation(*convert(r.scan, geometry, extra_yaw),
+                           mrpt::poses::CPose3D(r.odometry.x, r.odometry.y, 0, r.odometry.phi, 0, 0));
   }
   std::size_t hits = 0, total = 0;
   for (std::size_t i = 1; i < scans.size(); i += 2) {
@@ -85,7 +85,8 @@ TEST(ScanGeometryOnRealData, MapOfTheCorrectedIntelScans) {
   mrpt::maps::COccupancyGridMap2D grid(-20, 20, -30, 20, 0.05f);
   grid.insertionOptions.maxDistanceInsertion = 15.0f;
   for (const auto& r : log.scans)
-    grid.insertObservation(*toMrptScan(r.scan), mrpt::poses::CPose3D(r.odometry.x, r.odometry.y, 0, r.odometry.phi, 0, 0));
+    grid.insertObservation(*toMrptScan(r.scan),
+                           mrpt::poses::CPose3D(r.odometry.x, r.odometry.y, 0, r.odometry.phi, 0, 0));
   const std::string png = (std::filesystem::temp_directory_path() / "gridtopo_intel_gfs_map.png").string();
   writeMapPng(grid, png);
   const auto back = readGridMap(png, MapReadOptions{0.05, -20.0, -30.0});

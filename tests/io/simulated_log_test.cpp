@@ -1,3 +1,5 @@
+#include "gridtopo/io/simulated_log.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/rawlog_io.h"
 #include "gridtopo/io/scan_conversion.h"
-#include "gridtopo/io/simulated_log.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo::io;
@@ -24,11 +25,11 @@ double distanceToWalls(double x, double y) {
 }  // namespace
 
 TEST(SimulatedLog, RayCastingHitsTheRightWalls) {
-  EXPECT_DOUBLE_EQ(castRay(1.0, 1.0, M_PI), 1.0);             // west wall
-  EXPECT_DOUBLE_EQ(castRay(1.0, 3.0, 0.0), 1.7);              // pillar at x = 2.7
-  EXPECT_NEAR(castRay(6.0, 3.0, M_PI / 2), 3.0, 1e-12);       // north wall
-  EXPECT_NEAR(castRay(4.0, 5.7, 0.0), 1.0, 1e-12);            // stub from (5, 5.4) to (5, 6)
-  EXPECT_NEAR(castRay(4.0, 5.3, 0.0), 8.0, 1e-12);            // passes under the stub
+  EXPECT_DOUBLE_EQ(castRay(1.0, 1.0, M_PI), 1.0);        // west wall
+  EXPECT_DOUBLE_EQ(castRay(1.0, 3.0, 0.0), 1.7);         // pillar at x = 2.7
+  EXPECT_NEAR(castRay(6.0, 3.0, M_PI / 2), 3.0, 1e-12);  // north wall
+  EXPECT_NEAR(castRay(4.0, 5.7, 0.0), 1.0, 1e-12);       // stub from (5, 5.4) to (5, 6)
+  EXPECT_NEAR(castRay(4.0, 5.3, 0.0), 8.0, 1e-12);       // passes under the stub
   EXPECT_NEAR(castRay(6.0, 3.0, M_PI / 4), 3.0 * std::sqrt(2.0), 1e-12);
 }
 

@@ -60,8 +60,8 @@ inline std::vector<io::ScanRecord> syntheticRecords(const SyntheticOptions& o = 
     for (std::size_t k = 0; k < o.beams; ++k) {
       const double d = rayToBox(lx, ly, p.phi + o.mount.phi + s.beamAngle(k));
       // Centimetre resolution like CARMEN; beyond max range the laser reports max range + 1 m.
-      float range = d >= o.max_range ? static_cast<float>(o.max_range + 1.0)
-                                     : static_cast<float>(std::round(d * 100.0) / 100.0);
+      float range =
+          d >= o.max_range ? static_cast<float>(o.max_range + 1.0) : static_cast<float>(std::round(d * 100.0) / 100.0);
       s.ranges.push_back(range);
       s.valid.push_back(d < o.max_range ? 1 : 0);
     }

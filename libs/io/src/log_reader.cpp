@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <numeric>
@@ -36,10 +37,14 @@ std::string leadingBytes(const std::string& path, std::size_t n) {
 
 const char* logFormatName(LogFormat format) {
   switch (format) {
-    case LogFormat::Carmen: return "CARMEN";
-    case LogFormat::Rawlog: return "MRPT rawlog";
-    case LogFormat::Simulated: return "simulated";
-    default: return "empty";
+    case LogFormat::Carmen:
+      return "CARMEN";
+    case LogFormat::Rawlog:
+      return "MRPT rawlog";
+    case LogFormat::Simulated:
+      return "simulated";
+    default:
+      return "empty";
   }
 }
 
@@ -47,12 +52,17 @@ LogFormat detectLogFormat(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(path, "no such log file");
   const std::string head = leadingBytes(path, 4096);
   if (head.empty()) return LogFormat::Empty;
-  // CARMEN logs are plain ASCII lines; MRPT serialisation starts with a binary object header.
-  const bool text = std::all_of(head.begin(), head.end(), [](char ch) {
-    const auto c = static_cast<unsigned char>(ch);
-    return c == '\n' || c == '\r' || c == '\t' || (c >= 0x20 && c < 0x7f);
-  });
-  return text ? LogFormat::Carmen : LogFormat::Rawlog;
+  // MRPT serialisation starts every object with its class name: one byte holding the name's length (with the
+  // high bit set in the current format), then the name ("mrpt::obs::CActionCollection", ...). CARMEN logs are
+  // text lines, whose first "name" would contain spaces.
+  const std::size_t len = static_cast<unsigned char>(head[0]) & 0x7f;
+  if (len >= 1 && head.size() > len) {
+    const bool identifier =
+        std::all_of(head.begin() + 1, head.begin() + 1 + static_cast<std::ptrdiff_t>(len),
+                    [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':'; });
+    if (identifier) return LogFormat::Rawlog;
+  }
+  return LogFormat::Carmen;
 }
 
 std::size_t interpolateOdometry(std::vector<ScanRecord>& scans, const std::vector<OdometryReading>& odometry) {
@@ -97,7 +107,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
   info = ScanLogInfo{};
   info.format = detectLogFormat(path);
   switch (info.format) {
-    case LogFormat::Empty: return {};
+    case LogFormat::Empty:
+      return {};
     case LogFormat::Rawlog: {
       RawlogContents raw = readRawlog(path);
       info.odometry_messages = raw.odometry_observations;
@@ -106,7 +117,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
       return std::move(raw.scans);
     }
     case LogFormat::Carmen:
-    case LogFormat::Simulated: break;
+    case LogFormat::Simulated:
+      break;
   }
   CarmenLog log = readCarmenLog(path, options.carmen);
   info.odometry_messages = log.odometry.size();

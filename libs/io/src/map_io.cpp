@@ -5,15 +5,14 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -63,8 +62,8 @@ COccupancyGridMap2D::Ptr makeGrid(int width, int height, float resolution, float
              y_min + static_cast<float>(height) * resolution, resolution, 0.5f);
   if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height)) {
     // setSize() computed the cell count from rounded limits; force the exact one.
-    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution,
-               resolution, 0.5f);
+    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution, resolution,
+               0.5f);
   }
   GridLimits::set(*g, x_min, y_min);
   return g;
@@ -128,8 +127,7 @@ RosMapYaml parseRosYaml(const std::string& path) {
   if (!y.has("origin")) throw InputError(path, 0, "origin", "missing");
   {
     const auto& o = y["origin"];
-    if (!o.isSequence() || o.asSequence().size() != 3)
-      throw InputError(path, 0, "origin", "expected [x, y, yaw]");
+    if (!o.isSequence() || o.asSequence().size() != 3) throw InputError(path, 0, "origin", "expected [x, y, yaw]");
     for (int i = 0; i < 3; ++i) {
       try {
         m.origin[i] = o.asSequence()[i].as<double>();
@@ -164,8 +162,10 @@ std::array<COccupancyGridMap2D::cellType, 256> rosLut(const RosMapYaml& m) {
       if (occ <= 100) p_free = 1.0 - occ / 100.0;
     } else {
       const double occ = m.negate ? v / 255.0 : (255 - v) / 255.0;
-      if (occ > m.occupied_thresh) p_free = 0.0;
-      else if (occ < m.free_thresh) p_free = 1.0;
+      if (occ > m.occupied_thresh)
+        p_free = 0.0;
+      else if (occ < m.free_thresh)
+        p_free = 1.0;
       else if (m.mode == "scale")
         p_free = 1.0 - (occ - m.free_thresh) / (m.occupied_thresh - m.free_thresh);
     }
@@ -234,8 +234,9 @@ COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
   }
   auto g = std::dynamic_pointer_cast<COccupancyGridMap2D>(obj);
   if (!g)
-    throw InputError(path, 0, "", std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
-                                      ", not an mrpt::maps::COccupancyGridMap2D");
+    throw InputError(path, 0, "",
+                     std::string("holds a ") + (obj ? obj->GetRuntimeClass()->className : "null") +
+                         ", not an mrpt::maps::COccupancyGridMap2D");
   restoreExactLimits(path, *g);
   return g;
 }
@@ -261,8 +262,8 @@ mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const 
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
   const cv::Mat img = loadGrey(path);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution),
-                    static_cast<float>(options.origin_x), static_cast<float>(options.origin_y));
+  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution), static_cast<float>(options.origin_x),
+                    static_cast<float>(options.origin_y));
   // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.
   std::array<COccupancyGridMap2D::cellType, 256> lut{};
   for (int v = 0; v < 256; ++v) lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(v) / 255.0f);

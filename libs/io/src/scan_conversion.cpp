@@ -64,6 +64,9 @@ mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const 
   if (scan.valid.size() != n) throw std::invalid_argument("scan: ranges and validity flags differ in size");
   if (!std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 || !std::isfinite(scan.start_angle))
     throw std::invalid_argument("scan: the angle increment must be finite and non-zero");
+  if (!std::isfinite(scan.sensor_pose.x) || !std::isfinite(scan.sensor_pose.y) || !std::isfinite(scan.sensor_pose.phi))
+    throw std::invalid_argument("scan: the laser's mounting pose must be finite");
+  if (!std::isfinite(scan.timestamp)) throw std::invalid_argument("scan: the timestamp must be finite");
   if (!(scan.max_range > 0.0) || !std::isfinite(scan.max_range))
     throw std::invalid_argument("scan: max range must be a positive finite number");
 
@@ -76,8 +79,8 @@ mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const 
   obs->maxRange = static_cast<float>(scan.max_range);
   obs->stdError = options.std_error;
   const double centre = scan.start_angle + 0.5 * span;
-  obs->sensorPose = mrpt::poses::CPose3D(scan.sensor_pose.x, scan.sensor_pose.y, 0.0,
-                                         scan.sensor_pose.phi + centre, 0.0, 0.0);
+  obs->sensorPose =
+      mrpt::poses::CPose3D(scan.sensor_pose.x, scan.sensor_pose.y, 0.0, scan.sensor_pose.phi + centre, 0.0, 0.0);
   obs->resizeScan(n);
   for (std::size_t k = 0; k < n; ++k) {
     float r = scan.ranges[k];

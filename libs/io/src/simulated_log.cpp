@@ -24,8 +24,8 @@ mrpt::math::TPose2D between(const mrpt::math::TPose2D& a, const mrpt::math::TPos
 const std::vector<std::array<double, 4>>& simulatedWorld() {
   static const std::vector<std::array<double, 4>> walls = [] {
     std::vector<std::array<double, 4>> w = {
-        {0, 0, 12, 0}, {12, 0, 12, 6}, {12, 6, 0, 6}, {0, 6, 0, 0},  // the room
-        {5.0, 6.0, 5.0, 5.4}, {7.0, 0.0, 7.0, 0.5},                  // two short wall stubs
+        {0, 0, 12, 0},        {12, 0, 12, 6},       {12, 6, 0, 6}, {0, 6, 0, 0},  // the room
+        {5.0, 6.0, 5.0, 5.4}, {7.0, 0.0, 7.0, 0.5},                               // two short wall stubs
     };
     for (const double cx : {3.0, 9.0}) {  // two 0.6 m square pillars at (3, 3) and (9, 3)
       const double a = cx - 0.3, b = cx + 0.3, lo = 2.7, hi = 3.3;

@@ -20,16 +20,17 @@ struct LogReadOptions {
 };
 
 enum class LogFormat {
-  Empty,   ///< an empty file (no scans, whatever the format)
-  Carmen,  ///< CARMEN text log, plain or gzip
-  Rawlog,  ///< MRPT rawlog (either layout), plain or gzip
+  Empty,      ///< an empty file (no scans, whatever the format)
+  Carmen,     ///< CARMEN text log, plain or gzip
+  Rawlog,     ///< MRPT rawlog (either layout), plain or gzip
   Simulated,  ///< not a file: io::simulateLog (never returned by detectLogFormat)
 };
 const char* logFormatName(LogFormat format);
 
-/// Decides the format from the file's content (after gzip decompression), not its name: CARMEN logs are
-/// printable text, rawlogs are MRPT binary serialisation. Throws gridtopo::InputError if the file is missing
-/// or unreadable.
+/// Decides the format from the file's content (after gzip decompression), not its name: a file starting with
+/// an MRPT object header (class-name length byte + class name) is a rawlog, anything else is read as CARMEN
+/// text (whose parser reports garbage line by line). Throws gridtopo::InputError if the file is missing or
+/// unreadable.
 LogFormat detectLogFormat(const std::string& path);
 
 /// What readScanLog found besides the scans (for summaries).
@@ -44,6 +45,7 @@ struct ScanLogInfo {
 };
 
 /// Reads a CARMEN log (.clf/.log/.gz) or an MRPT rawlog (either layout) into scans with odometry, in file order.
+/// `options.carmen` and `options.odometry` apply to CARMEN logs only (rawlogs: see readRawlog).
 /// Throws gridtopo::InputError with file / line (or rawlog entry) / field on bad input.
 std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOptions& options = {});
 /// The same, also filling `info`.

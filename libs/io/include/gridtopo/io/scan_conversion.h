@@ -32,13 +32,12 @@ mrpt::Clock::time_point toMrptTime(double seconds);
 /// MRPT's TTimeStamp to seconds (mrpt::Clock::toDouble).
 double fromMrptTime(mrpt::Clock::time_point t);
 
-/// LaserScan (laser frame + mounting pose) -> CObservation2DRangeScan. `timestamp` is the MRPT timestamp (the
-/// scan's own one if not given). Every reading is kept in the range vector: no-return readings
+/// LaserScan (laser frame + mounting pose) -> CObservation2DRangeScan, timestamp toMrptTime(scan.timestamp).
+/// Every reading is kept in the range vector: no-return readings
 /// (range >= max_range) with their logged value and valid = false; non-finite or negative readings become
 /// max_range (+inf) or 0 (NaN, negative) with valid = false. Throws std::invalid_argument for fewer than 2
-/// beams, a zero or non-finite increment, or inconsistent vector sizes.
-mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan,
-                                                   const ScanConversionOptions& options = {});
+/// beams, a zero or non-finite increment, a non-finite pose / timestamp / max range, or inconsistent sizes.
+mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const ScanConversionOptions& options = {});
 
 /// CObservation2DRangeScan -> LaserScan: sensor_pose = (x, y, yaw) of the MRPT sensor pose, start_angle /
 /// angle_increment from the aperture and direction (an upside-down laser, roll = 180 deg, flips the

@@ -17,19 +17,19 @@
 namespace gridtopo::io {
 
 struct SimulationOptions {
-  std::size_t scans = 200;         ///< scans along the loop (the last one is back near the first pose)
-  std::size_t beams = 180;         ///< beams per scan
-  double start_deg = -90.0;        ///< angle of the first beam in the laser frame
-  double increment_deg = 1.0;      ///< angle between beams
-  bool interleave = false;         ///< odd scans start half an increment later (like some SICK logs)
-  double max_range = 8.0;          ///< metres; the room's diagonal (13.4 m) is longer, so some beams see nothing
-  double range_noise = 0.01;       ///< metres, standard deviation of the range noise
+  std::size_t scans = 200;             ///< scans along the loop (the last one is back near the first pose)
+  std::size_t beams = 180;             ///< beams per scan
+  double start_deg = -90.0;            ///< angle of the first beam in the laser frame
+  double increment_deg = 1.0;          ///< angle between beams
+  bool interleave = false;             ///< odd scans start half an increment later (like some SICK logs)
+  double max_range = 8.0;              ///< metres; the room's diagonal (13.4 m) is longer, so some beams see nothing
+  double range_noise = 0.01;           ///< metres, standard deviation of the range noise
   double odometry_noise_xy = 0.05;     ///< standard deviation of the translation error per metre travelled
   double odometry_noise_phi = 0.05;    ///< standard deviation of the rotation error per radian turned
   double odometry_noise_drift = 0.01;  ///< standard deviation of the rotation error (rad) per metre travelled
   mrpt::math::TPose2D mount{0.1, 0.0, 0.0};  ///< laser pose on the robot
-  double start_time = 1000.0;      ///< timestamp of the first scan (s)
-  double period = 0.2;             ///< time between scans (s)
+  double start_time = 1000.0;                ///< timestamp of the first scan (s)
+  double period = 0.2;                       ///< time between scans (s)
   unsigned seed = 42;
 };
 
