@@ -40,6 +40,10 @@ TEST(SimulatedSlam, LoopAroundOfficeStaysCloseToGroundTruth) {
   ASSERT_EQ(traj.size(), log.records.size());
   std::vector<io::TimedPose> odo(log.records.size());
   for (std::size_t i = 0; i < odo.size(); ++i) odo[i].pose = log.records[i].odometry;
+  if (std::getenv("GRIDTOPO_TEST_VERBOSE"))
+    for (std::size_t i = 0; i < traj.size(); i += 25)
+      std::printf("%zu est %.3f %.3f %.4f truth %.3f %.3f %.4f\n", i, traj[i].pose.x, traj[i].pose.y, traj[i].pose.phi,
+                  log.truth[i].x, log.truth[i].y, log.truth[i].phi);
   const Errors e = compare(traj, log.truth), eo = compare(odo, log.truth);
   std::printf("slam: mean %.4f m max %.4f m %.3f deg; odometry: mean %.4f m max %.4f m; steps %zu\n", e.mean_xy,
               e.max_xy, e.mean_th * 180 / M_PI, eo.mean_xy, eo.max_xy, slam.stepsProcessed());
@@ -49,4 +53,33 @@ TEST(SimulatedSlam, LoopAroundOfficeStaysCloseToGroundTruth) {
   EXPECT_LT(e.mean_xy, 0.05);
   EXPECT_LT(e.max_xy, 0.15);
   EXPECT_LT(e.mean_th, 0.5 * M_PI / 180);
+}
+
+TEST(SimulatedSlam, WorksWithoutOdometry) {
+  const auto plan = sim::FloorPlan::officeLoop();
+  sim::SimOptions so;
+  so.scan_spacing = 0.05;  // without odometry the matcher needs small steps between scans
+  auto wp = sim::officeLoopWaypoints(1);
+  wp.resize(4);
+  auto log = sim::simulate(plan, wp, so);
+  for (auto& r : log.records) r.has_odometry = false;
+  slam::SlamOptions o;
+  o.particles = 8;
+  o.no_odometry_period = 0.15;  // process a scan every 0.15 s (0.075 m at 0.5 m/s)
+  slam::RbpfSlam slam(o);
+  for (const auto& r : log.records) slam.processScan(r);
+  const auto traj = slam.trajectory();
+  // The map frame starts at identity without odometry: compare in the frame of the first true pose.
+  const slam::Pose2 t0{log.truth[0].x, log.truth[0].y, log.truth[0].phi};
+  double sum = 0, mx = 0;
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    const slam::Pose2 t = slam::relative(t0, {log.truth[i].x, log.truth[i].y, log.truth[i].phi});
+    const double d = std::hypot(traj[i].pose.x - t.x, traj[i].pose.y - t.y);
+    sum += d;
+    mx = std::max(mx, d);
+  }
+  std::printf("no odometry: mean %.4f m max %.4f m over %zu scans, %zu steps\n", sum / traj.size(), mx, traj.size(),
+              slam.stepsProcessed());
+  EXPECT_LT(sum / traj.size(), 0.05);
+  EXPECT_LT(mx, 0.15);
 }

@@ -113,9 +113,10 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     Cell& end = cellRef(x1, y1);
     if (beams[k].hit) {
       addLogOdds(end, o.log_odds_hit, o);
-      end.hit_x += static_cast<float>(ends[k][0]);
-      end.hit_y += static_cast<float>(ends[k][1]);
       ++end.hits;
+      const float inv = 1.0f / static_cast<float>(end.hits);
+      end.hit_x += (static_cast<float>(ends[k][0]) - end.hit_x) * inv;
+      end.hit_y += (static_cast<float>(ends[k][1]) - end.hit_y) * inv;
     } else {
       addLogOdds(end, o.log_odds_free, o);
     }

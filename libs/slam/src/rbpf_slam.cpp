@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "gridtopo/slam/prepared_scan.h"
@@ -18,28 +20,23 @@ Pose2 toPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
 constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2;
 }  // namespace
 
-ParticleStep proposeAndWeight(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
-                              const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
-                              Rng& rng, Pose2& out_pose) {
-  ParticleStep r;
+ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion) {
+  ProposalPlan plan;
+  plan.type = o.proposal.type;
+  if (o.proposal.type == ProposalType::Odometry) return plan;
   const double inv_gain = 1.0 / o.likelihood_gain;
-  auto odometryProposal = [&] {
-    out_pose = motion.sample(prev, u, rng, has_odometry);
-    r.log_weight_increment = scoreScan(map, out_pose, scan, o.matcher).log_likelihood * inv_gain;
-    return r;
-  };
-  if (o.proposal.type == ProposalType::Odometry) return odometryProposal();
-
   const Pose2 predicted = compose(prev, u);
   const MatchResult m = matchScan(map, predicted, scan, o.matcher);
-  if (!m.ok) return odometryProposal();
-  r.matched = true;
+  plan.evaluations = m.evaluations;
+  if (!m.ok) return plan;
+  plan.matched = true;
   if (o.proposal.type == ProposalType::ModeOnly) {
-    out_pose = m.pose;
-    r.log_weight_increment = m.score.log_likelihood * inv_gain;
-    return r;
+    plan.gaussian.mean = m.pose;
+    plan.log_weight_increment = m.score.log_likelihood * inv_gain;
+    return plan;
   }
-  // Informed proposal: K poses on a grid around the mode.
+  // Informed proposal: K poses on a grid around the mode, τ_j = p(z|m,x_j)·p(x_j|x_{t-1},u).
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
   std::vector<Pose2> xs;
@@ -51,23 +48,50 @@ ParticleStep proposeAndWeight(const GridMap& map, const Pose2& prev, const Pose2
       for (int k = 0; k < n; ++k) {
         const Pose2 x{m.pose.x + (i - half) * o.proposal.delta_xy, m.pose.y + (j - half) * o.proposal.delta_xy,
                       wrapAngle(m.pose.theta + (k - half) * o.proposal.delta_theta)};
-        const double ll = scoreScan(map, x, scan, o.matcher).log_likelihood * inv_gain;
+        const double ll = (i == n / 2 && j == n / 2 && k == n / 2 && (n % 2) == 1)
+                              ? m.score.log_likelihood
+                              : scoreScan(map, x, scan, o.matcher).log_likelihood;
         xs.push_back(x);
-        log_tau.push_back(ll + motion.logDensity(x, prev, u, has_odometry));
+        log_tau.push_back(ll * inv_gain + motion.logDensity(x, prev, u, has_odometry));
       }
-  GaussianProposal g = fitProposal(xs, log_tau, m.pose);
+  plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
+  plan.gaussian = fitProposal(xs, log_tau, m.pose);
   const double mx = o.proposal.min_sigma_xy * o.proposal.min_sigma_xy;
-  g.cov(0, 0) += mx;
-  g.cov(1, 1) += mx;
-  g.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
-  out_pose = sampleGaussian(g, rng);
-  r.log_weight_increment = g.log_eta;
-  return r;
+  plan.gaussian.cov(0, 0) += mx;
+  plan.gaussian.cov(1, 1) += mx;
+  plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
+  plan.log_weight_increment = plan.gaussian.log_eta;
+  return plan;
 }
 
-RbpfSlam::RbpfSlam(const SlamOptions& options) : o_(options), motion_(options.motion) {
+double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
+                        bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
+                        const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose) {
+  if (!plan.matched) {
+    // Odometry proposal (also the fallback when matching failed): sample the motion model, weight by p(z|m,x).
+    out_pose = motion.sample(prev, u, rng, has_odometry);
+    return scoreScan(map, out_pose, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
+  out_pose = plan.type == ProposalType::Informed ? sampleGaussian(plan.gaussian, rng) : plan.gaussian.mean;
+  return plan.log_weight_increment;
+}
+
+RbpfSlam::RbpfSlam(const SlamOptions& options)
+    : o_(options), motion_(options.motion), prior_map_(options.resolution) {
   o_.validate();
   pool_ = std::make_unique<ThreadPool>(o_.threads);
+}
+
+void RbpfSlam::setInitialPose(const Pose2& pose) {
+  if (initialized_) throw std::logic_error("RbpfSlam::setInitialPose: the filter has already started");
+  initial_pose_ = pose;
+  has_initial_pose_ = true;
+}
+
+void RbpfSlam::insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan) {
+  if (initialized_) throw std::logic_error("RbpfSlam::insertKnownScan: the filter has already started");
+  const PreparedScan ps = prepareScan(scan, o_.beams, o_.resolution);
+  prior_map_.insertScan(robot_pose, ps.sensor, ps.map_beams, o_.map);
 }
 
 bool RbpfSlam::shouldProcess(const io::ScanRecord& r) const {
@@ -102,8 +126,9 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
 
   if (!initialized_) {
     // The map frame starts at the first odometry pose (identity without odometry).
-    const Pose2 start = record.has_odometry ? toPose(record.odometry) : Pose2{};
-    GridMap map(o_.resolution);
+    const Pose2 start =
+        has_initial_pose_ ? initial_pose_ : (record.has_odometry ? toPose(record.odometry) : Pose2{});
+    GridMap map = prior_map_;
     map.insertScan(start, scan.sensor, scan.map_beams, o_.map);
     auto node = std::make_shared<const TrajectoryNode>(start, index, nullptr);
     particles_.assign(n, Particle{start, 0.0, 0.0, node, map});
@@ -113,21 +138,42 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     const ScanInfo& last = scans_[last_processed_];
     const bool has_odo = record.has_odometry && last.has_odometry;
     const Pose2 u = has_odo ? relative(last.odometry, toPose(record.odometry)) : Pose2{};
-    std::vector<char> matched(n, 0);
+    // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan.
+    std::vector<std::size_t> group_of(n), leaders;
+    {
+      std::unordered_map<const TrajectoryNode*, std::size_t> first;
+      for (std::size_t i = 0; i < n; ++i) {
+        auto it = first.emplace(particles_[i].node.get(), leaders.size());
+        if (it.second) leaders.push_back(i);
+        group_of[i] = it.first->second;
+      }
+    }
+    std::vector<ProposalPlan> plans(leaders.size());
+    pool_->parallelFor(leaders.size(), [&](std::size_t g) {
+      const Particle& p = particles_[leaders[g]];
+      plans[g] = planProposal(p.map, p.pose, u, has_odo, scan, o_, motion_);
+    });
     const std::size_t step = stats_.size();
+    std::vector<int> extra_evals(n, 0);
     pool_->parallelFor(n, [&](std::size_t i) {
       Particle& p = particles_[i];
+      const ProposalPlan& plan = plans[group_of[i]];
       Rng rng(o_.seed, step, i, kPurposeParticle);
       Pose2 x;
-      const ParticleStep ps = proposeAndWeight(p.map, p.pose, u, has_odo, scan, o_, motion_, rng, x);
-      matched[i] = ps.matched;
-      p.log_weight += ps.log_weight_increment;
-      p.log_weight_total += ps.log_weight_increment;
+      const double dw = drawFromProposal(plan, p.map, p.pose, u, has_odo, scan, o_, motion_, rng, x);
+      extra_evals[i] = plan.matched ? 0 : 1;
+      p.log_weight += dw;
+      p.log_weight_total += dw;
       p.pose = x;
       p.map.insertScan(x, scan.sensor, scan.map_beams, o_.map);
       p.node = std::make_shared<const TrajectoryNode>(x, index, p.node);
     });
-    for (char m : matched) st.failed_matches += !m;
+    for (std::size_t i = 0; i < n; ++i) {
+      st.failed_matches += !plans[group_of[i]].matched;
+      st.evaluations += extra_evals[i];
+    }
+    for (const auto& pl : plans) st.evaluations += pl.evaluations;
+    st.evaluations /= static_cast<double>(n);
     std::vector<double> lw(n);
     for (std::size_t i = 0; i < n; ++i) lw[i] = particles_[i].log_weight;
     const std::vector<double> w = normalizedWeights(lw);

@@ -64,6 +64,12 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("match_kernel", o.matcher.kernel);
   f("match_null_log_likelihood", o.matcher.null_log_likelihood);
   f("match_occupied_log_odds", o.matcher.occupied_log_odds);
+  f("match_free_check", o.matcher.free_check);
+  f("match_gn_iterations", o.matcher.gn_iterations);
+  f("match_gn_kernel", o.matcher.gn_kernel);
+  f("match_polish_step_xy", o.matcher.polish_step_xy);
+  f("match_polish_step_theta", o.matcher.polish_step_theta);
+  f("match_polish_refinements", o.matcher.polish_refinements);
   f("match_step_xy", o.matcher.step_xy);
   f("match_step_theta", o.matcher.step_theta);
   f("match_refinements", o.matcher.refinements);
@@ -115,6 +121,13 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
       value = v;
     }
   });
+  if (source.keyExists(section, "match_method")) {
+    const std::string m = source.read_string(section, "match_method", "", false);
+    if (m == "gauss-newton") matcher.method = MatchMethod::GaussNewton;
+    else if (m == "hill-climb") matcher.method = MatchMethod::HillClimb;
+    else throw InputError(file, 0, "[" + section + "] match_method",
+                          "unknown method '" + m + "' (expected gauss-newton or hill-climb)");
+  }
   if (source.keyExists(section, "proposal")) {
     const std::string p = source.read_string(section, "proposal", "", false);
     try {
@@ -134,6 +147,8 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
     else target.write(section, key, str(value));
   });
   target.write(section, "proposal", std::string(toString(proposal.type)));
+  target.write(section, "match_method",
+               std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
 }
 
 void SlamOptions::dumpToTextStream(std::ostream& out) const {
@@ -147,6 +162,7 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
     out << "\n";
   });
   out << "  proposal = " << toString(proposal.type) << "\n";
+  out << "  match_method = " << (matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb") << "\n";
 }
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
@@ -197,6 +213,11 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   positive("match_step_theta", matcher.step_theta);
   if (matcher.refinements < 0) fail("match_refinements", "must be >= 0");
   if (matcher.max_iterations < 1) fail("match_max_iterations", "must be >= 1");
+  if (matcher.gn_iterations < 0) fail("match_gn_iterations", "must be >= 0");
+  if (matcher.gn_kernel < 0 || matcher.gn_kernel > 5) fail("match_gn_kernel", "must be in [0, 5]");
+  positive("match_polish_step_xy", matcher.polish_step_xy);
+  positive("match_polish_step_theta", matcher.polish_step_theta);
+  if (matcher.polish_refinements < 0) fail("match_polish_refinements", "must be >= 0");
   if (!(matcher.min_match_fraction >= 0.0 && matcher.min_match_fraction <= 1.0))
     fail("match_min_fraction", "must be in [0, 1], got " + str(matcher.min_match_fraction));
   if (proposal.points_per_axis < 2 || proposal.points_per_axis > 9)

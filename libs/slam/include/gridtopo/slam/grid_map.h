@@ -15,8 +15,8 @@ namespace gridtopo::slam {
 
 struct Cell {
   float log_odds = 0.0f;  ///< ln(p / (1 - p)); 0 = unknown
-  float hit_x = 0.0f;     ///< sum of the world x of the endpoints that hit this cell
-  float hit_y = 0.0f;
+  float hit_x = 0.0f;     ///< mean world x of the beam end points that hit this cell
+  float hit_y = 0.0f;     ///< mean world y of those end points
   std::uint32_t hits = 0;
 };
 
@@ -45,7 +45,11 @@ class GridMap {
   explicit GridMap(double resolution = 0.05);
 
   double resolution() const { return res_; }
-  int cellIndex(double w) const { return static_cast<int>(std::floor(w * inv_res_)); }
+  int cellIndex(double w) const {
+    const double v = w * inv_res_;
+    const int i = static_cast<int>(v);  // truncation; fix up negatives (std::floor is a libm call on x86-64)
+    return i - (v < static_cast<double>(i));
+  }
   double cellCenter(int c) const { return (c + 0.5) * res_; }
 
   /// The cell at integer cell coordinates, or nullptr when it was never observed (outside / no tile).

@@ -35,25 +35,41 @@ struct StepStats {
   bool resampled = false;
   int particles = 0;
   int failed_matches = 0;      ///< particles that fell back to the odometry proposal
+  double evaluations = 0.0;    ///< mean likelihood evaluations per particle
   std::size_t unique_tiles = 0;  ///< distinct map tiles over all particles (copy-on-write sharing)
   std::size_t map_bytes = 0;     ///< memory of those tiles
 };
 
-/// Step outcome for one particle (exposed for tests and the MRPT builder).
-struct ParticleStep {
-  bool matched = false;
+/// The deterministic part of one particle's step (predict, match, sample around the mode, fit the proposal):
+/// it depends only on the particle's map and previous pose, so particles duplicated by resampling share it.
+struct ProposalPlan {
+  bool matched = false;            ///< false: fall back to the odometry proposal
+  ProposalType type = ProposalType::Informed;
+  GaussianProposal gaussian;       ///< informed: N(μ, Σ) and ln η; mode-only: the mode in `mean`
   double log_weight_increment = 0.0;
+  int evaluations = 0;             ///< likelihood evaluations (scan matching + proposal)
 };
 
-/// Per-particle proposal + weight: the pure core of one filter step (predict, match, sample around the mode,
-/// fit the proposal, draw, weight). `u` is the odometry increment in the frame of `prev`.
-ParticleStep proposeAndWeight(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
-                              const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
-                              Rng& rng, Pose2& out_pose);
+/// Plans the proposal for a particle at `prev` with odometry increment `u` (in the frame of `prev`).
+ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion);
+
+/// Draws the particle's new pose from the plan with the particle's own random stream; returns the weight
+/// increment (ln η for the informed proposal, ln p(z|m,x)/gain for mode-only and odometry).
+double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
+                        bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
+                        const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose);
 
 class RbpfSlam {
  public:
   explicit RbpfSlam(const SlamOptions& options);
+
+  /// Before the first scan: the pose of the first scan in the map frame (default: its odometry pose, or the
+  /// identity without odometry).
+  void setInitialPose(const Pose2& pose);
+  /// Before the first scan: inserts a scan taken at a known pose into the map every particle starts from
+  /// (to continue mapping on top of a previous map).
+  void insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan);
 
   /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy).
   bool processScan(const io::ScanRecord& record);
@@ -87,6 +103,9 @@ class RbpfSlam {
   std::vector<ScanInfo> scans_;
   std::vector<StepStats> stats_;
   bool initialized_ = false;
+  bool has_initial_pose_ = false;
+  Pose2 initial_pose_;
+  GridMap prior_map_;
   std::size_t last_processed_ = 0;  // scan index
   double acc_linear_ = 0.0, acc_angular_ = 0.0;
 };

@@ -10,11 +10,26 @@
 
 namespace gridtopo::slam {
 
+enum class MatchMethod {
+  HillClimb,    ///< GMapping's search: ±step moves in x, y, θ, halving the step when no move improves
+  GaussNewton,  ///< Gauss-Newton on the end point-to-hit-mean distances, then a short hill-climbing polish
+};
+
 struct ScanMatcherOptions {
+  MatchMethod method = MatchMethod::HillClimb;  // Gauss-Newton is experimental (slower to converge here)
+  int gn_iterations = 8;              ///< Gauss-Newton iterations (re-association at each)
+  int gn_kernel = 2;                  ///< correspondence window half size (cells) during Gauss-Newton
+  double polish_step_xy = 0.01;       ///< m, first step of the hill-climbing polish after Gauss-Newton
+  double polish_step_theta = 0.005;   ///< rad
+  int polish_refinements = 3;         ///< step halvings of the polish
   double sigma = 0.05;                ///< m, std-dev of the end point-to-obstacle distance
   int kernel = 1;                     ///< window half size in cells for the correspondence search
   double null_log_likelihood = -2.0;  ///< per-beam log-likelihood floor (no correspondence / outlier)
   float occupied_log_odds = 0.0f;     ///< a cell is occupied when its log-odds exceeds this
+  /// GMapping's test: a correspondence counts only if the cell one step back along the beam is not occupied
+  /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
+  /// the match by up to half a cell, so it is off by default.
+  bool free_check = false;
   double step_xy = 0.05;              ///< m, initial hill-climbing step
   double step_theta = 0.05;           ///< rad, initial hill-climbing step
   int refinements = 6;                ///< number of step halvings

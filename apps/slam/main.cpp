@@ -1,0 +1,165 @@
+// gridtopo-slam: RBPF grid SLAM with the informed proposal on a CARMEN log or an MRPT rawlog.
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+#include <tclap/CmdLine.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/core/progress.h"
+#include "gridtopo/io/carmen_log.h"
+#include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/scan_conversion.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/rbpf_slam.h"
+
+namespace fs = std::filesystem;
+using namespace gridtopo;
+
+namespace {
+
+std::vector<io::ScanRecord> readLog(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "no such file");
+  const std::string name = fs::path(path).filename().string();
+  auto endsWith = [&](const std::string& s) {
+    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  if (endsWith(".rawlog") || endsWith(".rawlog.gz")) return io::readRawlog(path).scans;
+  return io::readCarmenLog(path).scans;
+}
+
+long rssKb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return 0;
+}
+
+long peakRssKb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    TCLAP::CmdLine cmd(
+        "RBPF grid SLAM with the informed proposal (Grisetti, Stachniss, Burgard 2007). Reads a CARMEN log "
+        "(.clf/.log, optionally .gz) or an MRPT rawlog (either layout) and writes the map (PNG, PGM+YAML, "
+        ".gridmap.gz), a .simplemap, the trajectory of every scan and per-step statistics to --output.",
+        ' ', "0.1");
+    TCLAP::ValueArg<std::string> input("i", "input", "input log (.clf, .log, .gz, .rawlog)", true, "", "file", cmd);
+    TCLAP::ValueArg<std::string> output("o", "output", "output directory", true, "", "dir", cmd);
+    TCLAP::ValueArg<std::string> config("c", "config", "INI file with the options (see config-ini/slam.ini)",
+                                        false, "", "file", cmd);
+    TCLAP::ValueArg<std::string> section("", "section", "INI section", false, "slam", "name", cmd);
+    TCLAP::ValueArg<int> particles("p", "particles", "number of particles (overrides the INI)", false, 0, "n", cmd);
+    TCLAP::ValueArg<long long> seed("s", "seed", "random seed (overrides the INI)", false, -1, "n", cmd);
+    TCLAP::ValueArg<int> threads("t", "threads", "threads, 0 = all cores (overrides the INI)", false, -1, "n", cmd);
+    TCLAP::ValueArg<std::string> proposal("", "proposal", "informed | mode-only | odometry (overrides the INI)",
+                                          false, "", "name", cmd);
+    TCLAP::ValueArg<long> max_scans("", "max-scans", "process only the first n scans", false, -1, "n", cmd);
+    TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
+    cmd.parse(argc, argv);
+
+    slam::SlamOptions o;
+    if (!config.getValue().empty()) {
+      if (!fs::exists(config.getValue())) throw InputError(config.getValue(), "no such INI file");
+      mrpt::config::CConfigFile ini(config.getValue());
+      if (!ini.sectionExists(section.getValue()))
+        throw InputError(config.getValue(), 0, "[" + section.getValue() + "]", "section not found");
+      o.loadFromConfigFile(ini, section.getValue());
+    }
+    const std::string cli = "<command line>";
+    if (particles.isSet()) o.particles = particles.getValue();
+    if (seed.isSet()) {
+      if (seed.getValue() < 0) throw InputError(cli, 0, "--seed", "must be >= 0");
+      o.seed = static_cast<std::uint64_t>(seed.getValue());
+    }
+    if (threads.isSet()) o.threads = threads.getValue();
+    if (proposal.isSet()) {
+      try {
+        o.proposal.type = slam::proposalFromString(proposal.getValue());
+      } catch (const std::invalid_argument& e) {
+        throw InputError(cli, 0, "--proposal", e.what());
+      }
+    }
+    o.validate(cli, "slam");
+    if (!quiet.getValue()) o.dumpToTextStream(std::cerr);
+
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<io::ScanRecord> records = readLog(input.getValue());
+    if (max_scans.getValue() >= 0 && static_cast<std::size_t>(max_scans.getValue()) < records.size())
+      records.resize(static_cast<std::size_t>(max_scans.getValue()));
+    if (records.empty()) throw InputError(input.getValue(), "the log holds no laser scans");
+    const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    slam::RbpfSlam filter(o);
+    ProgressBar bar(records.size(), "slam", "scans", quiet.getValue() ? 0 : -1);
+    std::ostringstream stats;
+    stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
+             "rss_kb\n";
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      if (filter.processScan(records[i])) {
+        const auto& s = filter.stats().back();
+        stats << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' '
+              << s.neff << ' ' << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
+              << s.unique_tiles << ' ' << s.map_bytes << ' ' << rssKb() << '\n';
+      }
+      if ((i & 63) == 0) bar.update(i);
+    }
+    bar.finish();
+    const double t_slam =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - t_read;
+
+    // Outputs: all or nothing.
+    const fs::path dir(output.getValue());
+    const auto traj = filter.trajectory();
+    const auto grid = slam::toOccupancyGrid(filter.bestParticle().map);
+    OutputSet out;
+    out.write((dir / "trajectory.txt").string(), [&](const std::string& p) {
+      io::writeTrajectory(p, traj, {"gridtopo-slam " + input.getValue(), "one pose per laser scan, best particle"});
+    });
+    out.write((dir / "stats.txt").string(), [&](const std::string& p) { std::ofstream(p) << stats.str(); });
+    out.write((dir / "map.png").string(), [&](const std::string& p) {
+      cv::imwrite(p, slam::renderMap(grid));
+    });
+    out.write((dir / "map_trajectory.png").string(), [&](const std::string& p) {
+      cv::imwrite(p, slam::renderMap(grid, traj));
+    });
+    out.write((dir / "options.ini").string(), [&](const std::string& p) {
+      std::ofstream f(p);
+      o.dumpToTextStream(f);
+    });
+    out.commit();
+    const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr,
+                 "gridtopo-slam: %zu scans, %zu processed, read %.2f s, slam %.2f s, total %.2f s, peak RSS %ld MB, "
+                 "output in %s\n",
+                 records.size(), filter.stepsProcessed(), t_read, t_slam, t_total, peakRssKb() / 1024,
+                 dir.string().c_str());
+    return 0;
+  } catch (const TCLAP::ArgException& e) {
+    std::cerr << "gridtopo-slam: " << e.argId() << ": " << e.error() << "\n";
+  } catch (const InputError& e) {
+    std::cerr << "gridtopo-slam: error: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "gridtopo-slam: error: " << e.what() << "\n";
+  }
+  return 1;
+}

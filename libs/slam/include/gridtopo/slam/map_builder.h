@@ -1,0 +1,57 @@
+#pragma once
+// gridtopo's RBPF SLAM as an MRPT map builder: usable from any MRPT program that drives a
+// mrpt::slam::CMetricMapBuilder (rawlog loops, rbpf-slam-like tools, GUIs).
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/slam/CMetricMapBuilder.h>
+
+#include <map>
+#include <memory>
+
+#include "gridtopo/slam/rbpf_slam.h"
+
+namespace gridtopo::slam {
+
+class CMetricMapBuilderGridRbpf : public mrpt::slam::CMetricMapBuilder {
+ public:
+  explicit CMetricMapBuilderGridRbpf(const SlamOptions& options = SlamOptions());
+
+  /// Options used by the next initialize() (loaded with SlamOptions::loadFromConfigFile).
+  SlamOptions slamOptions;
+
+  /// Restarts the filter. `initialMap`: its scans are inserted at their poses into every particle's map;
+  /// `x0`: the pose of the first scan (its mean), default the first odometry pose.
+  void initialize(const mrpt::maps::CSimpleMap& initialMap = mrpt::maps::CSimpleMap(),
+                  const mrpt::poses::CPosePDF* x0 = nullptr) override;
+  /// Particles (pose and log-weight) as a 3D particle PDF.
+  mrpt::poses::CPose3DPDF::Ptr getCurrentPoseEstimation() const override;
+  /// Action / sensory-frame rawlog layout: the odometry increment of the CActionRobotMovement2D is accumulated,
+  /// every CObservation2DRangeScan of the frame is fed to the filter.
+  void processActionObservation(mrpt::obs::CActionCollection& action,
+                                mrpt::obs::CSensoryFrame& observations) override;
+  /// Observation-only rawlog layout: CObservationOdometry sets the odometry, CObservation2DRangeScan is fed to
+  /// the filter with the latest odometry; other observations are ignored.
+  void processObservation(const mrpt::obs::CObservation::Ptr& obs);
+  /// The processed frames along the best particle's path with their poses.
+  void getCurrentlyBuiltMap(mrpt::maps::CSimpleMap& out_map) const override;
+  unsigned int getCurrentlyBuiltMapSize() override;
+  /// The best particle's map as a CMultiMetricMap holding one COccupancyGridMap2D (rebuilt on each call).
+  const mrpt::maps::CMultiMetricMap* getCurrentlyBuiltMetricMap() const override;
+  /// Writes the best particle's map with its trajectory (the format follows the extension: .png, .bmp, ...;
+  /// formatEMF_BMP is ignored, EMF is not supported).
+  void saveCurrentEstimationToImage(const std::string& file, bool formatEMF_BMP = true) override;
+
+  const RbpfSlam& filter() const { return *filter_; }
+
+ private:
+  void feed(const mrpt::obs::CObservation& obs);
+
+  std::unique_ptr<RbpfSlam> filter_;
+  bool has_odometry_ = false;
+  mrpt::math::TPose2D odometry_{0, 0, 0};
+  std::map<std::size_t, mrpt::obs::CSensoryFrame::Ptr> frames_;  ///< processed scan index -> its frame
+  mutable mrpt::maps::CMultiMetricMap metric_map_;
+};
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFParticles.h>
+
+#include <filesystem>
+
+#include "gridtopo/io/scan_conversion.h"
+#include "gridtopo/sim/simulator.h"
+#include "gridtopo/slam/map_builder.h"
+
+using namespace gridtopo;
+namespace fs = std::filesystem;
+
+namespace {
+sim::SimLog shortLog() {
+  auto wp = sim::officeLoopWaypoints(1);
+  wp.resize(3);
+  return sim::simulate(sim::FloorPlan::officeLoop(), wp, sim::SimOptions{});
+}
+slam::SlamOptions smallOptions() {
+  slam::SlamOptions o;
+  o.particles = 6;
+  o.threads = 2;
+  return o;
+}
+}  // namespace
+
+TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
+  const auto log = shortLog();
+  // Reference: the filter fed directly.
+  slam::RbpfSlam ref(smallOptions());
+  for (const auto& r : log.records) ref.processScan(r);
+  const auto ref_traj = ref.trajectory();
+
+  slam::CMetricMapBuilderGridRbpf builder(smallOptions());
+  mrpt::poses::CPose2D prev(log.records[0].odometry);
+  for (const auto& r : log.records) {
+    mrpt::obs::CActionCollection acts;
+    mrpt::obs::CActionRobotMovement2D mv;
+    const mrpt::poses::CPose2D odo(r.odometry);
+    mv.computeFromOdometry(odo - prev, mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+    prev = odo;
+    acts.insert(mv);
+    mrpt::obs::CSensoryFrame sf;
+    auto obs = io::toMrptScan(r.scan);
+    obs->timestamp = io::toMrptTime(r.scan.timestamp);
+    sf.insert(obs);
+    builder.processActionObservation(acts, sf);
+  }
+  // The builder's odometry starts at (0,0,0): the same run in another frame. Compare relative motion.
+  const auto traj = builder.filter().trajectory();
+  ASSERT_EQ(traj.size(), ref_traj.size());
+  const slam::Pose2 a0{traj[0].pose.x, traj[0].pose.y, traj[0].pose.phi};
+  const slam::Pose2 b0{ref_traj[0].pose.x, ref_traj[0].pose.y, ref_traj[0].pose.phi};
+  double worst = 0;
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    const auto a = slam::relative(a0, {traj[i].pose.x, traj[i].pose.y, traj[i].pose.phi});
+    const auto b = slam::relative(b0, {ref_traj[i].pose.x, ref_traj[i].pose.y, ref_traj[i].pose.phi});
+    worst = std::max(worst, std::hypot(a.x - b.x, a.y - b.y));
+  }
+  EXPECT_LT(worst, 0.05);
+
+  // Every virtual of CMetricMapBuilder answers.
+  const auto pdf = builder.getCurrentPoseEstimation();
+  auto particles = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFParticles>(pdf);
+  ASSERT_TRUE(particles);
+  EXPECT_EQ(particles->size(), 6u);
+  mrpt::maps::CSimpleMap sm;
+  builder.getCurrentlyBuiltMap(sm);
+  EXPECT_EQ(sm.size(), builder.getCurrentlyBuiltMapSize());
+  EXPECT_EQ(sm.size(), builder.filter().stepsProcessed());
+  const auto* mm = builder.getCurrentlyBuiltMetricMap();
+  ASSERT_NE(mm, nullptr);
+  auto grid = mm->mapByClass<mrpt::maps::COccupancyGridMap2D>();
+  ASSERT_TRUE(grid);
+  EXPECT_GT(grid->getSizeX(), 100u);
+  const fs::path img = fs::temp_directory_path() / "gridtopo_builder_map.png";
+  fs::remove(img);
+  builder.saveCurrentEstimationToImage(img.string());
+  EXPECT_GT(fs::file_size(img), 1000u);
+}
+
+TEST(MapBuilder, ObservationOnlyLayoutAndInitialPose) {
+  const auto log = shortLog();
+  slam::CMetricMapBuilderGridRbpf builder(smallOptions());
+  mrpt::poses::CPosePDFGaussian x0(mrpt::poses::CPose2D(log.truth[0].x, log.truth[0].y, log.truth[0].phi));
+  builder.initialize(mrpt::maps::CSimpleMap(), &x0);
+  for (const auto& r : log.records) {
+    auto odo = mrpt::obs::CObservationOdometry::Create();
+    odo->odometry = mrpt::poses::CPose2D(r.odometry);
+    builder.processObservation(odo);
+    auto obs = io::toMrptScan(r.scan);
+    obs->timestamp = io::toMrptTime(r.scan.timestamp);
+    builder.processObservation(obs);
+  }
+  const auto traj = builder.filter().trajectory();
+  ASSERT_EQ(traj.size(), log.records.size());
+  double sum = 0;
+  for (std::size_t i = 0; i < traj.size(); ++i)
+    sum += std::hypot(traj[i].pose.x - log.truth[i].x, traj[i].pose.y - log.truth[i].y);
+  EXPECT_LT(sum / traj.size(), 0.05);
+}

@@ -1,0 +1,110 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gridtopo/sim/simulator.h"
+#include "gridtopo/slam/prepared_scan.h"
+#include "gridtopo/slam/scan_matcher.h"
+
+using namespace gridtopo;
+using namespace gridtopo::slam;
+
+namespace {
+// A map built from noise-free scans of the office floor plan taken at known poses.
+struct Fixture {
+  GridMap map{0.05};
+  sim::FloorPlan plan = sim::FloorPlan::officeLoop();
+  sim::SimOptions so;
+  BeamOptions bo;
+  Fixture() {
+    so.range_sigma = 0.0;
+    const std::vector<mrpt::math::TPose2D> wp = {{2, 6, -M_PI / 2}, {2, 2.8, 0}, {9, 2.8, 0}};
+    const auto log = sim::simulate(plan, wp, so);
+    for (std::size_t i = 0; i < log.records.size(); ++i) {
+      const auto ps = prepareScan(log.records[i].scan, bo, map.resolution());
+      const auto& t = log.truth[i];
+      map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, MapUpdateOptions{});
+    }
+  }
+  PreparedScan scanAt(const Pose2& p) {
+    sim::SimOptions o = so;
+    o.range_sigma = 0.005;
+    const auto log = sim::simulate(plan, {{p.x, p.y, p.theta}}, o);
+    return prepareScan(log.records.at(0).scan, bo, map.resolution());
+  }
+};
+}  // namespace
+
+TEST(ScanMatcher, LikelihoodPeaksAtTheTruePose) {
+  Fixture f;
+  const Pose2 truth{6.3, 2.8, 0.05};
+  const auto scan = f.scanAt(truth);
+  ScanMatcherOptions o;
+  const ScanScore at = scoreScan(f.map, truth, scan, o);
+  EXPECT_GT(at.matched, 0.9 * scan.size());
+  for (const Pose2 d : {Pose2{0.05, 0, 0}, Pose2{0, -0.05, 0}, Pose2{0, 0, 0.03}})
+    EXPECT_LT(scoreScan(f.map, {truth.x + d.x, truth.y + d.y, truth.theta + d.theta}, scan, o).log_likelihood,
+              at.log_likelihood - 5.0);
+}
+
+TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
+  Fixture f;
+  ScanMatcherOptions o;
+  if (getenv("OCC")) o.occupied_log_odds = atof(getenv("OCC"));
+  if (getenv("KERN")) o.kernel = atoi(getenv("KERN"));
+  if (getenv("HILL")) o.method = MatchMethod::HillClimb;
+  const Pose2 truths[] = {{6.3, 2.8, 0.0}, {4.1, 2.9, 0.1}, {8.2, 2.7, -0.08}, {2.1, 4.5, -1.4}};
+  const Pose2 offsets[] = {{0.12, -0.07, 0.04}, {-0.1, 0.1, -0.05}, {0.05, 0.13, 0.06}, {-0.13, -0.02, -0.03}};
+  double sum_xy = 0, sum_th = 0, evals = 0;
+  int n = 0;
+  for (const auto& t : truths)
+    for (const auto& d : offsets) {
+      const auto scan = f.scanAt(t);
+      const MatchResult r = matchScan(f.map, {t.x + d.x, t.y + d.y, t.theta + d.theta}, scan, o);
+      ASSERT_TRUE(r.ok);
+      const double exy = std::hypot(r.pose.x - t.x, r.pose.y - t.y), eth = std::abs(wrapAngle(r.pose.theta - t.theta));
+      evals += r.evaluations;
+      if (exy > 0.02) std::printf("truth ll %.2f m %d  found ll %.2f m %d at %.3f %.3f %.4f evals %d\n", scoreScan(f.map, t, scan, o).log_likelihood, scoreScan(f.map, t, scan, o).matched, r.score.log_likelihood, r.score.matched, r.pose.x - t.x, r.pose.y - t.y, r.pose.theta - t.theta, r.evaluations);
+      EXPECT_LT(exy, 0.02) << t.x << "," << t.y << " offset " << d.x << "," << d.y;
+      EXPECT_LT(eth, 0.01);
+      sum_xy += exy;
+      sum_th += eth;
+      ++n;
+    }
+  // Sub-cell on average: well under a quarter of the 5 cm cell.
+  EXPECT_LT(sum_xy / n, 0.01);
+  EXPECT_LT(sum_th / n, 0.004);
+  std::printf("mean error %.4f m %.4f rad over %d matches, %.1f evaluations\n", sum_xy / n, sum_th / n, n, evals / n);
+}
+
+TEST(ScanMatcher, FailsOnAnEmptyMap) {
+  Fixture f;
+  GridMap empty(0.05);
+  const auto scan = f.scanAt({6.3, 2.8, 0});
+  const MatchResult r = matchScan(empty, {6.3, 2.8, 0}, scan, ScanMatcherOptions{});
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.score.matched, 0);
+}
+
+TEST(PreparedScan, ClassifiesReturnsNoReturnsAndNaN) {
+  io::LaserScan s;
+  s.start_angle = 0;
+  s.angle_increment = 0.1;
+  s.max_range = 80;
+  s.ranges = {2.0f, 81.8f, std::nanf(""), 50.0f, 0.0f, std::numeric_limits<float>::infinity()};
+  s.valid = {1, 0, 0, 1, 0, 0};
+  BeamOptions o;
+  o.max_usable_range = 30;
+  o.no_return_range = 5;
+  PreparedScan p = prepareScan(s, o, 0.05);
+  ASSERT_EQ(p.map_beams.size(), 4u);  // NaN and 0 carry no information
+  EXPECT_TRUE(p.map_beams[0].hit);
+  EXPECT_FALSE(p.map_beams[1].hit);  // no return: free up to 5 m
+  EXPECT_NEAR(std::hypot(p.map_beams[1].ex, p.map_beams[1].ey), 5.0, 1e-9);
+  EXPECT_FALSE(p.map_beams[2].hit);  // 50 m return beyond the usable range: free up to 30 m
+  EXPECT_NEAR(std::hypot(p.map_beams[2].ex, p.map_beams[2].ey), 30.0, 1e-9);
+  EXPECT_FALSE(p.map_beams[3].hit);  // +inf
+  EXPECT_EQ(p.size(), 1u);           // only the hit is matched
+  o.clear_no_return = false;
+  EXPECT_EQ(prepareScan(s, o, 0.05).map_beams.size(), 2u);
+}

@@ -1,0 +1,88 @@
+#include <gtest/gtest.h>
+
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/slam/slam_options.h"
+
+using namespace gridtopo;
+namespace fs = std::filesystem;
+
+namespace {
+std::string loadError(const std::string& body) {
+  const fs::path p = fs::temp_directory_path() / "gridtopo_slam_bad.ini";
+  std::ofstream(p) << "[slam]\n" << body << "\n";
+  mrpt::config::CConfigFile ini(p.string());
+  slam::SlamOptions o;
+  try {
+    o.loadFromConfigFile(ini, "slam");
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), p.string());
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(SlamOptions, BadValuesNameFileSectionAndKey) {
+  const std::string path = (fs::temp_directory_path() / "gridtopo_slam_bad.ini").string();
+  std::string e = loadError("particles = 0");
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("[slam] particles"), std::string::npos) << e;
+  e = loadError("resolution = -0.05");
+  EXPECT_NE(e.find("[slam] resolution"), std::string::npos) << e;
+  EXPECT_NE(e.find("positive"), std::string::npos) << e;
+  EXPECT_NE(loadError("particles = ten").find("[slam] particles"), std::string::npos);
+  EXPECT_NE(loadError("particles = 2.5").find("integer"), std::string::npos);
+  EXPECT_NE(loadError("resolution = nan").find("[slam] resolution"), std::string::npos);
+  EXPECT_NE(loadError("likelihood_gain = 0").find("likelihood_gain"), std::string::npos);
+  EXPECT_NE(loadError("resample_threshold = 1.5").find("resample_threshold"), std::string::npos);
+  EXPECT_NE(loadError("proposal = optimal").find("[slam] proposal"), std::string::npos);
+  EXPECT_NE(loadError("clear_no_return = maybe").find("clear_no_return"), std::string::npos);
+  EXPECT_NE(loadError("seed = -3").find("[slam] seed"), std::string::npos);
+  EXPECT_NE(loadError("match_kernel = 9").find("match_kernel"), std::string::npos);
+  EXPECT_EQ(loadError("particles = 7\nresolution = 0.1"), "");
+}
+
+TEST(SlamOptions, LoadsDumpsAndRoundTrips) {
+  mrpt::config::CConfigFileMemory ini;
+  ini.write("s", "particles", "8");
+  ini.write("s", "proposal", "odometry");
+  ini.write("s", "resolution", "0.1");
+  ini.write("s", "clear_no_return", "false");
+  ini.write("s", "seed", "123456789012");
+  slam::SlamOptions o;
+  o.loadFromConfigFile(ini, "s");
+  EXPECT_EQ(o.particles, 8);
+  EXPECT_EQ(o.proposal.type, slam::ProposalType::Odometry);
+  EXPECT_DOUBLE_EQ(o.resolution, 0.1);
+  EXPECT_FALSE(o.beams.clear_no_return);
+  EXPECT_EQ(o.seed, 123456789012ULL);
+  std::ostringstream dump;
+  o.dumpToTextStream(dump);
+  EXPECT_NE(dump.str().find("particles = 8"), std::string::npos);
+  EXPECT_NE(dump.str().find("proposal = odometry"), std::string::npos);
+  mrpt::config::CConfigFileMemory saved;
+  o.saveToConfigFile(saved, "x");
+  slam::SlamOptions back;
+  back.loadFromConfigFile(saved, "x");
+  std::ostringstream dump2;
+  back.dumpToTextStream(dump2);
+  EXPECT_EQ(dump.str(), dump2.str());
+}
+
+TEST(SlamOptions, ShippedIniFilesLoad) {
+  for (const char* name : {"slam.ini", "slam-intel.ini", "slam-aces.ini"}) {
+    const std::string p = std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/" + name;
+    if (!fs::exists(p)) continue;
+    mrpt::config::CConfigFile ini(p);
+    slam::SlamOptions o;
+    EXPECT_NO_THROW(o.loadFromConfigFile(ini, "slam")) << p;
+  }
+  ASSERT_TRUE(fs::exists(std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/slam.ini"));
+}
