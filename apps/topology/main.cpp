@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
                                            else bar.update(85, stage);
                                          });
     bar.update(90, "regions");
-    const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt.correction);
+    const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt.correction, opt.segmentation);
     bar.update(100, "exports");
     bar.finish();
 

@@ -81,6 +81,12 @@ int main(int argc, char** argv) {
                                            "decision-list order for the leave-one-map-out folds: auto (validation "
                                            "inside each fold, slow) or e.g. doorway,room,corridor; default: the "
                                            "training INI's order", false, "", "order", cmd);
+    TCLAP::ValueArg<std::string> cache_arg("", "model-cache",
+                                           "directory for the fold models: loaded if present, else trained and saved "
+                                           "(lets option studies skip retraining)", false, "", "dir", cmd);
+    TCLAP::ValueArg<double> prior_arg("", "prior-weight",
+                                      "rescale the fold models' prior correction to this weight (trained with the "
+                                      "training INI's prior_weight)", false, -1, "w", cmd);
     TCLAP::SwitchArg no_seg("", "no-segmentation", "skip the room-segmentation benchmark", cmd);
     cmd.parse(argc, argv);
 
@@ -149,11 +155,27 @@ int main(int argc, char** argv) {
         for (std::size_t j = 0; j < files.size(); ++j)
           if (j != i) tr.push_back(&samples[j]);
         if (tr.empty()) tr.push_back(&samples[i]);
-        model = places::trainModel(tr, scan, feat, train, &val);
+        const std::string cached = cache_arg.getValue().empty() ? ""
+                                   : cache_arg.getValue() + "/fold_" + files[i].name + ".yml";
+        if (!cached.empty() && fs::exists(cached)) model = places::PlacesModel::load(cached);
+        else {
+          model = places::trainModel(tr, scan, feat, train, &val);
+          if (!cached.empty()) {
+            fs::create_directories(cache_arg.getValue());
+            model.notes = "leave-one-map-out fold without " + files[i].name + ", prior_weight " +
+                          std::to_string(train.prior_weight);
+            model.save(cached);
+          }
+        }
+        if (prior_arg.getValue() >= 0) {
+          if (train.prior_weight <= 0) throw InputError("--prior-weight", "needs models trained with prior_weight > 0");
+          model.first.bias *= prior_arg.getValue() / train.prior_weight;
+          model.second.bias *= prior_arg.getValue() / train.prior_weight;
+        }
       }
       const auto lab = places::labelFromFeatures(lmaps[i].occ, samples[i].lattice, samples[i].features, model,
                                                  topo.relaxation, topo.threads);
-      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction);
+      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation);
       topology::ConfusionMatrix before, after, corrected;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
@@ -184,7 +206,7 @@ int main(int argc, char** argv) {
           if (occ.cells.size() != gt.size()) throw InputError(path, "map and ground truth differ in size");
           const auto t0 = std::chrono::steady_clock::now();
           const auto l = places::labelPlaces(occ, model, topo.relaxation, topo.threads, path);
-          const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction);
+          const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation);
           const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           SegRun run{fs::path(path).stem().string(), topology::scoreSegmentation(t.segmentation, gt), secs};
           std::cerr << "  " << run.map << ": segments " << run.score.segments << " rooms " << run.score.rooms
@@ -203,12 +225,16 @@ int main(int argc, char** argv) {
     }
     bar.finish();
 
-    auto segSummary = [](const std::vector<SegRun>& runs, MeanStd& p, MeanStd& r, MeanStd& t) {
-      for (const auto& x : runs) p.v.push_back(x.score.precision), r.v.push_back(x.score.recall), t.v.push_back(x.seconds);
+    auto segSummary = [](const std::vector<SegRun>& runs, MeanStd& p, MeanStd& r, MeanStd& t, MeanStd& pw,
+                         MeanStd& rw) {
+      for (const auto& x : runs) {
+        p.v.push_back(x.score.precision), r.v.push_back(x.score.recall), t.v.push_back(x.seconds);
+        pw.v.push_back(x.score.precision_weighted), rw.v.push_back(x.score.recall_weighted);
+      }
     };
-    MeanStd pp, pr, pt, fp, fr, ft;
-    segSummary(seg_plain, pp, pr, pt);
-    segSummary(seg_furn, fp, fr, ft);
+    MeanStd pp, pr, pt, fp, fr, ft, ppw, prw, fpw, frw;
+    segSummary(seg_plain, pp, pr, pt, ppw, prw);
+    segSummary(seg_furn, fp, fr, ft, fpw, frw);
 
     std::ostringstream js;
     js << "{\n  \"mode\": \"" << (fixed_model ? "fixed model " + model_arg.getValue() : "leave-one-map-out") << "\",\n"
@@ -251,6 +277,16 @@ int main(int argc, char** argv) {
          << pct(pr.std()) << " / " << pct(pp.mean()) << " ± " << pct(pp.std()) << " % |\n"
          << "| segmentation furnished: recall / precision | " << pct(fr.mean()) << " ± " << pct(fr.std()) << " / "
          << pct(fp.mean()) << " ± " << pct(fp.std()) << " % |\n"
+         << "| segmentation unfurnished, pixel-weighted: recall / precision | " << pct(prw.mean()) << " ± "
+         << pct(prw.std()) << " / " << pct(ppw.mean()) << " ± " << pct(ppw.std()) << " % |\n"
+         << "| segmentation furnished, pixel-weighted: recall / precision | " << pct(frw.mean()) << " ± "
+         << pct(frw.std()) << " / " << pct(fpw.mean()) << " ± " << pct(fpw.std()) << " % |\n"
+         << "| segments / ground-truth rooms (sum over maps), unfurnished; furnished | " << [&] {
+              int s = 0, r = 0, s2 = 0;
+              for (const auto& x : seg_plain) s += x.score.segments, r += x.score.rooms;
+              for (const auto& x : seg_furn) s2 += x.score.segments;
+              return std::to_string(s) + " / " + std::to_string(r) + "; " + std::to_string(s2) + " / " + std::to_string(r);
+            }() << " |\n"
          << "| seconds per benchmark map (labelling + topology, " << topo.threads << " threads) | "
          << std::setprecision(3) << pt.mean() << " (plain), " << ft.mean() << " (furnished) |\n";
     if (!md_arg.getValue().empty()) writeTextFileAtomically(md_arg.getValue(), md.str());

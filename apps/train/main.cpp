@@ -30,7 +30,12 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<int> threads("", "threads", "worker threads", false, 2, "n", cmd);
     TCLAP::ValueArg<std::string> out("o", "output", "model file to write (.yml / .json)", false,
                                      "datasets/models/places_model.yml", "file", cmd);
+    TCLAP::SwitchArg list("", "list-features", "print the features (name: formula) and exit", cmd);
     cmd.parse(argc, argv);
+    if (list.getValue()) {
+      for (const auto& d : places::featureDescriptions()) std::cout << d << "\n";
+      return 0;
+    }
 
     places::TrainingOptions train;
     places::ScanSimulationOptions scan;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "gridtopo/places/features.h"
 #include "synthetic.h"
@@ -59,4 +60,19 @@ TEST(Features, IndependentOfResolution) {
   const auto b = featuresAt(test::rectangleRoom(6.0, 3.0, 0.025), {5 + 80, 5 + 40});
   for (const char* n : {"area", "perimeter", "mean_beam", "min_chord", "max_chord", "ellipse_major", "ellipse_minor"})
     EXPECT_NEAR(a[idx(n)], b[idx(n)], 0.05 * std::max(1.0f, std::abs(a[idx(n)]))) << n;
+}
+
+TEST(Features, PolygonMomentsEqualOpenCV) {
+  std::vector<cv::Point2d> p;
+  std::vector<cv::Point2f> pf;
+  cv::RNG rng(5);
+  for (int k = 0; k < 90; ++k) {
+    const double r = rng.uniform(0.5, 6.0), th = 2 * M_PI * k / 90;
+    p.emplace_back(r * std::cos(th) + 1.0, r * std::sin(th) - 2.0);
+    pf.emplace_back(static_cast<float>(p.back().x), static_cast<float>(p.back().y));
+  }
+  const cv::Moments a = polygonMoments(p), b = cv::moments(pf);
+  for (auto [x, y] : {std::pair{a.m00, b.m00}, {a.m10, b.m10}, {a.m01, b.m01}, {a.m20, b.m20}, {a.m11, b.m11},
+                      {a.m02, b.m02}, {a.m30, b.m30}, {a.m21, b.m21}, {a.m12, b.m12}, {a.m03, b.m03}})
+    EXPECT_NEAR(x, y, 1e-3 * std::max(1.0, std::abs(y)));
 }

@@ -69,6 +69,48 @@ struct MeanStd {
 };
 }  // namespace
 
+namespace {
+// cos / sin of the beam angles, per beam count.
+const std::vector<cv::Point2d>& beamDirections(int M) {
+  thread_local int cached_m = -1;
+  thread_local std::vector<cv::Point2d> dirs;
+  if (cached_m != M) {
+    dirs.resize(static_cast<std::size_t>(M));
+    for (int k = 0; k < M; ++k) {
+      const double th = 2.0 * M_PI * k / M;
+      dirs[static_cast<std::size_t>(k)] = cv::Point2d(std::cos(th), std::sin(th));
+    }
+    cached_m = M;
+  }
+  return dirs;
+}
+}  // namespace
+
+// Raw moments up to order 3 of a simple polygon (Green's theorem over its edges), as cv::moments computes them
+// for a contour; written out because this runs once per classified cell and cv::moments' overhead dominated.
+cv::Moments polygonMoments(const std::vector<cv::Point2d>& p) {
+  double a00 = 0, a10 = 0, a01 = 0, a20 = 0, a11 = 0, a02 = 0, a30 = 0, a21 = 0, a12 = 0, a03 = 0;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x0 = p[(i + n - 1) % n].x, y0 = p[(i + n - 1) % n].y, x1 = p[i].x, y1 = p[i].y;
+    const double d = x0 * y1 - x1 * y0, sx = x0 + x1, sy = y0 + y1;
+    const double x0s = x0 * x0, x1s = x1 * x1, y0s = y0 * y0, y1s = y1 * y1;
+    a00 += d;
+    a10 += d * sx;
+    a01 += d * sy;
+    a20 += d * (x0 * sx + x1s);
+    a11 += d * (x0 * (sy + y0) + x1 * (sy + y1));
+    a02 += d * (y0 * sy + y1s);
+    a30 += d * sx * (x0s + x1s);
+    a03 += d * sy * (y0s + y1s);
+    a21 += d * (x0s * (3 * y0 + y1) + 2 * x1 * x0 * sy + x1s * (y0 + 3 * y1));
+    a12 += d * (y0s * (3 * x0 + x1) + 2 * y1 * y0 * sx + y1s * (x0 + 3 * x1));
+  }
+  const double sgn = a00 < 0 ? -1.0 : 1.0;
+  return cv::Moments(sgn * a00 / 2, sgn * a10 / 6, sgn * a01 / 6, sgn * a20 / 12, sgn * a11 / 24, sgn * a02 / 12,
+                     sgn * a30 / 20, sgn * a21 / 60, sgn * a12 / 60, sgn * a03 / 20);
+}
+
 void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out) {
   MeanStd diff, diffc, beam, ratio, rel;
   int gs = 0, gl = 0;
@@ -106,16 +148,17 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   const double perp = b[(kstar + q) % M] + b[(kstar + q + h) % M];
   const double centering = cmin > 0 ? std::min(b[kstar], b[kstar + h]) / cmin : 0.5;
   // Polygon.
-  std::vector<cv::Point2f> poly(static_cast<std::size_t>(M));
-  for (int k = 0; k < M; ++k) {
-    const double th = 2.0 * M_PI * k / M;
-    poly[static_cast<std::size_t>(k)] = cv::Point2f(static_cast<float>(b[k] * std::cos(th)),
-                                                     static_cast<float>(b[k] * std::sin(th)));
-  }
-  const cv::Moments m = cv::moments(poly);
+  thread_local std::vector<cv::Point2d> poly;
+  poly.resize(static_cast<std::size_t>(M));
+  const auto& dirs = beamDirections(M);
+  for (int k = 0; k < M; ++k) poly[static_cast<std::size_t>(k)] = dirs[static_cast<std::size_t>(k)] * static_cast<double>(b[k]);
+  const cv::Moments m = polygonMoments(poly);
   const double A = std::abs(m.m00);
   double L = 0;
-  for (int k = 0; k < M; ++k) L += cv::norm(poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>((k + 1) % M)]);
+  for (int k = 0; k < M; ++k) {
+    const cv::Point2d d = poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>((k + 1) % M)];
+    L += std::sqrt(d.x * d.x + d.y * d.y);
+  }
   cv::Point2d cen(0, 0);
   if (A > 1e-12) cen = cv::Point2d(m.m10 / m.m00, m.m01 / m.m00);
   MeanStd cd;

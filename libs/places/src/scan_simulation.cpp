@@ -63,41 +63,40 @@ Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing) {
 
 namespace {
 
-// One family of parallel digital lines: along the major axis (columns if `major_is_col`) the minor coordinate
-// of line j at major step k is j + offset[k], offset[k] = floor(k * slope + 0.5). Every cell lies on exactly one
-// line. A forward pass (k increasing) measures the free run behind each cell (beam pointing to decreasing
-// major coordinate), a backward pass the run ahead.
-void sweepFamily(const OccupancyImage& occ, const cv::Mat& sample_index, bool major_is_col, double slope,
-                 int beam_back, int beam_ahead, double max_range_mm, SimulatedScans& out) {
-  const int n_major = major_is_col ? occ.cols() : occ.rows();
-  const int n_minor = major_is_col ? occ.rows() : occ.cols();
+// One family of parallel digital lines along the columns of `cells` (the caller transposes the image for
+// steep directions, so memory is always walked along rows): the row of line j at column k is j + offset[k],
+// offset[k] = floor(k * slope + 0.5), |slope| <= 1. Every cell lies on exactly one line. A forward pass
+// (k increasing) measures the free run behind each cell (the beam pointing to decreasing k), a backward pass the
+// run ahead.
+void sweepFamily(const cv::Mat& cells, const cv::Mat& sample_index, double resolution, double slope, int beam_back,
+                 int beam_ahead, double max_range_mm, SimulatedScans& out) {
+  const int n_major = cells.cols, n_minor = cells.rows;
   std::vector<int> offset(static_cast<std::size_t>(n_major));
-  for (int k = 0; k < n_major; ++k) offset[k] = static_cast<int>(std::floor(k * slope + 0.5));
+  for (int k = 0; k < n_major; ++k) offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor(k * slope + 0.5));
   const int min_off = *std::min_element(offset.begin(), offset.end());
   const int max_off = *std::max_element(offset.begin(), offset.end());
-  const double step_mm = occ.resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
+  const double step_mm = resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
   const std::size_t M = static_cast<std::size_t>(out.num_beams);
-  auto at = [&](int k, int minor, int& r, int& c) {
-    if (major_is_col) r = minor, c = k;
-    else r = k, c = minor;
-  };
+  // Run lengths in steps, converted to mm through a small table (runs beyond max range saturate).
+  const int max_run = static_cast<int>(max_range_mm / step_mm) + 2;
+  std::vector<std::uint16_t> mm(static_cast<std::size_t>(max_run) + 1);
+  for (int r = 0; r <= max_run; ++r)
+    mm[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(std::lround(std::min((r + 0.5) * step_mm, max_range_mm)));
+  std::uint16_t* ranges = out.ranges_mm.data();
   for (int j = -max_off; j <= n_minor - 1 - min_off; ++j) {
+    // The columns where line j is inside the image form one interval (offset is monotonic).
+    int k0 = 0, k1 = n_major;
+    while (k0 < n_major && (j + offset[static_cast<std::size_t>(k0)] < 0 || j + offset[static_cast<std::size_t>(k0)] >= n_minor)) ++k0;
+    while (k1 > k0 && (j + offset[static_cast<std::size_t>(k1 - 1)] < 0 || j + offset[static_cast<std::size_t>(k1 - 1)] >= n_minor)) --k1;
     for (int pass = 0; pass < 2; ++pass) {
-      const int beam = pass == 0 ? beam_back : beam_ahead;
+      const std::size_t beam = static_cast<std::size_t>(pass == 0 ? beam_back : beam_ahead);
       int run = 0;
-      for (int t = 0; t < n_major; ++t) {
-        const int k = pass == 0 ? t : n_major - 1 - t;
-        const int minor = j + offset[k];
-        if (minor < 0 || minor >= n_minor) { run = 0; continue; }
-        int r, c;
-        at(k, minor, r, c);
-        if (occ.cells.at<unsigned char>(r, c) != kFree) { run = 0; continue; }
-        const int idx = sample_index.at<int>(r, c);
-        if (idx >= 0) {
-          const double len = std::min((run + 0.5) * step_mm, max_range_mm);
-          out.ranges_mm[static_cast<std::size_t>(idx) * M + static_cast<std::size_t>(beam)] =
-              static_cast<std::uint16_t>(std::lround(len));
-        }
+      for (int t = k0; t < k1; ++t) {
+        const int k = pass == 0 ? t : k0 + k1 - 1 - t;
+        const int row = j + offset[static_cast<std::size_t>(k)];
+        if (cells.ptr<unsigned char>(row)[k] != kFree) { run = 0; continue; }
+        const int idx = sample_index.ptr<int>(row)[k];
+        if (idx >= 0) ranges[static_cast<std::size_t>(idx) * M + beam] = mm[static_cast<std::size_t>(std::min(run, max_run))];
         ++run;
       }
     }
@@ -123,6 +122,9 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     sample_index.at<int>(p.y, p.x) = static_cast<int>(i);
   }
   const double max_mm = options.max_range * 1000.0;
+  cv::Mat cells_t, index_t;
+  cv::transpose(occ.cells, cells_t);
+  cv::transpose(sample_index, index_t);
   const std::size_t n_dirs = static_cast<std::size_t>(M / 2);
   std::atomic<std::size_t> next{0}, done{0};
   auto process = [&](std::size_t k) {
@@ -132,9 +134,10 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
     if (std::abs(dc) >= std::abs(dr)) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(occ, sample_index, true, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, out);
+      sweepFamily(occ.cells, sample_index, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, out);
     } else {
-      sweepFamily(occ, sample_index, false, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, out);
+      // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
+      sweepFamily(cells_t, index_t, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, out);
     }
   };
   auto worker = [&](bool report) {

@@ -26,6 +26,9 @@ const std::vector<std::string>& featureDescriptions();
 std::vector<std::string> featureNames();
 std::size_t numFeatures();
 
+/// Raw moments (up to order 3) of a simple polygon, equal to cv::moments of the same contour.
+cv::Moments polygonMoments(const std::vector<cv::Point2d>& polygon);
+
 /// Features of one scan of M beams given in metres.
 void extractFeatures(const float* beams_m, int M, const FeatureOptions& options, float* out);
 

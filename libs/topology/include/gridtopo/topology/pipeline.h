@@ -4,6 +4,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/correction.h"
@@ -19,6 +20,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   double resolution = 0.05;              ///< [topology] m per pixel for plain images without a YAML file
   int free_threshold = 250;              ///< [topology] grey >= this is free in plain images
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
+  std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -34,6 +36,7 @@ struct TopologyResult {
 };
 
 /// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
-TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction);
+TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
+                             const std::string& segmentation = "regions");
 
 }  // namespace gridtopo::topology

@@ -12,6 +12,11 @@ namespace gridtopo::topology {
 /// region order. A doorway region touching no room / corridor becomes its own segment.
 cv::Mat roomSegmentation(const RegionMap& regions);
 
+/// Room segmentation where only doorways separate places: every 8-connected component of non-doorway cells
+/// (room and corridor cells together) is one segment, doorway cells join the nearest segment as above.
+/// Room / corridor confusions inside a place then cannot split it; a missed doorway merges two places.
+cv::Mat doorwaySegmentation(const RegionMap& regions);
+
 /// Number of segments (max id).
 int segmentCount(const cv::Mat& segmentation);
 
