@@ -28,6 +28,7 @@ struct Options {
   int click_col = -1, click_row = -1;
   int width = 1280, height = 860;
   int bench_frames = 0;
+  int tile_cols = 0, tile_rows = 0;
 };
 Options g_opt;
 int g_exit_code = 0;
@@ -40,25 +41,35 @@ std::function<bool()> waitIdle(gui::MainFrame* f) {
   };
 }
 
-// Frame-rate benchmark: pans and zooms the view for N frames, each fully rendered and blitted.
+// Frame-rate benchmark: pans and zooms the view for n frames, each fully rendered and blitted (Update() paints
+// synchronously), first with the whole map in view, then zoomed to 2 screen pixels per cell.
 bool benchFrames(gui::MainFrame* f, int n, const std::string& out) {
   auto* c = f->canvas();
-  c->fit();
-  c->frames = 0;
-  c->render_seconds = 0;
-  const auto t0 = std::chrono::steady_clock::now();
   const wxSize sz = c->GetClientSize();
-  for (int i = 0; i < n; ++i) {
-    if (i % 40 < 20) c->view().pan(7, 3);
-    else c->view().zoomAt(sz.x / 2.0, sz.y / 2.0, (i / 40) % 2 ? 1.0 / 1.05 : 1.05);
-    c->Refresh(false);
-    c->Update();  // paints now
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::ostringstream o;
-  o << "frames " << c->frames << " wall_s " << wall << " fps " << c->frames / wall << " render_ms_per_frame "
-    << 1000.0 * c->render_seconds / std::max(1L, c->frames) << " canvas " << sz.x << "x" << sz.y << " map "
-    << f->session().map().cols() << "x" << f->session().map().rows() << "\n";
+  for (int phase = 0; phase < 2; ++phase) {
+    c->fit();
+    if (phase == 1) {
+      const double res = f->session().map().resolution;
+      c->view().zoomAt(sz.x / 2.0, sz.y / 2.0, 2.0 / (res * c->view().ppm));
+    }
+    c->Refresh(false);
+    c->Update();
+    c->frames = 0;
+    c->render_seconds = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < n; ++i) {
+      if (i % 40 < 20) c->view().pan(phase ? 9 : 3, phase ? 5 : 2);
+      else c->view().zoomAt(sz.x / 2.0, sz.y / 2.0, (i / 40) % 2 ? 1.0 / 1.02 : 1.02);
+      c->Refresh(false);
+      c->Update();
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    o << (phase ? "zoomed (2 px/cell)" : "whole map") << ": frames " << c->frames << " wall_s " << wall << " fps "
+      << c->frames / wall << " render_ms_per_frame " << 1000.0 * c->render_seconds / std::max(1L, c->frames)
+      << " canvas " << sz.x << "x" << sz.y << " map " << f->session().map().cols() << "x"
+      << f->session().map().rows() << "\n";
+  }
   std::cerr << o.str();
   if (!out.empty()) std::ofstream(out, std::ios::app) << o.str();
   return true;
@@ -106,6 +117,15 @@ class GuiApp : public wxApp {
         f->script.clear();
         f->CallAfter([f] { f->Close(true); });
         return true;
+      }
+    }
+    if (g_opt.tile_cols > 0) {
+      try {
+        f->session().tileMap(g_opt.tile_cols, g_opt.tile_rows);
+        f->canvas()->fit();
+      } catch (const std::exception& e) {
+        std::cerr << "gridtopo-gui: " << e.what() << "\n";
+        f->exit_code = 1;
       }
     }
     // The scripted steps, polled every timer tick (the window keeps redrawing meanwhile).
@@ -234,6 +254,8 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> exportv("", "export-view", "save the map view (PNG)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> size("", "size", "window size WxH", false, "1280x860", "WxH", cmd);
     TCLAP::ValueArg<int> bench("", "bench-frames", "pan/zoom for n frames and print the frame rate", false, 0, "n", cmd);
+    TCLAP::ValueArg<std::string> tile("", "tile-map", "replace the map by a WxH-cell tiling of itself (benchmark)", false,
+                                      "", "WxH", cmd);
     TCLAP::ValueArg<std::string> bench_out("", "bench-out", "append the benchmark line to this file", false, "", "file", cmd);
     TCLAP::SwitchArg quit("", "quit", "quit when the scripted steps are done", cmd);
     cmd.parse(argc, argv);
@@ -262,6 +284,9 @@ int main(int argc, char** argv) {
       throw InputError("--size", "expected WxH with both >= 200");
     g_opt.bench_frames = bench.getValue();
     g_opt.bench_out = bench_out.getValue();
+    if (tile.isSet() && (std::sscanf(tile.getValue().c_str(), "%dx%d", &g_opt.tile_cols, &g_opt.tile_rows) != 2 ||
+                         g_opt.tile_cols < 1 || g_opt.tile_rows < 1 || g_opt.tile_cols > 20000 || g_opt.tile_rows > 20000))
+      throw InputError("--tile-map", "expected WxH, 1..20000");
     g_opt.quit = quit.getValue();
   } catch (const TCLAP::ArgException& e) {
     std::cerr << "gridtopo-gui: " << e.argId() << ": " << e.error() << "\n";

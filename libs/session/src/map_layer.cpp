@@ -62,6 +62,15 @@ MapLayer mapLayerFromSlam(const slam::GridMap& map) {
   return m;
 }
 
+MapLayer tiledMap(const MapLayer& src, int cols, int rows) {
+  MapLayer m = src;
+  m.grey = cv::Mat(rows, cols, CV_8U);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) m.grey.at<unsigned char>(r, c) = src.grey.at<unsigned char>(r % src.rows(), c % src.cols());
+  m.source = src.source + " (tiled " + std::to_string(cols) + "x" + std::to_string(rows) + ")";
+  return m;
+}
+
 mrpt::maps::COccupancyGridMap2D gridFromLayer(const MapLayer& layer) {
   const double r = layer.resolution;
   mrpt::maps::COccupancyGridMap2D g(static_cast<float>(layer.origin_x),

@@ -206,6 +206,16 @@ void Session::openLabelImage(const std::string& path) {
   ++label_generation_;
 }
 
+void Session::tileMap(int cols, int rows) {
+  if (map_.empty()) throw std::runtime_error("open a map first");
+  map_ = tiledMap(map_, cols, rows);
+  ++map_generation_;
+  topology_.reset();
+  ++topo_generation_;
+  canvas_ = LabelCanvas();
+  ++label_generation_;
+}
+
 // ---------------------------------------------------------------- SLAM
 
 OptionTable Session::slamOptionTable(const std::string& documented_ini) const {

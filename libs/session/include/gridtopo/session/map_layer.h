@@ -40,6 +40,9 @@ MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std
 /// Fast conversion of the SLAM particle map for live display: covers the allocated tiles, unknown = 128.
 MapLayer mapLayerFromSlam(const slam::GridMap& map);
 
+/// A `cols` x `rows` map made of copies of `src` side by side (benchmarks: a big map with real content).
+MapLayer tiledMap(const MapLayer& src, int cols, int rows);
+
 /// The MRPT grid of a map layer (grey -> p_free), e.g. to write it with the io writers.
 mrpt::maps::COccupancyGridMap2D gridFromLayer(const MapLayer& layer);
 

@@ -84,6 +84,8 @@ class Session {
   void openSlamIni(const std::string& path, const std::string& section = "slam");
   void openTopologyIni(const std::string& path);
   void openLabelImage(const std::string& path);  ///< into the label canvas (starts one on the current map)
+  /// Replaces the map by a `cols` x `rows` tiling of itself (the frame-rate benchmark's big map).
+  void tileMap(int cols, int rows);
 
   // ---- what is open
   const MapLayer& map() const { return map_; }
