@@ -29,6 +29,8 @@ struct Options {
   int width = 1280, height = 860;
   int bench_frames = 0;
   int tile_cols = 0, tile_rows = 0;
+  bool particle_paths = false, click_particle = false;
+  std::string labels, save_slam;
 };
 Options g_opt;
 int g_exit_code = 0;
@@ -119,6 +121,15 @@ class GuiApp : public wxApp {
         return true;
       }
     }
+    f->canvas()->layers().particle_paths = g_opt.particle_paths;
+    if (!g_opt.labels.empty()) {
+      try {
+        f->session().openLabelImage(g_opt.labels);
+      } catch (const std::exception& e) {
+        std::cerr << "gridtopo-gui: " << e.what() << "\n";
+        f->exit_code = 1;
+      }
+    }
     if (g_opt.tile_cols > 0) {
       try {
         f->session().tileMap(g_opt.tile_cols, g_opt.tile_rows);
@@ -131,7 +142,9 @@ class GuiApp : public wxApp {
     // The scripted steps, polled every timer tick (the window keeps redrawing meanwhile).
     auto& sc = f->script;
     if (g_opt.run_steps >= 0 || g_opt.run_to_end) {
-      sc.push_back([f] {
+      auto t_start = std::make_shared<std::chrono::steady_clock::time_point>();
+      sc.push_back([f, t_start] {
+        *t_start = std::chrono::steady_clock::now();
         f->startSlam();
         auto* r = f->session().runner();
         if (!r) return true;
@@ -140,15 +153,27 @@ class GuiApp : public wxApp {
         return true;
       });
       sc.push_back(waitIdle(f));
-      sc.push_back([f] {
+      sc.push_back([f, t_start] {
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *t_start).count();
         f->canvas()->fit();
         f->refreshNow();
         if (auto s = f->session().slamSnapshot())
-          std::cerr << "gridtopo-gui: " << s->scans_fed << " scans, " << s->steps << " updates, "
-                    << s->wall_seconds << " s in the filter, state " << session::toString(s->state) << "\n";
+          std::cerr << "gridtopo-gui: " << s->scans_fed << " scans, " << s->steps << " updates, run " << wall
+                    << " s wall (" << s->wall_seconds << " s in the filter), " << f->canvas()->frames
+                    << " frames drawn, peak RSS " << s->peak_rss_bytes / 1048576 << " MB, state "
+                    << session::toString(s->state) << "\n";
         return true;
       });
     }
+    if (!g_opt.save_slam.empty()) sc.push_back([f] {
+      try {
+        f->session().saveSlamOutputs(g_opt.save_slam);
+      } catch (const std::exception& e) {
+        std::cerr << "gridtopo-gui: " << e.what() << "\n";
+        f->exit_code = 1;
+      }
+      return true;
+    });
     if (g_opt.use_slam_map) sc.push_back([f] {
       try {
         f->session().useSlamMap();
@@ -175,21 +200,28 @@ class GuiApp : public wxApp {
                                           : session::ViewMode::Slam);
       return true;
     });
-    if (g_opt.click_col >= 0) {
+    if (g_opt.click_col >= 0 || g_opt.click_particle) {
       // A real mouse click through the window system (XTest under Xvfb) on the cell's screen position.
       auto state = std::make_shared<int>(0);
       sc.push_back([f, state] {
         const auto& m = f->session().topology() && f->canvas()->mode() == session::ViewMode::Topology
                             ? f->session().topology()->map
                             : f->session().map();
-        if (m.empty()) {
-          std::cerr << "gridtopo-gui: --click-cell needs a map\n";
+        const auto snap = f->session().slamSnapshot();
+        if (g_opt.click_particle ? !snap || snap->particles.empty() : m.empty()) {
+          std::cerr << "gridtopo-gui: nothing to click\n";
           f->exit_code = 1;
           return true;
         }
         if (*state == 0) {
           f->refreshNow();
-          const cv::Point2d w = m.cellCentre(g_opt.click_row, g_opt.click_col);
+          cv::Point2d w;
+          if (g_opt.click_particle) {
+            const auto& p = snap->particles[snap->best].pose;
+            w = {p.x, p.y};
+          } else {
+            w = m.cellCentre(g_opt.click_row, g_opt.click_col);
+          }
           const wxPoint p = f->canvas()->ClientToScreen(f->canvas()->toClient(w.x, w.y));
           wxUIActionSimulator sim;
           sim.MouseMove(p);
@@ -254,6 +286,12 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> exportv("", "export-view", "save the map view (PNG)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> size("", "size", "window size WxH", false, "1280x860", "WxH", cmd);
     TCLAP::ValueArg<int> bench("", "bench-frames", "pan/zoom for n frames and print the frame rate", false, 0, "n", cmd);
+    TCLAP::ValueArg<std::string> save_slam("", "save-slam", "after the run, save the SLAM outputs to this directory",
+                                           false, "", "dir", cmd);
+    TCLAP::SwitchArg paths("", "particle-paths", "show every particle's trajectory", cmd);
+    TCLAP::SwitchArg click_particle("", "click-particle", "click the best particle with the mouse simulator", cmd);
+    TCLAP::ValueArg<std::string> labels("", "labels", "open a labelled image (77/115/179/0) in the label painter",
+                                        false, "", "file", cmd);
     TCLAP::ValueArg<std::string> tile("", "tile-map", "replace the map by a WxH-cell tiling of itself (benchmark)", false,
                                       "", "WxH", cmd);
     TCLAP::ValueArg<std::string> bench_out("", "bench-out", "append the benchmark line to this file", false, "", "file", cmd);
@@ -284,6 +322,10 @@ int main(int argc, char** argv) {
       throw InputError("--size", "expected WxH with both >= 200");
     g_opt.bench_frames = bench.getValue();
     g_opt.bench_out = bench_out.getValue();
+    g_opt.particle_paths = paths.getValue();
+    g_opt.save_slam = save_slam.getValue();
+    g_opt.click_particle = click_particle.getValue();
+    g_opt.labels = labels.getValue();
     if (tile.isSet() && (std::sscanf(tile.getValue().c_str(), "%dx%d", &g_opt.tile_cols, &g_opt.tile_rows) != 2 ||
                          g_opt.tile_cols < 1 || g_opt.tile_rows < 1 || g_opt.tile_cols > 20000 || g_opt.tile_rows > 20000))
       throw InputError("--tile-map", "expected WxH, 1..20000");

@@ -310,7 +310,7 @@ void MainFrame::buildPanels() {
 
   // Inspector.
   inspector_ = new wxTextCtrl(notebook_, wxID_ANY, "Click a particle (SLAM view), a cell or a graph node (topology view).",
-                              wxDefaultPosition, wxDefaultSize, wxTE_MULTILINE | wxTE_READONLY | wxHSCROLL);
+                              wxDefaultPosition, wxDefaultSize, wxTE_MULTILINE | wxTE_READONLY);
   inspector_->SetFont(wxFont(9, wxFONTFAMILY_TELETYPE, wxFONTSTYLE_NORMAL, wxFONTWEIGHT_NORMAL));
   inspector_->SetValue("Click a particle (SLAM view),\na cell or a graph node (topology view).\nHover: coordinates in the status bar.");
   inspector_->ShowPosition(0);

@@ -479,7 +479,11 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
   if (mode == ViewMode::Slam) {
     const auto s = slamSnapshot();
     if (s) {
-      if (s->version != slam_raster_version_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (s->version != slam_raster_version_ &&
+          (s->state != RunState::Running || slam_raster_.empty() ||
+           std::chrono::duration<double>(now - slam_raster_time_).count() >= live_map_interval)) {
+        slam_raster_time_ = now;
         slam_layer_ = mapLayerFromSlam(s->best_map);
         slam_raster_.set(slam_layer_.empty() ? cv::Mat() : greyToBgr(slam_layer_.grey), slam_layer_);
         slam_raster_version_ = s->version;

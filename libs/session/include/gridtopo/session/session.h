@@ -3,6 +3,7 @@
 // the SLAM run and its snapshots, the topology result, the label canvas and the selection. Every open*()
 // reads into temporaries first and only then replaces the current content, so a bad file (reported by the
 // reader as gridtopo::InputError "file:line: field: message") leaves the session exactly as it was.
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -147,6 +148,9 @@ class Session {
   void render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, const Layers& layers);
   /// World bounding box of what `mode` shows (for fit-to-map); false when there is nothing.
   bool bounds(ViewMode mode, double& xmin, double& ymin, double& xmax, double& ymax) const;
+  /// While the SLAM runs, the map image is rebuilt at most this often (s); particles, paths and the scan are
+  /// drawn from every snapshot. Keeps the GUI's share of the CPU small on 2-core machines.
+  double live_map_interval = 0.25;
   /// Latest SLAM snapshot (null without a run).
   std::shared_ptr<const SlamSnapshot> slamSnapshot() const;
 
@@ -174,6 +178,7 @@ class Session {
   std::optional<eval::RelationsResult> relations_cache_;
   std::uint64_t slam_raster_version_ = ~0ull;
   MapRaster slam_raster_;
+  std::chrono::steady_clock::time_point slam_raster_time_{};
   MapLayer slam_layer_;
   int topo_raster_key_ = -1;
   std::uint64_t topo_generation_ = 0, map_generation_ = 0;
