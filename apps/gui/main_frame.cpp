@@ -301,10 +301,12 @@ void MainFrame::buildPanels() {
   auto* split = new wxSplitterWindow(this, wxID_ANY, wxDefaultPosition, wxDefaultSize, wxSP_LIVE_UPDATE);
   notebook_ = new wxNotebook(split, wxID_ANY);
   auto* right = new wxSplitterWindow(split, wxID_ANY, wxDefaultPosition, wxDefaultSize, wxSP_LIVE_UPDATE);
+  right_split_ = right;
   canvas_ = new MapCanvas(right, s_);
   plots_ = new PlotPanel(right);
-  right->SplitHorizontally(canvas_, plots_, -180);
   right->SetSashGravity(1.0);
+  right->Initialize(canvas_);  // the plots appear with the first SLAM run
+  plots_->Hide();
   split->SplitVertically(notebook_, right, 300);
   split->SetMinimumPaneSize(120);
 
@@ -484,7 +486,18 @@ void MainFrame::onDropFiles(const wxArrayString& files) {
   for (const auto& f : files) openFile(f.ToStdString());
 }
 
+void MainFrame::showPlots(bool show) {
+  if (show == right_split_->IsSplit()) return;
+  if (show) {
+    const int h = right_split_->GetClientSize().y;
+    right_split_->SplitHorizontally(canvas_, plots_, std::max(100, h - 190));
+  } else {
+    right_split_->Unsplit(plots_);
+  }
+}
+
 void MainFrame::setView(ViewMode m) {
+  showPlots(m == ViewMode::Slam && s_.runner());
   canvas_->setMode(m);
   menubar_->Check(m == ViewMode::Slam ? kViewSlam : m == ViewMode::Topology ? kViewTopology : kViewLabels, true);
   canvas_->fit();

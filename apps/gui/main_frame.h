@@ -16,6 +16,7 @@
 
 class wxPropertyGridManager;
 class wxNotebook;
+class wxSplitterWindow;
 
 namespace gridtopo::gui {
 
@@ -63,6 +64,8 @@ class MainFrame : public wxFrame {
   session::RecentFiles recent_;
   MapCanvas* canvas_ = nullptr;
   PlotPanel* plots_ = nullptr;
+  wxSplitterWindow* right_split_ = nullptr;
+  void showPlots(bool show);
   wxPropertyGridManager* grid_ = nullptr;
   wxTextCtrl* inspector_ = nullptr;
   wxNotebook* notebook_ = nullptr;
