@@ -67,6 +67,7 @@ MainFrame::MainFrame(const wxString& title, const wxSize& size)
   const int widths[] = {230, 140, 170, 300, -1};
   SetStatusWidths(5, widths);
   SetDropTarget(new DropTarget(this));
+  canvas_->SetDropTarget(new DropTarget(this));  // GTK delivers drops to the window under the pointer
   Bind(wxEVT_TIMER, &MainFrame::onTimer, this);
   timer_.Start(33);  // at most 30 redraws per second, only when something changed
 }
@@ -115,15 +116,15 @@ void MainFrame::buildMenus() {
   labels->Append(kLabelsOpen, "&Open a labelled image...");
   labels->AppendSeparator();
   labels->AppendRadioItem(kToolNone, "&Pan / inspect");
-  labels->AppendRadioItem(kToolBrush, "&Brush\tB");
-  labels->AppendRadioItem(kToolFill, "&Flood fill\tF");
+  labels->AppendRadioItem(kToolBrush, "&Brush\tCtrl+B");
+  labels->AppendRadioItem(kToolFill, "&Flood fill\tCtrl+Shift+F");
   labels->AppendSeparator();
-  labels->AppendRadioItem(kCodeRoom, "&Room (77)\t1");
-  labels->AppendRadioItem(kCodeCorridor, "&Corridor (115)\t2");
-  labels->AppendRadioItem(kCodeDoorway, "&Doorway (179)\t3");
-  labels->AppendRadioItem(kCodeErase, "&Erase (0)\t0");
-  labels->Append(kBrushBigger, "Bigger brush\t]");
-  labels->Append(kBrushSmaller, "Smaller brush\t[");
+  labels->AppendRadioItem(kCodeRoom, "&Room (77)\tCtrl+Shift+1");
+  labels->AppendRadioItem(kCodeCorridor, "&Corridor (115)\tCtrl+Shift+2");
+  labels->AppendRadioItem(kCodeDoorway, "&Doorway (179)\tCtrl+Shift+3");
+  labels->AppendRadioItem(kCodeErase, "&Erase (0)\tCtrl+Shift+0");
+  labels->Append(kBrushBigger, "Bigger brush\tCtrl+]");
+  labels->Append(kBrushSmaller, "Smaller brush\tCtrl+[");
   labels->Append(kUndo, "&Undo\tCtrl+Z");
 
   auto* view = new wxMenu;
@@ -167,7 +168,7 @@ void MainFrame::buildMenus() {
     wxDirDialog d(this, "Output directory for the topology");
     if (d.ShowModal() != wxID_OK) return;
     try {
-      session::saveTopologyOutputs(*s_.topology(), d.GetPath().ToStdString(), s_.topologyOptions().overlay_scale);
+      session::saveTopologyOutputs(*s_.topology(), d.GetPath().ToStdString(), s_.topologyOptions());
     } catch (const std::exception& e) {
       showError("Cannot save the topology", e.what());
     }
@@ -507,6 +508,7 @@ void MainFrame::startSlam() {
   if (!applyOptionGrid()) return;
   try {
     s_.startSlam(runner_options);
+    failure_shown_ = false;
     plots_->clear();
     drawn_version_ = 0;
     setView(ViewMode::Slam);
@@ -573,7 +575,10 @@ void MainFrame::updateStatus() {
                               err->translational.count)
                  .ToStdString();
   SetStatusText(right, 3);
-  if (s->state == session::RunState::Failed) showError("SLAM failed", s->error);
+  if (s->state == session::RunState::Failed && !failure_shown_) {
+    failure_shown_ = true;
+    showError("SLAM failed", s->error);
+  }
 }
 
 void MainFrame::onTimer(wxTimerEvent&) {

@@ -47,7 +47,11 @@ class MainFrame : public wxFrame {
   bool quit_when_done = false;  ///< close the window when the script is done (--quit)
   int exit_code = 0;
   std::string documented_slam_ini;  ///< config-ini/slam.ini, for the option help
-  session::RunnerOptions runner_options;
+  session::RunnerOptions runner_options = [] {
+    session::RunnerOptions o;
+    o.snapshot_interval = 0.1;  // the live view redraws at 10 Hz while the filter runs
+    return o;
+  }();
 
  private:
   void buildMenus();
@@ -74,6 +78,7 @@ class MainFrame : public wxFrame {
   wxTimer timer_;
   std::uint64_t drawn_version_ = 0;
   int plot_tick_ = 0;
+  bool failure_shown_ = false;
   std::string hover_;
   std::future<session::TopologyData> topology_future_;
   std::atomic<int> topology_progress_{0};

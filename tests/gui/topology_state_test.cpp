@@ -119,9 +119,9 @@ TEST(TopologyState, NodeSelectionShowsRegionAndNeighbours) {
 TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
   Fixture f;
   const auto* t = f.s.topology();
-  session::saveTopologyOutputs(*t, f.tmp / "out");
+  session::saveTopologyOutputs(*t, f.tmp / "out", f.s.topologyOptions());
   for (const char* n : {"topology.graphml", "topology.json", "topology.dot", "overlay.png", "labels.png",
-                        "labels_before_correction.png", "segmentation.png", "segmentation_colour.png"})
+                        "labels_before_correction.png", "segmentation.png", "segmentation_colour.png", "options.ini"})
     EXPECT_TRUE(std::filesystem::is_regular_file(f.tmp / ("out/" + std::string(n)))) << n;
   const cv::Mat codes = cv::imread(f.tmp / "out/labels.png", cv::IMREAD_GRAYSCALE);
   EXPECT_EQ(cv::countNonZero(codes != places::labelsToCodes(t->topo.labels)), 0);

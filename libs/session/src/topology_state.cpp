@@ -263,7 +263,8 @@ std::string NodeInspection::text() const {
   return o.str();
 }
 
-void saveTopologyOutputs(const TopologyData& t, const std::string& dir, int overlay_scale) {
+void saveTopologyOutputs(const TopologyData& t, const std::string& dir, const topology::TopologyOptions& options) {
+  const int overlay_scale = options.overlay_scale;
   if (t.topo.labels.empty()) throw std::runtime_error("no topology with labels to save");
   OutputSet outs;
   outs.write(dir + "/topology.graphml",
@@ -284,6 +285,9 @@ void saveTopologyOutputs(const TopologyData& t, const std::string& dir, int over
     png("segmentation.png", topology::segmentationImage16(t.topo.segmentation));
     png("segmentation_colour.png", topology::colourSegmentation(t.topo.segmentation));
   }
+  std::ostringstream used;
+  options.dumpToTextStream(used);
+  outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, used.str()); });
   outs.commit();
 }
 

@@ -86,7 +86,8 @@ std::optional<NodeInspection> inspectNodeAt(const TopologyData& t, double x, dou
 cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n);
 
 /// Writes the files gridtopo-topology writes (topology.graphml/.json/.dot, overlay.png, labels.png,
-/// labels_before_correction.png, segmentation.png, segmentation_colour.png) into `dir`, all or nothing.
-void saveTopologyOutputs(const TopologyData& t, const std::string& dir, int overlay_scale = 2);
+/// labels_before_correction.png, segmentation.png, segmentation_colour.png, options.ini) into `dir`, all or
+/// nothing.
+void saveTopologyOutputs(const TopologyData& t, const std::string& dir, const topology::TopologyOptions& options);
 
 }  // namespace gridtopo::session
