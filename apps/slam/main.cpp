@@ -2,7 +2,7 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <tclap/CmdLine.h>
 
 #include <chrono>
@@ -12,12 +12,13 @@
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <unistd.h>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
-#include "gridtopo/io/carmen_log.h"
-#include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/log_reader.h"
+#include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/map_export.h"
@@ -27,16 +28,6 @@ namespace fs = std::filesystem;
 using namespace gridtopo;
 
 namespace {
-
-std::vector<io::ScanRecord> readLog(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "no such file");
-  const std::string name = fs::path(path).filename().string();
-  auto endsWith = [&](const std::string& s) {
-    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
-  };
-  if (endsWith(".rawlog") || endsWith(".rawlog.gz")) return io::readRawlog(path).scans;
-  return io::readCarmenLog(path).scans;
-}
 
 long rssKb() {
   std::ifstream f("/proc/self/status");
@@ -103,7 +94,8 @@ int main(int argc, char** argv) {
     if (!quiet.getValue()) o.dumpToTextStream(std::cerr);
 
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<io::ScanRecord> records = readLog(input.getValue());
+    if (!fs::exists(input.getValue())) throw InputError(input.getValue(), "no such file");
+    std::vector<io::ScanRecord> records = io::readScanLog(input.getValue());
     if (max_scans.getValue() >= 0 && static_cast<std::size_t>(max_scans.getValue()) < records.size())
       records.resize(static_cast<std::size_t>(max_scans.getValue()));
     if (records.empty()) throw InputError(input.getValue(), "the log holds no laser scans");
@@ -136,11 +128,33 @@ int main(int argc, char** argv) {
       io::writeTrajectory(p, traj, {"gridtopo-slam " + input.getValue(), "one pose per laser scan, best particle"});
     });
     out.write((dir / "stats.txt").string(), [&](const std::string& p) { std::ofstream(p) << stats.str(); });
-    out.write((dir / "map.png").string(), [&](const std::string& p) {
-      cv::imwrite(p, slam::renderMap(grid));
-    });
+    out.write((dir / "map.png").string(), [&](const std::string& p) { io::writeMapPng(grid, p); });
     out.write((dir / "map_trajectory.png").string(), [&](const std::string& p) {
-      cv::imwrite(p, slam::renderMap(grid, traj));
+      if (!cv::imwrite(p, slam::renderMap(grid, traj))) throw std::runtime_error("cannot write " + p);
+    });
+    out.write((dir / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(grid, p); });
+    {
+      // ROS map_server pair: written side by side in a scratch directory, then moved in with the others.
+      const fs::path scratch = fs::temp_directory_path() / ("gridtopo-slam-" + std::to_string(::getpid()));
+      fs::create_directories(scratch);
+      io::writeRosMap(grid, (scratch / "map").string());
+      for (const char* ext : {".pgm", ".yaml"})
+        out.write((dir / (std::string("map") + ext)).string(),
+                  [&](const std::string& p) { fs::copy_file(scratch / (std::string("map") + ext), p,
+                                                            fs::copy_options::overwrite_existing); });
+      fs::remove_all(scratch);
+    }
+    out.write((dir / "map.simplemap").string(), [&](const std::string& p) {
+      mrpt::maps::CSimpleMap sm;
+      for (const slam::TrajectoryNode* n : slam::pathOf(filter.bestParticle().node)) {
+        auto sf = mrpt::obs::CSensoryFrame::Create();
+        auto obs = io::toMrptScan(records[n->scan_index].scan);
+        sf->insert(obs);
+        sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
+                      mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
+                  sf);
+      }
+      io::writeSimplemap(sm, p);
     });
     out.write((dir / "options.ini").string(), [&](const std::string& p) {
       std::ofstream f(p);

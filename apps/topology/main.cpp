@@ -16,6 +16,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/model.h"
 #include "gridtopo/topology/export.h"
+#include "gridtopo/topology/mrpt_graph.h"
 #include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/segmentation.h"
 
@@ -28,7 +29,8 @@ int main(int argc, char** argv) {
         "Label the places of an occupancy map (room / corridor / doorway; Mozos et al.), build regions and the "
         "topological graph, and write them to an output directory: topology.graphml, topology.json, topology.dot, "
         "overlay.png, labels.png (room 77, corridor 115, doorway 179, other 0; pixel-aligned with the input), "
-        "segmentation.png (16-bit room ids, 0 = not free), segmentation_colour.png, options.ini.",
+        "segmentation.png (16-bit room ids, 0 = not free), segmentation_colour.png, topology_posegraph.graph (MRPT "
+        "CNetworkOfPoses2D text format: nodes at region centroids), options.ini.",
         ' ', "0.1");
     TCLAP::UnlabeledValueArg<std::string> map_arg("map", "map: .png/.pgm/.jpg (+ ROS .yaml beside it), .yaml, .gridmap(.gz)",
                                                   true, "", "map", cmd);
@@ -45,7 +47,11 @@ int main(int argc, char** argv) {
     topology::TopologyOptions opt;
     if (!ini.getValue().empty()) {
       if (!fs::is_regular_file(ini.getValue())) throw InputError(ini.getValue(), "INI file not found");
-      opt.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
+      try {
+        opt.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
+      } catch (const InputError& e) {
+        throw InputError(ini.getValue(), 0, e.file() + " " + e.field(), e.message());
+      }
     }
     if (res.isSet()) {
       if (!(res.getValue() > 0)) throw InputError("--resolution", "must be > 0");
@@ -85,6 +91,8 @@ int main(int argc, char** argv) {
                [&](const std::string& p) { writeTextFileAtomically(p, topology::toGraphML(topo.graph)); });
     outs.write(dir + "/topology.json", [&](const std::string& p) { writeTextFileAtomically(p, topology::toJson(topo.graph)); });
     outs.write(dir + "/topology.dot", [&](const std::string& p) { writeTextFileAtomically(p, topology::toDot(topo.graph)); });
+    outs.write(dir + "/topology_posegraph.graph",
+               [&](const std::string& p) { topology::toMrptPoseGraph(topo.graph).saveToTextFile(p); });
     auto png = [&](const std::string& name, const cv::Mat& img) {
       outs.write(dir + "/" + name, [&](const std::string& p) {
         if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);

@@ -66,7 +66,7 @@ TEST(PlacesModel, DecisionListProbabilitiesSumToOne) {
 
 TEST(PlacesModel, SaveLoadRoundTripAndMismatch) {
   PlacesModel m;
-  m.feature_names = featureNames();
+  m.feature_names = featureNames(m.features);
   m.order = {1, 0, 2};
   m.first.stumps = {{3, 1.25f, -0.3f, 0.7f}, {5, 2.f, 0.1f, -0.1f}};
   m.first.bias = -0.4;

@@ -76,3 +76,31 @@ TEST(Features, PolygonMomentsEqualOpenCV) {
                       {a.m02, b.m02}, {a.m30, b.m30}, {a.m21, b.m21}, {a.m12, b.m12}, {a.m03, b.m03}})
     EXPECT_NEAR(x, y, 1e-3 * std::max(1.0, std::abs(y)));
 }
+
+TEST(Features, ContextFeaturesAreWindowMeans) {
+  const auto occ = test::rectangleRoom(2.0, 1.0, 0.1);  // 20 x 10 free cells, one block per cell
+  const auto lat = buildLattice(occ, 0.1);
+  ASSERT_EQ(lat.samples.size(), 200u);
+  cv::Mat f(static_cast<int>(lat.samples.size()), 2, CV_32F, cv::Scalar(3.f));
+  for (std::size_t i = 0; i < lat.samples.size(); ++i)
+    f.at<float>(static_cast<int>(i), 1) = lat.samples[i] == cv::Point(12, 10) ? 9.f : 0.f;
+  const cv::Mat c = addContextFeatures(lat, f, 0.1, 0.1);  // 3 x 3 window
+  ASSERT_EQ(c.cols, 4);
+  for (std::size_t i = 0; i < lat.samples.size(); ++i) {
+    EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 2), 3.f);  // constant stays constant, also at the walls
+    const cv::Point p = lat.samples[i];
+    const bool near = std::abs(p.x - 12) <= 1 && std::abs(p.y - 10) <= 1;
+    if (!near) {
+      EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 3), 0.f);
+    }
+  }
+  // At (11, 9) the window holds 9 samples (interior), one of them 9: mean 1. At the corner (5, 5): 4 samples.
+  for (std::size_t i = 0; i < lat.samples.size(); ++i)
+    if (lat.samples[i] == cv::Point(11, 9)) {
+      EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 3), 1.f);
+    }
+  FeatureOptions o;
+  o.context_radius = 1.0;
+  EXPECT_EQ(featureNames(o).size(), 2 * numFeatures());
+  EXPECT_EQ(featureNames(o).back(), featureNames().back() + "_ctx");
+}

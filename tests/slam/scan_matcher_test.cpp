@@ -17,6 +17,7 @@ struct Fixture {
   sim::SimOptions so;
   BeamOptions bo;
   Fixture() {
+    bo.matching_beam_step = 1;  // all beams: the matcher's own accuracy, not the subsampling's
     so.range_sigma = 0.0;
     const std::vector<mrpt::math::TPose2D> wp = {{2, 6, -M_PI / 2}, {2, 2.8, 0}, {9, 2.8, 0}};
     const auto log = sim::simulate(plan, wp, so);

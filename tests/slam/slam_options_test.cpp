@@ -86,3 +86,19 @@ TEST(SlamOptions, ShippedIniFilesLoad) {
   }
   ASSERT_TRUE(fs::exists(std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/slam.ini"));
 }
+
+TEST(SlamOptions, DefaultIniDocumentsEveryKeyWithTheCodeDefaults) {
+  mrpt::config::CConfigFile ini(std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/slam.ini");
+  slam::SlamOptions from_ini;
+  from_ini.loadFromConfigFile(ini, "slam");
+  std::ostringstream a, b;
+  from_ini.dumpToTextStream(a);
+  slam::SlamOptions().dumpToTextStream(b);
+  EXPECT_EQ(a.str(), b.str());
+  // Every key the options know is written in the file.
+  mrpt::config::CConfigFileMemory saved;
+  slam::SlamOptions().saveToConfigFile(saved, "slam");
+  std::vector<std::string> keys;
+  saved.getAllKeys("slam", keys);
+  for (const auto& k : keys) EXPECT_TRUE(ini.keyExists("slam", k)) << k << " is not documented in slam.ini";
+}

@@ -37,7 +37,7 @@ TEST(TopologyApp, LabIntelEndToEnd) {
   const std::string map = kData + "/places/maps/lab_intel.png";
   ASSERT_EQ(run(map + " -m " + kModel + " -o " + (d / "out").string(), d / "err"), 0) << slurp(d / "err");
   for (const char* f : {"topology.graphml", "topology.json", "topology.dot", "overlay.png", "labels.png",
-                        "segmentation.png", "segmentation_colour.png", "options.ini"})
+                        "segmentation.png", "segmentation_colour.png", "topology_posegraph.graph", "options.ini"})
     EXPECT_TRUE(fs::exists(d / "out" / f)) << f;
   const cv::Mat in = cv::imread(map, cv::IMREAD_UNCHANGED);
   const cv::Mat labels = cv::imread((d / "out" / "labels.png").string(), cv::IMREAD_UNCHANGED);

@@ -10,6 +10,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
+#include "gridtopo/topology/mrpt_graph.h"
 #include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/segmentation.h"
 
@@ -179,4 +180,19 @@ TEST(Evaluation, GroundTruthRoomsOfLabIntel) {
                                 cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(gt.empty());
   EXPECT_EQ(segmentCount(groundTruthRooms(gt)), 26);
+}
+
+TEST(Export, MrptPoseGraphRoundTrip) {
+  const auto g = buildGraph(extractRegions(floorPlan(), 0.05), 0.05);
+  const auto pg = toMrptPoseGraph(g);
+  EXPECT_EQ(pg.nodes.size(), g.nodes.size());
+  EXPECT_EQ(pg.edgeCount(), g.edges.size());
+  const fs::path p = fs::temp_directory_path() / "gridtopo_topology_posegraph.graph";
+  pg.saveToTextFile(p.string());
+  mrpt::graphs::CNetworkOfPoses2D back;
+  back.loadFromTextFile(p.string());
+  ASSERT_EQ(back.nodes.size(), g.nodes.size());
+  const auto& n0 = g.nodes.front();
+  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.centroid_m.x, 1e-6);
+  EXPECT_EQ(back.edgeCount(), g.edges.size());
 }

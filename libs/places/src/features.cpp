@@ -59,6 +59,38 @@ std::vector<std::string> featureNames() {
 
 std::size_t numFeatures() { return featureDescriptions().size(); }
 
+std::vector<std::string> featureNames(const FeatureOptions& o) {
+  std::vector<std::string> n = featureNames();
+  if (o.context_radius > 0) {
+    const std::size_t b = n.size();
+    for (std::size_t i = 0; i < b; ++i) n.push_back(n[i] + "_ctx");
+  }
+  return n;
+}
+
+cv::Mat addContextFeatures(const Lattice& lattice, const cv::Mat& features, double radius, double resolution) {
+  CV_Assert(features.type() == CV_32F && static_cast<std::size_t>(features.rows) == lattice.samples.size());
+  const double block_m = lattice.stride * resolution;
+  const int half = std::max(1, static_cast<int>(std::lround(radius / block_m)));
+  const cv::Size ksize(2 * half + 1, 2 * half + 1);
+  const cv::Size grid = lattice.block_sample.size();
+  cv::Mat mask(grid, CV_32F, cv::Scalar(0));
+  for (const cv::Point& b : lattice.blocks) mask.at<float>(b) = 1.f;
+  cv::Mat count;
+  cv::boxFilter(mask, count, CV_32F, ksize, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+  cv::Mat out(features.rows, features.cols * 2, CV_32F);
+  features.copyTo(out.colRange(0, features.cols));
+  cv::Mat g(grid, CV_32F), sum;
+  for (int f = 0; f < features.cols; ++f) {
+    g.setTo(0);
+    for (std::size_t i = 0; i < lattice.blocks.size(); ++i) g.at<float>(lattice.blocks[i]) = features.at<float>(static_cast<int>(i), f);
+    cv::boxFilter(g, sum, CV_32F, ksize, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+    for (std::size_t i = 0; i < lattice.blocks.size(); ++i)
+      out.at<float>(static_cast<int>(i), features.cols + f) = sum.at<float>(lattice.blocks[i]) / count.at<float>(lattice.blocks[i]);
+  }
+  return out;
+}
+
 namespace {
 struct MeanStd {
   double s = 0, s2 = 0;

@@ -73,7 +73,9 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
   });
   const double ts = since(t0);
   t0 = std::chrono::steady_clock::now();
-  const cv::Mat features = extractFeatures(scans, model.features, threads);
+  cv::Mat features = extractFeatures(scans, model.features, threads);
+  if (model.features.context_radius > 0)
+    features = addContextFeatures(lattice, features, model.features.context_radius, occ.resolution);
   const double tf = since(t0);
   if (progress) progress("features", 1, 1);
   LabellingResult res = labelFromFeatures(occ, lattice, features, model, relax, threads);

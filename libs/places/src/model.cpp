@@ -66,7 +66,8 @@ void PlacesModel::save(const std::string& path) const {
     if (!fs.isOpened()) throw std::runtime_error("cannot write " + path);
     fs << "format" << kFormat << "version" << kVersion;
     fs << "num_beams" << scan.num_beams << "max_range" << scan.max_range << "lattice_spacing" << scan.lattice_spacing;
-    fs << "beam_cap" << features.beam_cap << "gap_small" << features.gap_small << "gap_large" << features.gap_large;
+    fs << "beam_cap" << features.beam_cap << "gap_small" << features.gap_small << "gap_large" << features.gap_large
+       << "context_radius" << features.context_radius;
     fs << "feature_names" << "[";
     for (const auto& n : feature_names) fs << n;
     fs << "]";
@@ -103,8 +104,11 @@ PlacesModel PlacesModel::load(const std::string& path) {
   m.features.beam_cap = static_cast<double>(fs["beam_cap"]);
   m.features.gap_small = static_cast<double>(fs["gap_small"]);
   m.features.gap_large = static_cast<double>(fs["gap_large"]);
+  m.features.context_radius = fs["context_radius"].empty() ? 0.0 : static_cast<double>(fs["context_radius"]);
+  if (!std::isfinite(m.features.context_radius) || m.features.context_radius < 0)
+    throw InputError(path, 0, "context_radius", "must be >= 0");
   for (const auto& n : fs["feature_names"]) m.feature_names.push_back(static_cast<std::string>(n));
-  if (m.feature_names != featureNames())
+  if (m.feature_names != featureNames(m.features))
     throw InputError(path, 0, "feature_names",
                      "model was trained with other features than this build computes (retrain with gridtopo-train)");
   std::vector<int> order;

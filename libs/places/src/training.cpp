@@ -57,6 +57,8 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
   s.lattice = buildLattice(occ, scan.lattice_spacing);
   const SimulatedScans scans = simulateScans(occ, s.lattice.samples, scan, progress);
   s.features = extractFeatures(scans, features, scan.threads);
+  if (features.context_radius > 0)
+    s.features = addContextFeatures(s.lattice, s.features, features.context_radius, occ.resolution);
   s.block_labels = cv::Mat(s.lattice.block_sample.size(), CV_32S, cv::Scalar(-1));
   s.labels.assign(s.lattice.samples.size(), -1);
   if (codes) {
@@ -168,7 +170,7 @@ PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSim
   PlacesModel model;
   model.scan = scan;
   model.features = features;
-  model.feature_names = featureNames();
+  model.feature_names = featureNames(features);
   // Compatibilities from all labelled maps.
   std::array<std::array<double, kNumLabels>, kNumLabels> counts{};
   for (const MapSamples* m : maps) accumulateNeighbourCounts(m->block_labels, counts);

@@ -1,6 +1,8 @@
 #include "gridtopo/slam/rbpf_slam.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -25,22 +27,25 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   ProposalPlan plan;
   plan.type = o.proposal.type;
   if (o.proposal.type == ProposalType::Odometry) return plan;
+  if (o.proposal.type == ProposalType::ModeOnly) {
+    plan.matched = true;  // matched per particle in drawFromProposal (from its own motion sample)
+    return plan;
+  }
   const double inv_gain = 1.0 / o.likelihood_gain;
   const Pose2 predicted = compose(prev, u);
-  const MatchResult m = matchScan(map, predicted, scan, o.matcher);
+  MatchPrior prior;
+  prior.likelihood_scale = inv_gain;
+  prior.log_prior = [&](const Pose2& x) { return motion.logDensity(x, prev, u, has_odometry); };
+  const MatchResult m = matchScan(map, predicted, scan, o.matcher, o.matcher.use_motion_prior ? &prior : nullptr);
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
-  if (o.proposal.type == ProposalType::ModeOnly) {
-    plan.gaussian.mean = m.pose;
-    plan.log_weight_increment = m.score.log_likelihood * inv_gain;
-    return plan;
-  }
   // Informed proposal: K poses on a grid around the mode, τ_j = p(z|m,x_j)·p(x_j|x_{t-1},u).
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
   std::vector<Pose2> xs;
-  std::vector<double> log_tau;
+  std::vector<double> log_tau, log_tau_weight;
+  const double inv_pgain = 1.0 / (o.proposal_gain > 0.0 ? o.proposal_gain : o.likelihood_gain);
   xs.reserve(static_cast<std::size_t>(n) * n * n);
   log_tau.reserve(xs.capacity());
   for (int i = 0; i < n; ++i)
@@ -52,7 +57,9 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
                               ? m.score.log_likelihood
                               : scoreScan(map, x, scan, o.matcher).log_likelihood;
         xs.push_back(x);
-        log_tau.push_back(ll * inv_gain + motion.logDensity(x, prev, u, has_odometry));
+        const double lm = motion.logDensity(x, prev, u, has_odometry);
+        log_tau.push_back(ll * inv_pgain + lm);
+        log_tau_weight.push_back(ll * inv_gain + lm);
       }
   plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
   plan.gaussian = fitProposal(xs, log_tau, m.pose);
@@ -60,13 +67,24 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.gaussian.cov(0, 0) += mx;
   plan.gaussian.cov(1, 1) += mx;
   plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
-  plan.log_weight_increment = plan.gaussian.log_eta;
+  plan.log_weight_increment = inv_pgain == inv_gain ? plan.gaussian.log_eta : logSumExp(log_tau_weight);
   return plan;
 }
 
 double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
                         bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
                         const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose) {
+  if (plan.type == ProposalType::ModeOnly) {
+    // GMapping: draw from the motion model, climb to the likelihood mode from there, weight p(z|m,x̂).
+    const Pose2 start = motion.sample(prev, u, rng, has_odometry);
+    const MatchResult m = matchScan(map, start, scan, o.matcher);
+    if (m.ok) {
+      out_pose = m.pose;
+      return m.score.log_likelihood / o.likelihood_gain;
+    }
+    out_pose = start;
+    return scoreScan(map, start, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
   if (!plan.matched) {
     // Odometry proposal (also the fallback when matching failed): sample the motion model, weight by p(z|m,x).
     out_pose = motion.sample(prev, u, rng, has_odometry);
@@ -137,7 +155,19 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
   } else {
     const ScanInfo& last = scans_[last_processed_];
     const bool has_odo = record.has_odometry && last.has_odometry;
-    const Pose2 u = has_odo ? relative(last.odometry, toPose(record.odometry)) : Pose2{};
+    const Pose2 u_odo = has_odo ? relative(last.odometry, toPose(record.odometry)) : Pose2{};
+    // Without odometry: a constant-velocity prediction from each particle's last two poses, scaled by time.
+    auto incrementFor = [&](const Particle& p) -> Pose2 {
+      if (has_odo || !p.node || !p.node->parent) return u_odo;
+      const TrajectoryNode& a = *p.node->parent;
+      const TrajectoryNode& b = *p.node;
+      const double dt_prev = scans_[b.scan_index].timestamp - scans_[a.scan_index].timestamp;
+      const double dt_now = record.scan.timestamp - scans_[b.scan_index].timestamp;
+      if (!(dt_prev > 1e-6) || !(dt_now >= 0.0)) return Pose2{};
+      const double k = std::min(3.0, dt_now / dt_prev);
+      const Pose2 d = relative(a.pose, b.pose);
+      return {k * d.x, k * d.y, k * d.theta};
+    };
     // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan.
     std::vector<std::size_t> group_of(n), leaders;
     {
@@ -151,7 +181,7 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     std::vector<ProposalPlan> plans(leaders.size());
     pool_->parallelFor(leaders.size(), [&](std::size_t g) {
       const Particle& p = particles_[leaders[g]];
-      plans[g] = planProposal(p.map, p.pose, u, has_odo, scan, o_, motion_);
+      plans[g] = planProposal(p.map, p.pose, incrementFor(p), has_odo, scan, o_, motion_);
     });
     const std::size_t step = stats_.size();
     std::vector<int> extra_evals(n, 0);
@@ -160,7 +190,7 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
       const ProposalPlan& plan = plans[group_of[i]];
       Rng rng(o_.seed, step, i, kPurposeParticle);
       Pose2 x;
-      const double dw = drawFromProposal(plan, p.map, p.pose, u, has_odo, scan, o_, motion_, rng, x);
+      const double dw = drawFromProposal(plan, p.map, p.pose, incrementFor(p), has_odo, scan, o_, motion_, rng, x);
       extra_evals[i] = plan.matched ? 0 : 1;
       p.log_weight += dw;
       p.log_weight_total += dw;
@@ -189,7 +219,11 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
   acc_linear_ = acc_angular_ = 0.0;
   last_processed_ = index;
   st.particles = static_cast<int>(n);
-  st.unique_tiles = uniqueTiles();
+  // Counting distinct tiles hashes every tile pointer of every particle: done every 20 steps only.
+  if (stats_.empty() || stats_.size() % 20 == 0) {
+    last_unique_tiles_ = uniqueTiles();
+  }
+  st.unique_tiles = last_unique_tiles_;
   st.map_bytes = st.unique_tiles * sizeof(GridMap::Tile);
   st.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.push_back(st);

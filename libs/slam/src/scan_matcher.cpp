@@ -97,31 +97,47 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
 
 namespace {
 
+double objective(const ScanScore& s, const Pose2& x, const MatchPrior* prior) {
+  return prior ? s.log_likelihood * prior->likelihood_scale + prior->log_prior(x) : s.log_likelihood;
+}
+
 MatchResult hillClimb(const GridMap& map, const MatchResult& from, const PreparedScan& scan,
-                      const ScanMatcherOptions& o, double sxy, double sth, int refinements) {
+                      const ScanMatcherOptions& o, double sxy, double sth, int refinements, const MatchPrior* prior) {
   MatchResult r = from;
+  double current = objective(r.score, r.pose, prior);
   int refinement = 0, iterations = 0;
+  int came_from = -1;  // the move that leads back to the previous pose (known to be worse): not re-evaluated
   while (refinement <= refinements && iterations < o.max_iterations) {
     ++iterations;
     Pose2 best_pose = r.pose;
     ScanScore best = r.score;
+    double best_obj = current;
+    int best_move = -1;
     const Pose2 moves[6] = {{sxy, 0, 0}, {-sxy, 0, 0}, {0, sxy, 0}, {0, -sxy, 0}, {0, 0, sth}, {0, 0, -sth}};
-    for (const auto& m : moves) {
+    for (int mi = 0; mi < 6; ++mi) {
+      if (mi == came_from) continue;
+      const Pose2& m = moves[mi];
       const Pose2 cand{r.pose.x + m.x, r.pose.y + m.y, wrapAngle(r.pose.theta + m.theta)};
       const ScanScore sc = scoreScan(map, cand, scan, o);
       ++r.evaluations;
-      if (sc.log_likelihood > best.log_likelihood) {
+      const double obj = objective(sc, cand, prior);
+      if (obj > best_obj) {
         best = sc;
         best_pose = cand;
+        best_obj = obj;
+        best_move = mi;
       }
     }
-    if (best.log_likelihood > r.score.log_likelihood) {
+    if (best_obj > current) {
       r.pose = best_pose;
       r.score = best;
+      current = best_obj;
+      came_from = best_move ^ 1;  // moves come in ± pairs
     } else {
       sxy *= 0.5;
       sth *= 0.5;
       ++refinement;
+      came_from = -1;
     }
   }
   return r;
@@ -194,7 +210,7 @@ MatchResult gaussNewton(const GridMap& map, const Pose2& start, const PreparedSc
 }  // namespace
 
 MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
-                      const ScanMatcherOptions& o) {
+                      const ScanMatcherOptions& o, const MatchPrior* prior) {
   MatchResult r;
   if (o.method == MatchMethod::GaussNewton) {
     r = gaussNewton(map, start, scan, o);
@@ -202,18 +218,18 @@ MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan
     MatchResult s0;
     s0.pose = start;
     s0.score = scoreScan(map, start, scan, o);
-    if (s0.score.log_likelihood > r.score.log_likelihood) {
+    if (objective(s0.score, s0.pose, prior) > objective(r.score, r.pose, prior)) {
       s0.evaluations = r.evaluations + 1;
       r = s0;
     } else {
       ++r.evaluations;
     }
-    r = hillClimb(map, r, scan, o, o.polish_step_xy, o.polish_step_theta, o.polish_refinements);
+    r = hillClimb(map, r, scan, o, o.polish_step_xy, o.polish_step_theta, o.polish_refinements, prior);
   } else {
     r.pose = start;
     r.score = scoreScan(map, start, scan, o);
     r.evaluations = 1;
-    r = hillClimb(map, r, scan, o, o.step_xy, o.step_theta, o.refinements);
+    r = hillClimb(map, r, scan, o, o.step_xy, o.step_theta, o.refinements, prior);
   }
   r.ok = scan.size() > 0 && r.score.matched >= o.min_match_fraction * static_cast<double>(scan.size());
   return r;

@@ -38,6 +38,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("threads", o.threads);
   f("resample_threshold", o.resample_threshold);
   f("likelihood_gain", o.likelihood_gain);
+  f("proposal_gain", o.proposal_gain);
   f("linear_update", o.linear_update);
   f("angular_update", o.angular_update);
   f("temporal_update", o.temporal_update);
@@ -65,6 +66,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("match_null_log_likelihood", o.matcher.null_log_likelihood);
   f("match_occupied_log_odds", o.matcher.occupied_log_odds);
   f("match_free_check", o.matcher.free_check);
+  f("match_use_motion_prior", o.matcher.use_motion_prior);
   f("match_gn_iterations", o.matcher.gn_iterations);
   f("match_gn_kernel", o.matcher.gn_kernel);
   f("match_polish_step_xy", o.matcher.polish_step_xy);
@@ -78,6 +80,8 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_points_per_axis", o.proposal.points_per_axis);
   f("proposal_delta_xy", o.proposal.delta_xy);
   f("proposal_delta_theta", o.proposal.delta_theta);
+  f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
+  f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
 }
 
 template <class T>
@@ -181,6 +185,7 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   if (!(resample_threshold >= 0.0 && resample_threshold <= 1.0))
     fail("resample_threshold", "must be in [0, 1], got " + str(resample_threshold));
   positive("likelihood_gain", likelihood_gain);
+  nonNegative("proposal_gain", proposal_gain);
   nonNegative("linear_update", linear_update);
   nonNegative("angular_update", angular_update);
   if (!std::isfinite(temporal_update)) fail("temporal_update", "must be finite");
@@ -224,6 +229,8 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
     fail("proposal_points_per_axis", "must be in [2, 9], got " + str(proposal.points_per_axis));
   positive("proposal_delta_xy", proposal.delta_xy);
   positive("proposal_delta_theta", proposal.delta_theta);
+  nonNegative("proposal_min_sigma_xy", proposal.min_sigma_xy);
+  nonNegative("proposal_min_sigma_theta", proposal.min_sigma_theta);
 }
 
 }  // namespace gridtopo::slam

@@ -70,7 +70,8 @@ std::string toJson(const TopologicalGraph& g) {
   for (std::size_t i = 0; i < g.edges.size(); ++i) {
     const auto& e = g.edges[i];
     o << (i ? "," : "") << "\n    {\"a\": " << e.a << ", \"b\": " << e.b << ", \"border_cells\": " << e.border_cells
-      << ", \"via_doorway\": " << (e.via_doorway ? 1 : 0) << "}";
+      << ", \"via_doorway\": " << (e.via_doorway ? 1 : 0) << ", \"contact_px\": [" << num(e.contact_px.x) << ", "
+      << num(e.contact_px.y) << "]}";
   }
   o << "\n  ]\n}\n";
   return o.str();
@@ -123,6 +124,7 @@ TopologicalGraph graphFromJson(const std::string& path) {
     ge.b = static_cast<int>(e["b"]);
     ge.border_cells = static_cast<int>(e["border_cells"]);
     ge.via_doorway = static_cast<int>(e["via_doorway"]) != 0;
+    ge.contact_px = cv::Point2d(static_cast<double>(e["contact_px"][0]), static_cast<double>(e["contact_px"][1]));
     g.edges.push_back(ge);
   }
   return g;
@@ -149,12 +151,17 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
     }
   cv::Mat big;
   cv::resize(img, big, cv::Size(), scale, scale, cv::INTER_NEAREST);
-  auto pt = [&](const GraphNode& n) {
-    return cv::Point(static_cast<int>((n.centroid_px.x + 0.5) * scale), static_cast<int>((n.centroid_px.y + 0.5) * scale));
-  };
+  auto px = [&](cv::Point2d p) { return cv::Point(static_cast<int>((p.x + 0.5) * scale), static_cast<int>((p.y + 0.5) * scale)); };
+  auto pt = [&](const GraphNode& n) { return px(cv::Point2d(n.anchor_px)); };
+  // Each edge runs node -> contact point -> node. The half at a node whose centroid lies outside its region (a
+  // corridor loop) is left out: a straight line would cross walls; the coloured region shows the connection.
   for (const auto& e : g.edges) {
     const GraphNode *a = g.node(e.a), *b = g.node(e.b);
-    if (a && b) cv::line(big, pt(*a), pt(*b), cv::Scalar(30, 30, 30), std::max(1, scale), cv::LINE_AA);
+    if (!a || !b) continue;
+    const cv::Point c = px(e.contact_px);
+    for (const GraphNode* n : {a, b})
+      if (n->centroid_inside) cv::line(big, pt(*n), c, cv::Scalar(30, 30, 30), std::max(1, scale), cv::LINE_AA);
+    cv::circle(big, c, scale, cv::Scalar(30, 30, 30), cv::FILLED, cv::LINE_AA);
   }
   static const cv::Scalar node_colour[] = {{160, 60, 0}, {0, 120, 0}, {0, 0, 200}};
   for (const auto& n : g.nodes) {

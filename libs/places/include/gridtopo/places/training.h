@@ -43,8 +43,9 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
 
 struct TrainingOptions : public mrpt::config::CLoadableOptions {
   BoostOptions boost;
-  std::string order = "auto";
-  double prior_weight = 1.0;   ///< 0 = classifiers stay class-balanced, 1 = shifted to the maps' class frequencies  ///< "auto" (validation) or e.g. "corridor,room,doorway"
+  std::string order = "auto";  ///< "auto" (validation) or e.g. "corridor,room,doorway"
+  /// Prior correction: 0 = classifiers stay class-balanced, 1 = shifted fully to the maps' class frequencies.
+  double prior_weight = 0.5;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;

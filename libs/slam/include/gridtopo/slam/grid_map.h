@@ -22,7 +22,7 @@ struct Cell {
 
 struct MapUpdateOptions {
   float log_odds_hit = 0.85f;    ///< added to a cell where a beam ends
-  float log_odds_free = -0.4f;   ///< added to every cell a beam crosses before its end
+  float log_odds_free = -0.3f;   ///< added to every cell a beam crosses before its end
   float log_odds_min = -4.0f;    ///< clamp
   float log_odds_max = 4.0f;     ///< clamp
 };

@@ -19,8 +19,8 @@ enum class ProposalType {
 struct ProposalOptions {
   ProposalType type = ProposalType::Informed;
   int points_per_axis = 3;     ///< K = points_per_axis³ poses on a grid around the mode
-  double delta_xy = 0.02;      ///< m, grid spacing in x and y
-  double delta_theta = 0.01;   ///< rad, grid spacing in θ
+  double delta_xy = 0.01;      ///< m, grid spacing in x and y
+  double delta_theta = 0.005;  ///< rad, grid spacing in θ
   double min_sigma_xy = 1e-3;  ///< m, floor on the proposal's standard deviations (numerical safety)
   double min_sigma_theta = 5e-4;
 };

@@ -36,7 +36,7 @@ struct StepStats {
   int particles = 0;
   int failed_matches = 0;      ///< particles that fell back to the odometry proposal
   double evaluations = 0.0;    ///< mean likelihood evaluations per particle
-  std::size_t unique_tiles = 0;  ///< distinct map tiles over all particles (copy-on-write sharing)
+  std::size_t unique_tiles = 0;  ///< distinct map tiles over all particles (counted every 20 steps)
   std::size_t map_bytes = 0;     ///< memory of those tiles
 };
 
@@ -108,6 +108,7 @@ class RbpfSlam {
   GridMap prior_map_;
   std::size_t last_processed_ = 0;  // scan index
   double acc_linear_ = 0.0, acc_angular_ = 0.0;
+  std::size_t last_unique_tiles_ = 0;
 };
 
 }  // namespace gridtopo::slam

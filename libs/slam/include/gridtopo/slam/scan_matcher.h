@@ -4,6 +4,8 @@
 // small window whose cell in front (towards the robot) is free; ln p = Σ_k max(−d_k²/(2σ²), null_log_likelihood).
 // The mode is found by hill climbing from the predicted pose with step halving, which converges to sub-cell
 // accuracy because the hit means are continuous.
+#include <functional>
+
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/pose2.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -30,10 +32,12 @@ struct ScanMatcherOptions {
   /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
   /// the match by up to half a cell, so it is off by default.
   bool free_check = false;
-  double step_xy = 0.05;              ///< m, initial hill-climbing step
-  double step_theta = 0.05;           ///< rad, initial hill-climbing step
+  double step_xy = 0.03;              ///< m, initial hill-climbing step
+  double step_theta = 0.02;           ///< rad, initial hill-climbing step
   int refinements = 6;                ///< number of step halvings
   int max_iterations = 200;           ///< safety cap on hill-climbing moves
+  /// Informed / mode-only proposals: search the mode of p(z|m,x)·p(x|x_{t-1},u) (true) or of p(z|m,x) (false).
+  bool use_motion_prior = false;
   /// Matching fails when fewer than this fraction of the matching beams found a correspondence.
   double min_match_fraction = 0.3;
 };
@@ -53,8 +57,16 @@ struct MatchResult {
 /// ln p(z | m, x) over the matching beams.
 ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o);
 
-/// Hill climbing from `start` to the mode of the likelihood.
+/// Optional prior multiplied into the matched objective: the search then finds the mode of
+/// p(z|m,x)^likelihood_scale · prior(x) — with the motion model as prior, the mode of the informed proposal's
+/// target distribution rather than of the likelihood alone.
+struct MatchPrior {
+  double likelihood_scale = 1.0;                ///< e.g. 1 / gain
+  std::function<double(const Pose2&)> log_prior;  ///< ln prior(x)
+};
+
+/// Searches from `start` for the mode of the likelihood (or of likelihood × prior when `prior` is given).
 MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
-                      const ScanMatcherOptions& o);
+                      const ScanMatcherOptions& o, const MatchPrior* prior = nullptr);
 
 }  // namespace gridtopo::slam

@@ -22,11 +22,14 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   double resample_threshold = 0.5;  ///< resample when N_eff < threshold · N
   /// The observation log-likelihood is divided by this before it enters τ_j and the weights (GMapping's
   /// softening of the over-confident independent-beam model).
-  double likelihood_gain = 3.0;
+  double likelihood_gain = 10.0;
+  /// If > 0, the gain used for the shape of the informed proposal (N(μ, Σ)) while likelihood_gain still softens
+  /// the weights; 0 = likelihood_gain for both (the paper's single likelihood).
+  double proposal_gain = 0.0;
 
   // Update policy (GMapping's linearUpdate / angularUpdate / temporalUpdate)
-  double linear_update = 0.25;    ///< m of travelled distance since the last processed scan
-  double angular_update = 0.15;   ///< rad of accumulated rotation
+  double linear_update = 0.3;    ///< m of travelled distance since the last processed scan
+  double angular_update = 0.2;   ///< rad of accumulated rotation
   double temporal_update = -1.0;  ///< s since the last processed scan; < 0 disables
   /// Logs without odometry: process a scan when this many seconds passed (0 = every scan).
   double no_odometry_period = 0.0;

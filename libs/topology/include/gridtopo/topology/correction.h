@@ -17,8 +17,8 @@ namespace gridtopo::topology {
 struct CorrectionOptions : public mrpt::config::CLoadableOptions {
   bool enabled = true;
   double min_place_area = 0.5;      ///< m^2 (R0)
-  double min_room_area = 1.0;       ///< m^2 (R1)
-  double min_corridor_area = 1.0;   ///< m^2 (R1)
+  double min_room_area = 4.0;       ///< m^2 (R1)
+  double min_corridor_area = 4.0;   ///< m^2 (R1)
   double min_doorway_area = 0.1;    ///< m^2 (R1)
   bool doorways_must_separate = true;  ///< R2
   double max_doorway_area = 6.0;    ///< m^2 (R3); 0 = off

@@ -17,12 +17,15 @@ struct GraphNode {
   cv::Point2d centroid_px;  ///< pixels (x = column, y = row, row 0 at the top)
   cv::Point2d centroid_m;   ///< metres, x right, y up, origin at the image's lower-left corner
   cv::Rect bbox_px;
+  cv::Point anchor_px;      ///< a cell of the region: the centroid if it lies inside, else the nearest region cell
+  bool centroid_inside = true;  ///< false for non-convex regions (a corridor loop) whose centroid lies outside
 };
 
 struct GraphEdge {
   int a = 0, b = 0;       ///< node ids, a < b
   int border_cells = 0;   ///< 8-neighbour cell pairs along the shared border
   bool via_doorway = false;  ///< one end is a doorway node
+  cv::Point2d contact_px;    ///< mean position of the border cells (pixels): where the two regions meet
 };
 
 struct TopologicalGraph {

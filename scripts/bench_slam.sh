@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# Benchmark of gridtopo-slam (issue 3): Intel and ACES accuracy (Freiburg relations, gridtopo-eval), wall time and
+# peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal, and 10 seeds
+# with 8 particles. Writes the tables to doc/slam-bench.md and the map pictures to doc/img/.
+# Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study)
+# Run it on an otherwise idle machine: the timings are wall-clock.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${GRIDTOPO_BUILD_DIR:-build}
+BIN=$BUILD/bin
+OUT=${GRIDTOPO_BENCH_OUT:-out/bench-slam}
+DOC=doc/slam-bench.md
+QUICK=${1:-}
+THREADS=${GRIDTOPO_BENCH_THREADS:-2}
+mkdir -p "$OUT" doc/img
+[ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)"; exit 1; }
+
+# run <name> <log> <relations> <extra slam args...>: prints "trans_mean trans_std rot_mean wall_s rss_mb"
+run() {
+  local name=$1 log=$2 rel=$3
+  shift 3
+  local dir=$OUT/$name
+  /usr/bin/time -v -o "$dir.time" "$BIN/gridtopo-slam" -i "$log" -o "$dir" -c config-ini/slam.ini -t "$THREADS" -q "$@" \
+    2> "$dir.log" || { echo "gridtopo-slam failed, see $dir.log" >&2; exit 1; }
+  "$BIN/gridtopo-eval" -r "$rel" -l "$log" -t "$dir/trajectory.txt" -j "$dir.json" > "$dir.eval"
+  python3 - "$dir.json" "$dir.time" <<'PY'
+import json, re, sys
+j = json.load(open(sys.argv[1]))
+t = open(sys.argv[2]).read()
+wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
+h = float(wall.group(1) or 0); m = float(wall.group(2)); s = float(wall.group(3))
+rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1)) / 1024
+tr, ro = j["translational_m"], j["rotational_deg"]
+print("%.4f %.4f %.3f %.3f %.1f %.0f" % (tr["mean"], tr["std"], ro["mean"], ro["std"], 3600 * h + 60 * m + s, rss))
+PY
+}
+
+INTEL=datasets/slam/intel.clf.gz
+INTEL_REL=datasets/slam/intel.relations.gz
+ACES=datasets/slam/aces.clf.gz
+ACES_REL=datasets/slam/aces.relations.gz
+{
+  echo "# gridtopo-slam benchmark"
+  echo
+  echo "Produced by \`scripts/bench_slam.sh $QUICK\` on $(date -u +%Y-%m-%d) ($(nproc) cores, $THREADS threads," \
+       "commit $(git rev-parse --short HEAD)). Errors: Freiburg relations metric (gridtopo-eval), mean ± std."
+  echo
+  echo "| log | particles | proposal | translational (m) | rotational (deg) | wall (s) | peak RSS (MB) |"
+  echo "|---|---|---|---|---|---|---|"
+  read -r tm ts rm rs w m < <(run intel-30 "$INTEL" "$INTEL_REL" -p 30)
+  echo "| Intel | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $m |"
+  read -r tm ts rm rs w m < <(run aces-30 "$ACES" "$ACES_REL" -p 30)
+  echo "| ACES | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $m |"
+} > "$DOC"
+cp "$OUT/intel-30/map_trajectory.png" doc/img/slam-intel.png
+cp "$OUT/aces-30/map_trajectory.png" doc/img/slam-aces.png
+
+if [ "$QUICK" != "--quick" ]; then
+  {
+    echo
+    echo "## Error vs particle count, Intel (seed 1)"
+    echo
+    echo "| particles | informed: trans (m) | informed: rot (deg) | informed: wall (s) | odometry: trans (m) | odometry: rot (deg) | odometry: wall (s) |"
+    echo "|---|---|---|---|---|---|---|"
+    for n in 4 8 15 30 60; do
+      read -r tm ts rm rs w m < <(run intel-inf-$n "$INTEL" "$INTEL_REL" -p $n --proposal informed)
+      read -r om os orm ors ow omm < <(run intel-odo-$n "$INTEL" "$INTEL_REL" -p $n --proposal odometry)
+      echo "| $n | $tm ± $ts | $rm | $w | $om ± $os | $orm | $ow |"
+    done
+    echo
+    echo "## 10 seeds, 8 particles, informed proposal, Intel"
+    echo
+    echo "| seed | trans (m) | rot (deg) | consistent (≤ 0.08 m) |"
+    echo "|---|---|---|---|"
+    ok=0
+    for s in 1 2 3 4 5 6 7 8 9 10; do
+      read -r tm ts rm rs w m < <(run intel-8-s$s "$INTEL" "$INTEL_REL" -p 8 -s $s)
+      c=$(python3 -c "print('yes' if $tm <= 0.08 else 'no')")
+      [ "$c" = yes ] && ok=$((ok + 1))
+      echo "| $s | $tm ± $ts | $rm | $c |"
+    done
+    echo
+    echo "Consistent maps: $ok / 10."
+  } >> "$DOC"
+fi
+echo "bench_slam: wrote $DOC"
+cat "$DOC"
