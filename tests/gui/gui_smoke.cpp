@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -112,6 +113,27 @@ TEST(GuiSmoke, TopologyViewAndAClickedCellShowItsLabel) {
     EXPECT_GT(room_px, 5000);
     EXPECT_GT(corr_px, 2000);
   }
+}
+
+TEST(GuiSmoke, TopologyOfALabelledFloorPlanWithTheShippedModel) {
+  const std::string model = GRIDTOPO_DATA_DIR "/models/places_model.yml";
+  if (!std::filesystem::exists(model)) GTEST_SKIP() << "no shipped model " << model;
+  guitest::TempDir tmp;
+  // lab_intel (763 x 708 cells), a cell deep inside a room of the labelled map training_intel.png.
+  const cv::Mat truth = cv::imread(GRIDTOPO_DATA_DIR "/places/labelled/training_intel.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(truth.at<unsigned char>(180, 330), 77);
+  const int rc = runGui("--model " + model + " --resolution 0.05 --run-topology --view topology --size 1300x1000"
+                        " --click-cell 330,180 --inspector-out " + (tmp / "insp.txt") + " --screenshot " +
+                            (tmp / "shot.png") + " --quit " GRIDTOPO_DATA_DIR "/places/maps/lab_intel.png",
+                        tmp / "log.txt");
+  ASSERT_EQ(rc, 0) << slurp(tmp / "log.txt");
+  const std::string insp = slurp(tmp / "insp.txt");
+  EXPECT_NE(insp.find("cell (col 330, row 180)"), std::string::npos) << insp;
+  EXPECT_NE(insp.find("label: room"), std::string::npos) << insp;
+  const cv::Mat img = cv::imread(tmp / "shot.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  EXPECT_GT(countIf(img, [](const cv::Vec3b& v) { return v[0] > v[1] + 40 && v[0] > v[2] + 60; }), 20000);
+  EXPECT_GT(countIf(img, [](const cv::Vec3b& v) { return v[1] > v[0] + 40 && v[1] > v[2] + 40; }), 5000);
 }
 
 TEST(GuiSmoke, BadFileExitsNonZeroWithFileAndLine) {

@@ -128,6 +128,13 @@ TEST(SessionFiles, SlamOptionTableEditsGoThroughTheOptionStruct) {
   EXPECT_EQ(p->type, session::OptionEntry::Type::Int);
   EXPECT_EQ(p->value, "30");
   EXPECT_EQ(p->default_value, "30");
+  // Help from the comments of config-ini/slam.ini: the comment above the key, not the section separator.
+  EXPECT_EQ(p->help, "Number of particles (>= 1).");
+  // Keys listed under one comment share it.
+  ASSERT_NE(t.find("slam", "angular_update"), nullptr);
+  EXPECT_EQ(t.find("slam", "angular_update")->help, t.find("slam", "linear_update")->help);
+  EXPECT_NE(t.find("slam", "linear_update")->help.find("travelled distance"), std::string::npos);
+  for (const auto& e : t.entries()) EXPECT_FALSE(e.help.empty()) << e.key << " has no help in config-ini/slam.ini";
   ASSERT_TRUE(t.set("slam", "particles", "12"));
   ASSERT_TRUE(t.set("slam", "proposal", "odometry"));
   s.setSlamOptions(t);

@@ -53,22 +53,30 @@ OptionTable OptionTable::fromOptions(const mrpt::config::CLoadableOptions& optio
 }
 
 void OptionTable::addHelpFromIni(const std::string& path) {
+  // Help of a key: the comment lines right above it (or, for keys listed under one comment, the help of the
+  // previous key of the block), or an inline "# ..." after its value. Separator lines ("# ----- title") and blank
+  // lines end a block.
   std::ifstream in(path);
   if (!in) return;
-  std::string line, section, pending;
+  std::string line, section, pending, block_help;
   while (std::getline(in, line)) {
     const std::string s = trim(line);
     if (s.empty()) {
-      pending.clear();
+      pending.clear(), block_help.clear();
       continue;
     }
     if (s[0] == '[') {
       section = trim(s.substr(1, s.find(']') - 1));
-      pending.clear();
+      pending.clear(), block_help.clear();
       continue;
     }
     if (s[0] == '#' || s[0] == ';') {
-      pending += (pending.empty() ? "" : " ") + trim(s.substr(1));
+      const std::string c = trim(s.substr(1));
+      if (c.find("----") != std::string::npos) {
+        pending.clear(), block_help.clear();
+      } else {
+        pending += (pending.empty() ? "" : " ") + c;
+      }
       continue;
     }
     const auto eq = s.find('=');
@@ -77,7 +85,8 @@ void OptionTable::addHelpFromIni(const std::string& path) {
     std::string help;
     const auto hash = s.find_first_of("#;", eq);
     if (hash != std::string::npos) help = trim(s.substr(hash + 1));
-    if (help.empty()) help = pending;
+    if (help.empty()) help = pending.empty() ? block_help : pending;
+    block_help = help;
     pending.clear();
     for (auto& e : entries_)
       if (e.key == key && (section.empty() || e.section == section) && e.help.empty()) e.help = help;
@@ -108,9 +117,9 @@ std::string OptionTable::toIni() const {
       section = e.section;
       o << "\n[" << section << "]\n";
     }
-    o << e.key << " = " << e.value;
-    if (!e.help.empty()) o << "  # " << e.help;
-    o << "\n";
+    // Help on its own comment line: MRPT's INI reader keeps inline comments as part of the value.
+    if (!e.help.empty()) o << "# " << e.help << "\n";
+    o << e.key << " = " << e.value << "\n";
   }
   return o.str();
 }
