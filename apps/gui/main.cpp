@@ -29,7 +29,7 @@ struct Options {
   int width = 1280, height = 860;
   int bench_frames = 0;
   int tile_cols = 0, tile_rows = 0;
-  bool particle_paths = false, click_particle = false;
+  bool particle_paths = false, click_particle = false, show_options = false;
   std::string labels, save_slam;
 };
 Options g_opt;
@@ -244,6 +244,10 @@ class GuiApp : public wxApp {
       if (!cv::imwrite(g_opt.export_view, f->canvas()->renderImage())) f->exit_code = 1;
       return true;
     });
+    if (g_opt.show_options) sc.push_back([f] {
+      f->showOptionsTab();
+      return true;
+    });
     if (!g_opt.screenshot.empty()) sc.push_back([f] {
       if (!f->screenshot(g_opt.screenshot)) {
         std::cerr << "gridtopo-gui: cannot write " << g_opt.screenshot << "\n";
@@ -288,6 +292,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<int> bench("", "bench-frames", "pan/zoom for n frames and print the frame rate", false, 0, "n", cmd);
     TCLAP::ValueArg<std::string> save_slam("", "save-slam", "after the run, save the SLAM outputs to this directory",
                                            false, "", "dir", cmd);
+    TCLAP::SwitchArg show_options("", "show-options", "show the SLAM options tab", cmd);
     TCLAP::SwitchArg paths("", "particle-paths", "show every particle's trajectory", cmd);
     TCLAP::SwitchArg click_particle("", "click-particle", "click the best particle with the mouse simulator", cmd);
     TCLAP::ValueArg<std::string> labels("", "labels", "open a labelled image (77/115/179/0) in the label painter",
@@ -323,6 +328,7 @@ int main(int argc, char** argv) {
     g_opt.bench_frames = bench.getValue();
     g_opt.bench_out = bench_out.getValue();
     g_opt.particle_paths = paths.getValue();
+    g_opt.show_options = show_options.getValue();
     g_opt.save_slam = save_slam.getValue();
     g_opt.click_particle = click_particle.getValue();
     g_opt.labels = labels.getValue();

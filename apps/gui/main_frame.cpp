@@ -75,6 +75,11 @@ MainFrame::MainFrame(const wxString& title, const wxSize& size)
 MainFrame::~MainFrame() {
   timer_.Stop();
   if (topology_future_.valid()) topology_future_.wait();
+  // The children (the canvas draws from s_) must go before the members: wxFrame's destructor would destroy
+  // them after s_, and GTK can deliver a paint event to the canvas in between.
+  canvas_->on_hover = nullptr;
+  canvas_->on_select = nullptr;
+  DestroyChildren();
 }
 
 void MainFrame::buildMenus() {
@@ -359,14 +364,16 @@ void MainFrame::buildPanels() {
 }
 
 void MainFrame::rebuildOptionGrid() {
-  grid_->Clear();
-  auto* page = grid_->AddPage("options");
+  // One page, created once; a rebuild empties it (Clear() + AddPage() on the manager corrupts its state).
+  if (grid_->GetPageCount() == 0) grid_->AddPage("options");
+  auto* page = grid_->GetPage(0);
+  page->Clear();
   const auto table = s_.slamOptionTable(documented_slam_ini);
   std::string section;
   for (const auto& e : table.entries()) {
     if (e.section != section) page->Append(new wxPropertyCategory("[" + e.section + "]")), section = e.section;
     wxPGProperty* p = nullptr;
-    const wxString name = e.section + "." + e.key;
+    const wxString name = e.section + "_" + e.key;  // no '.': wxPropertyGrid reads it as a child path
     if (e.key == "proposal") {
       wxArrayString choices;
       for (const char* c : {"informed", "mode-only", "odometry"}) choices.Add(c);
@@ -392,7 +399,7 @@ void MainFrame::rebuildOptionGrid() {
 bool MainFrame::applyOptionGrid() {
   auto table = s_.slamOptionTable(documented_slam_ini);
   for (const auto& e : table.entries()) {
-    wxPGProperty* p = grid_->GetProperty(e.section + "." + e.key);
+    wxPGProperty* p = grid_->GetProperty(e.section + "_" + e.key);
     if (!p) continue;
     std::string v = p->GetValueAsString().ToStdString();
     if (e.type == session::OptionEntry::Type::Bool) v = p->GetValue().GetBool() ? "true" : "false";
@@ -538,6 +545,11 @@ void MainFrame::startTopology() {
     });
   });
   SetStatusText("labelling places...", 4);
+}
+
+void MainFrame::showOptionsTab() {
+  notebook_->SetSelection(1);
+  if (auto* p = grid_->GetProperty("slam_particles")) grid_->SelectProperty(p);
 }
 
 std::string MainFrame::inspectorText() const { return inspector_->GetValue().ToStdString(); }

@@ -41,6 +41,7 @@ class MainFrame : public wxFrame {
   std::string inspectorText() const;
   void refreshNow();
   void rebuildOptionGrid();
+  void showOptionsTab();
 
   /// Command-line test hooks: each step is polled until it returns true.
   std::vector<std::function<bool()>> script;
