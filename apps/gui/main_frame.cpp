@@ -337,6 +337,10 @@ void MainFrame::buildPanels() {
   vs->Add(grid_, 1, wxEXPAND);
   vs->Add(bs, 0);
   opt_panel->SetSizer(vs);
+  grid_->Bind(wxEVT_PG_SELECTED, [this](wxPropertyGridEvent& e) {
+    if (wxPGProperty* p = e.GetProperty()) grid_->SetDescription(p->GetLabel(), p->GetHelpString());
+    e.Skip();
+  });
   apply->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
     if (applyOptionGrid()) SetStatusText("options applied (used by the next run: SLAM > New run)", 4);
   });
@@ -389,10 +393,10 @@ void MainFrame::rebuildOptionGrid() {
     } else {
       p = new wxStringProperty(e.key, name, e.value);
     }
-    page->Append(p);
     std::string help = e.help.empty() ? std::string("(no help: see config-ini/slam.ini)") : e.help;
     help += "  [default " + e.default_value + "]";
-    grid_->SetPropertyHelpString(p, help);
+    p->SetHelpString(help);
+    page->Append(p);
   }
 }
 
@@ -549,7 +553,11 @@ void MainFrame::startTopology() {
 
 void MainFrame::showOptionsTab() {
   notebook_->SetSelection(1);
-  if (auto* p = grid_->GetProperty("slam_particles")) grid_->SelectProperty(p);
+  if (auto* p = grid_->GetProperty("slam_particles")) {
+    grid_->SelectProperty(p, true);
+    grid_->SetDescription(p->GetLabel(), p->GetHelpString());
+    grid_->GetGrid()->EnsureVisible(p);
+  }
 }
 
 std::string MainFrame::inspectorText() const { return inspector_->GetValue().ToStdString(); }
