@@ -9,6 +9,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/poses/CPosePDFParticles.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <filesystem>
@@ -210,7 +211,7 @@ TEST(Rawlog, ObservationOdometryIsInterpolatedAtTheScanTime) {
   EXPECT_EQ(c.scans[2].odometry.x, 3.0);
 }
 
-TEST(Rawlog, ThrunModelIsDeterministic) {
+TEST(Rawlog, ThrunModelIsStoredAndDeterministic) {
   const auto in = gridtopo::test::syntheticRecords({6});
   RawlogWriteOptions opt;
   opt.motion_model = MotionModel::Thrun;
@@ -218,6 +219,12 @@ TEST(Rawlog, ThrunModelIsDeterministic) {
   writeRawlog(a.string(), in, opt);
   writeRawlog(b.string(), in, opt);
   EXPECT_EQ(readBytes(a), readBytes(b));
+  mrpt::obs::CRawlog raw;
+  ASSERT_TRUE(raw.loadFromRawLogFile(a.string()));
+  const auto move = raw.getAsAction(2)->getBestMovementEstimation();
+  ASSERT_TRUE(move);
+  EXPECT_EQ(move->motionModelConfiguration.modelSelection, mrpt::obs::CActionRobotMovement2D::mmThrun);
+  EXPECT_TRUE(IS_CLASS(*move->poseChange, mrpt::poses::CPosePDFParticles));
   const auto c = readRawlog(a.string());
   ASSERT_EQ(c.scans.size(), 6u);
   const mrpt::poses::CPose2D p0(in[0].odometry.x, in[0].odometry.y, in[0].odometry.phi);

@@ -9,7 +9,6 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
-#include <mrpt/random/RandomGenerators.h>
 #include <mrpt/serialization/CArchive.h>
 #include <zlib.h>
 
@@ -82,7 +81,6 @@ RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanReco
   mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motion;
   motion.modelSelection = options.motion_model == MotionModel::Thrun ? mrpt::obs::CActionRobotMovement2D::mmThrun
                                                                      : mrpt::obs::CActionRobotMovement2D::mmGaussian;
-  if (options.motion_model == MotionModel::Thrun) mrpt::random::getRandomGenerator().randomize(options.thrun_seed);
 
   // Convert everything first: a record MRPT cannot hold fails before any file is created.
   std::vector<mrpt::obs::CObservation2DRangeScan::Ptr> scans;

@@ -28,7 +28,7 @@ const char* rawlogLayoutName(RawlogLayout layout);
 
 enum class MotionModel {
   Gaussian,  ///< CActionRobotMovement2D::mmGaussian (closed form, small files; default)
-  Thrun,     ///< CActionRobotMovement2D::mmThrun (particles drawn with a fixed seed: deterministic)
+  Thrun,     ///< CActionRobotMovement2D::mmThrun (particles; MRPT draws them when it loads the action)
 };
 
 struct RawlogWriteOptions {
@@ -38,7 +38,6 @@ struct RawlogWriteOptions {
   int compression_level = -1;
   ScanConversionOptions scan;
   std::string odometry_label = "ODOMETRY";  ///< sensorLabel of CObservationOdometry (observation-only layout)
-  unsigned thrun_seed = 1234;               ///< seed of MRPT's random generator for the Thrun model
   std::function<void(std::size_t scans_done)> progress;  ///< called after each scan written (optional)
 };
 

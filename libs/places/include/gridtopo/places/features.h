@@ -1,0 +1,47 @@
+#pragma once
+// The simple geometric features of Mozos et al. (ICRA 2005; RAS 55(5) 2007) computed from one simulated
+// 360-degree scan, all in metres / radians / dimensionless, so independent of the map's resolution.
+// Notation: b_k beam k (m), k = 0..M-1 cyclic; d_k = |b_k - b_{k+1}|; P = polygon through the beam end points
+// p_k = b_k (cos th_k, sin th_k); A, L its area and perimeter; mu_pq its central moments.
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gridtopo/places/scan_simulation.h"
+
+namespace gridtopo::places {
+
+struct FeatureOptions {
+  double beam_cap = 5.0;      ///< m, cap for the "capped" beam-difference features
+  double gap_small = 0.5;     ///< m, d_k above this counts as a small gap
+  double gap_large = 1.5;     ///< m, d_k above this counts as a large gap
+  /// m; > 0 appends a context copy of every feature: its mean over the lattice samples within this distance
+  /// (square window), named "<feature>_ctx". 0 = off.
+  double context_radius = 0.0;
+};
+
+/// One line per feature: "name: formula". The order is the column order of extractFeatures().
+const std::vector<std::string>& featureDescriptions();
+/// Just the names (text before the colon).
+std::vector<std::string> featureNames();
+std::size_t numFeatures();
+/// Names of the columns a model with these options uses (base features, then the context copies if enabled).
+std::vector<std::string> featureNames(const FeatureOptions& options);
+
+/// Raw moments (up to order 3) of a simple polygon, equal to cv::moments of the same contour.
+cv::Moments polygonMoments(const std::vector<cv::Point2d>& polygon);
+
+/// Features of one scan of M beams given in metres.
+void extractFeatures(const float* beams_m, int M, const FeatureOptions& options, float* out);
+
+/// Features of every simulated scan: CV_32F, samples x numFeatures(). Parallel over samples.
+cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads = 2);
+
+/// Appends the context features (see FeatureOptions::context_radius) to `features` (rows = lattice samples):
+/// for each column, the mean over the samples whose blocks lie within the window (masked box filter).
+cv::Mat addContextFeatures(const Lattice& lattice, const cv::Mat& features, double context_radius, double resolution);
+
+}  // namespace gridtopo::places

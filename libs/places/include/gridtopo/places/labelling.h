@@ -1,0 +1,40 @@
+#pragma once
+// The place-labelling pipeline of Mozos et al. on one occupancy image: simulate scans on the lattice, extract
+// features, classify with the decision list, relax, and spread the lattice labels to every free cell.
+#include <functional>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "gridtopo/places/model.h"
+#include "gridtopo/places/occupancy.h"
+#include "gridtopo/places/relaxation.h"
+
+namespace gridtopo::places {
+
+constexpr unsigned char kNoLabel = 255;  ///< value of non-free cells in label images
+
+struct LabellingResult {
+  Lattice lattice;
+  cv::Mat valid;                   ///< CV_8U lattice grid: 1 where a block has a sample
+  cv::Mat probs_initial, probs;    ///< CV_32FC3 lattice grids: classifier output, after relaxation
+  RelaxationResult relaxation;
+  cv::Mat labels_initial, labels;  ///< CV_8U per map cell: 0 room, 1 corridor, 2 doorway, kNoLabel not free
+  double seconds_scans = 0, seconds_features = 0, seconds_classify = 0, seconds_relax = 0;
+};
+
+/// Throws gridtopo::InputError (naming `source`) if the map has no free cell.
+LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
+                            int threads = 2, const std::string& source = "<map>",
+                            const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
+
+/// Classifies precomputed features (as from computeSamples) and relaxes: used by training/evaluation.
+LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,
+                                  const PlacesModel& model, const RelaxationOptions& relax, int threads = 2);
+
+/// Per-cell labels (argmax of the block's distribution) for every free cell; kNoLabel elsewhere.
+cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs);
+
+/// Label indices -> training-map codes (room 77, corridor 115, doorway 179, 0 elsewhere).
+cv::Mat labelsToCodes(const cv::Mat& labels);
+
+}  // namespace gridtopo::places

@@ -1,0 +1,31 @@
+#pragma once
+// The input of place labelling: a plain occupancy image (free / occupied / unknown) with its resolution.
+// Kept independent of any map file format; apps convert what they read into this.
+#include <opencv2/core.hpp>
+
+#include <string>
+
+namespace gridtopo::places {
+
+/// Cell states stored in OccupancyImage::cells.
+enum CellState : unsigned char { kOccupied = 0, kUnknown = 128, kFree = 255 };
+
+struct OccupancyImage {
+  cv::Mat cells;            ///< CV_8UC1, one of CellState; row 0 is the top of the map image
+  double resolution = 0.05; ///< metres per cell
+
+  int rows() const { return cells.rows; }
+  int cols() const { return cells.cols; }
+  bool isFree(int r, int c) const { return cells.at<unsigned char>(r, c) == kFree; }
+};
+
+/// Classifies a grey image (CV_8U, 1, 3 or 4 channels; colour is converted to grey): grey >= free_threshold is
+/// free, grey <= occupied_threshold is occupied, anything in between unknown. Throws gridtopo::InputError
+/// (naming `source`) for an empty image, a non-8-bit image, or a non-positive / non-finite resolution.
+OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const std::string& source = "<image>",
+                                 int free_threshold = 250, int occupied_threshold = 50);
+
+/// Number of free cells.
+std::size_t countFree(const OccupancyImage& occ);
+
+}  // namespace gridtopo::places

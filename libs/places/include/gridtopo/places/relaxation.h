@@ -1,0 +1,45 @@
+#pragma once
+// Probabilistic relaxation labelling (Rosenfeld, Hummel, Zucker 1976), as used by Mozos et al. to smooth the
+// per-cell classification:  q_i(l) = sum_j d_ij sum_l' r(l, l') P_j(l'),
+//                           P_i(l) <- P_i(l) (1 + q_i(l)) / sum_m P_i(m) (1 + q_i(m)),
+// on the 8-neighbourhood of the classification lattice, d_ij = 1 / |N(i)|.
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <array>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::places {
+
+using Compatibility = std::array<std::array<double, kNumLabels>, kNumLabels>;
+
+struct RelaxationOptions : public mrpt::config::CLoadableOptions {
+  int max_iterations = 30;   ///< upper bound on iterations (0 = no relaxation)
+  double tolerance = 1e-3;   ///< stop when no probability changes by more than this in an iteration
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void dumpToTextStream(std::ostream& out) const override;
+  void validate(const std::string& where = "RelaxationOptions") const;
+};
+
+/// Counts of label pairs over 8-neighbour pairs of a label grid (CV_32S, -1 = no label).
+void accumulateNeighbourCounts(const cv::Mat& labels, std::array<std::array<double, kNumLabels>, kNumLabels>& counts);
+
+/// r(l, l') = normalised pointwise mutual information of neighbouring labels:
+/// ln(P(l,l') / (P(l) P(l'))) / -ln P(l,l'), in [-1, 1] (-1 for pairs never seen together).
+Compatibility compatibilityFromCounts(const std::array<std::array<double, kNumLabels>, kNumLabels>& counts);
+
+struct RelaxationResult {
+  int iterations = 0;
+  double last_change = 0;  ///< max |delta P| of the last iteration
+  bool converged = false;
+};
+
+/// Relaxes `probs` (CV_32FC3 lattice grid, one distribution per cell) in place over cells where
+/// `valid` (CV_8U) is non-zero. Deterministic (Jacobi updates); `threads` only changes speed.
+RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
+                             const RelaxationOptions& options, int threads = 2);
+
+}  // namespace gridtopo::places

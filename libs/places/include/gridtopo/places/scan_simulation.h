@@ -1,0 +1,61 @@
+#pragma once
+// Step 1 of Mozos et al. (ICRA 2005): a simulated 360-degree range scan at every cell to classify.
+// Whole-map technique: for every beam direction the grid is partitioned into parallel digital lines, and one
+// pass along each line (forwards and backwards) gives the free run length of every cell in that direction and
+// its opposite at once -- O(cells) per pair of directions instead of one ray cast per cell and beam.
+// Cells are classified on a lattice of square blocks (side `lattice_spacing` metres); every free cell of a
+// block takes the result of its block's sample cell.
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <cstdint>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "gridtopo/places/occupancy.h"
+
+namespace gridtopo::places {
+
+struct ScanSimulationOptions : public mrpt::config::CLoadableOptions {
+  int num_beams = 360;          ///< beams per scan (even, >= 8); 360 = 1 degree apart
+  double max_range = 30.0;      ///< metres; longer beams are capped here (<= 65 m)
+  double lattice_spacing = 0.1; ///< metres between classified cells (block side); <= resolution = every cell
+  int threads = 2;              ///< worker threads (results do not depend on it)
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void dumpToTextStream(std::ostream& out) const override;
+  /// Throws gridtopo::InputError (naming `where`) for out-of-range values.
+  void validate(const std::string& where = "ScanSimulationOptions") const;
+};
+
+/// The classification lattice: blocks of stride x stride cells, one sample cell (free) per block that has any
+/// free cell (the free cell nearest the block centre).
+struct Lattice {
+  int stride = 1;
+  cv::Mat block_sample;             ///< CV_32S, blocks grid (ceil(rows/stride) x ceil(cols/stride)); -1 = no free cell
+  std::vector<cv::Point> samples;   ///< pixel (x = col, y = row) of each sample
+  std::vector<cv::Point> blocks;    ///< block coordinates of each sample
+
+  /// Sample index whose result a pixel takes, or -1 (pixel not free is not checked here).
+  int sampleOfPixel(int row, int col) const { return block_sample.at<int>(row / stride, col / stride); }
+};
+
+Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing);
+
+/// Simulated scans of the lattice samples: ranges in millimetres (uint16), beam k at angle 2*pi*k/M
+/// counter-clockwise from the image's +x (column) axis, with image up (decreasing row) as +y.
+struct SimulatedScans {
+  int num_beams = 0;
+  std::vector<std::uint16_t> ranges_mm;  ///< samples x num_beams
+  std::size_t size() const { return num_beams ? ranges_mm.size() / static_cast<std::size_t>(num_beams) : 0; }
+  const std::uint16_t* scan(std::size_t i) const { return ranges_mm.data() + i * static_cast<std::size_t>(num_beams); }
+};
+
+/// Simulates the scans of `samples` (pixels that must be free). Beams stop at the first non-free cell or at
+/// the image border. `progress(done, total)` is called after each pair of directions (from the calling
+/// thread only).
+SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Point>& samples,
+                             const ScanSimulationOptions& options,
+                             const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace gridtopo::places

@@ -1,0 +1,68 @@
+#pragma once
+// Learning a PlacesModel from labelled maps (pixel codes room 77, corridor 115, doorway 179, other 0):
+// samples on the classification lattice, class-balanced AdaBoost for the six binary problems, the decision-list
+// order with the best validation score, and relaxation compatibilities from neighbouring labels.
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gridtopo/places/model.h"
+#include "gridtopo/places/occupancy.h"
+
+namespace gridtopo::places {
+
+struct LabelledMap {
+  std::string name;
+  OccupancyImage occ;
+  cv::Mat codes;  ///< CV_8U label codes, same size as occ
+};
+
+/// Reads a labelled map and the occupancy image it was drawn on (same size; labels on non-free cells are
+/// ignored). Throws gridtopo::InputError for unreadable files or mismatched sizes.
+LabelledMap loadLabelledMap(const std::string& name, const std::string& labels_path, const std::string& map_path,
+                            double resolution);
+
+struct LabelledMapFiles {
+  std::string name, labels, map, benchmark_map, groundtruth;  ///< benchmark map + ground truth of the same building
+};
+/// The 9 labelled maps of datasets/places (see datasets/README.md), with their benchmark maps.
+std::vector<LabelledMapFiles> standardLabelledMaps(const std::string& places_dir);
+
+/// Lattice samples of one map with features and (if `codes` is given) labels (-1 = unlabelled).
+struct MapSamples {
+  Lattice lattice;
+  cv::Mat features;         ///< CV_32F samples x features
+  std::vector<int> labels;  ///< per sample
+  cv::Mat block_labels;     ///< CV_32S lattice grid of labels (-1 = none)
+};
+MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const ScanSimulationOptions& scan,
+                          const FeatureOptions& features,
+                          const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+struct TrainingOptions : public mrpt::config::CLoadableOptions {
+  BoostOptions boost;
+  std::string order = "auto";  ///< "auto" (validation) or e.g. "corridor,room,doorway"
+  /// Prior correction: 0 = classifiers stay class-balanced, 1 = shifted fully to the maps' class frequencies.
+  double prior_weight = 0.5;
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void dumpToTextStream(std::ostream& out) const override;
+};
+
+struct OrderScore {
+  std::array<int, kNumLabels> order{};
+  double accuracy = 0, balanced_accuracy = 0;
+};
+
+/// Trains on all samples of `maps`. With order "auto", maps with index % 3 == 2 are held out for choosing the
+/// order (balanced accuracy = mean per-class recall), then the chosen classifiers are retrained on all maps.
+PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSimulationOptions& scan,
+                       const FeatureOptions& features, const TrainingOptions& options,
+                       std::vector<OrderScore>* validation = nullptr,
+                       const std::function<void(const std::string&)>& log = {});
+
+std::string orderName(const std::array<int, kNumLabels>& order);
+
+}  // namespace gridtopo::places

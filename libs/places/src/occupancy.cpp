@@ -1,0 +1,38 @@
+#include "gridtopo/places/occupancy.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+
+#include "gridtopo/core/error.h"
+
+namespace gridtopo::places {
+
+OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const std::string& source,
+                                 int free_threshold, int occupied_threshold) {
+  if (image.empty()) throw InputError(source, "empty image (unreadable or unknown format?)");
+  if (image.depth() != CV_8U) throw InputError(source, "image is not 8-bit per channel");
+  if (!std::isfinite(resolution) || resolution <= 0)
+    throw InputError(source, 0, "resolution", "must be a positive number of metres per cell");
+  cv::Mat grey;
+  if (image.channels() == 1) grey = image;
+  else if (image.channels() == 3) cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  else if (image.channels() == 4) cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
+  else throw InputError(source, "unsupported number of channels");
+  OccupancyImage occ;
+  occ.resolution = resolution;
+  occ.cells.create(grey.size(), CV_8UC1);
+  for (int r = 0; r < grey.rows; ++r) {
+    const unsigned char* g = grey.ptr<unsigned char>(r);
+    unsigned char* o = occ.cells.ptr<unsigned char>(r);
+    for (int c = 0; c < grey.cols; ++c)
+      o[c] = g[c] >= free_threshold ? kFree : (g[c] <= occupied_threshold ? kOccupied : kUnknown);
+  }
+  return occ;
+}
+
+std::size_t countFree(const OccupancyImage& occ) {
+  return occ.cells.empty() ? 0 : static_cast<std::size_t>(cv::countNonZero(occ.cells == kFree));
+}
+
+}  // namespace gridtopo::places

@@ -1,0 +1,122 @@
+#include "gridtopo/places/relaxation.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "gridtopo/core/error.h"
+
+namespace gridtopo::places {
+
+void RelaxationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
+  max_iterations = s.read_int(sec, "max_iterations", max_iterations);
+  tolerance = s.read_double(sec, "tolerance", tolerance);
+  validate("[" + sec + "]");
+}
+
+void RelaxationOptions::dumpToTextStream(std::ostream& out) const {
+  out << "max_iterations = " << max_iterations << "\n"
+      << "tolerance      = " << tolerance << "\n";
+}
+
+void RelaxationOptions::validate(const std::string& where) const {
+  if (max_iterations < 0 || max_iterations > 10000)
+    throw InputError(where, 0, "max_iterations", "must be in [0, 10000]");
+  if (!std::isfinite(tolerance) || tolerance <= 0) throw InputError(where, 0, "tolerance", "must be > 0");
+}
+
+void accumulateNeighbourCounts(const cv::Mat& labels, std::array<std::array<double, kNumLabels>, kNumLabels>& counts) {
+  CV_Assert(labels.type() == CV_32S);
+  for (int r = 0; r < labels.rows; ++r)
+    for (int c = 0; c < labels.cols; ++c) {
+      const int a = labels.at<int>(r, c);
+      if (a < 0) continue;
+      for (int dr = -1; dr <= 1; ++dr)
+        for (int dc = -1; dc <= 1; ++dc) {
+          if (!dr && !dc) continue;
+          const int rr = r + dr, cc = c + dc;
+          if (rr < 0 || cc < 0 || rr >= labels.rows || cc >= labels.cols) continue;
+          const int b = labels.at<int>(rr, cc);
+          if (b >= 0) counts[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] += 1;
+        }
+    }
+}
+
+Compatibility compatibilityFromCounts(const std::array<std::array<double, kNumLabels>, kNumLabels>& counts) {
+  double total = 0;
+  std::array<double, kNumLabels> marg{};
+  for (int a = 0; a < kNumLabels; ++a)
+    for (int b = 0; b < kNumLabels; ++b) total += counts[a][b], marg[a] += counts[a][b];
+  Compatibility r{};
+  for (int a = 0; a < kNumLabels; ++a)
+    for (int b = 0; b < kNumLabels; ++b) {
+      if (total <= 0 || marg[a] <= 0 || marg[b] <= 0) { r[a][b] = 0; continue; }
+      const double pab = 0.5 * (counts[a][b] + counts[b][a]) / total;
+      if (pab <= 0) { r[a][b] = -1; continue; }
+      const double pa = marg[a] / total, pb = marg[b] / total;
+      const double npmi = pab >= 1.0 ? 1.0 : std::log(pab / (pa * pb)) / -std::log(pab);
+      r[a][b] = std::clamp(npmi, -1.0, 1.0);
+    }
+  return r;
+}
+
+RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
+                             const RelaxationOptions& options, int threads) {
+  options.validate();
+  CV_Assert(probs.type() == CV_32FC3 && valid.type() == CV_8U && valid.size() == probs.size());
+  RelaxationResult res;
+  cv::Mat next = probs.clone();
+  const int rows = probs.rows, cols = probs.cols;
+  std::vector<double> change(static_cast<std::size_t>(std::max(1, threads)), 0.0);
+  for (int it = 0; it < options.max_iterations; ++it) {
+    auto work = [&](int t, int r0, int r1) {
+      double mx = 0;
+      for (int y = r0; y < r1; ++y)
+        for (int x = 0; x < cols; ++x) {
+          if (!valid.at<unsigned char>(y, x)) continue;
+          double s[kNumLabels] = {0, 0, 0};
+          int n = 0;
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              if (!dy && !dx) continue;
+              const int yy = y + dy, xx = x + dx;
+              if (yy < 0 || xx < 0 || yy >= rows || xx >= cols || !valid.at<unsigned char>(yy, xx)) continue;
+              const cv::Vec3f& pj = probs.at<cv::Vec3f>(yy, xx);
+              for (int l = 0; l < kNumLabels; ++l) s[l] += pj[l];
+              ++n;
+            }
+          const cv::Vec3f& pi = probs.at<cv::Vec3f>(y, x);
+          cv::Vec3f& out = next.at<cv::Vec3f>(y, x);
+          if (n == 0) { out = pi; continue; }
+          double u[kNumLabels], z = 0;
+          for (int l = 0; l < kNumLabels; ++l) {
+            double q = 0;
+            for (int m = 0; m < kNumLabels; ++m) q += r[l][m] * s[m] / n;
+            u[l] = pi[l] * (1.0 + q);
+            z += u[l];
+          }
+          for (int l = 0; l < kNumLabels; ++l) {
+            const float v = z > 0 ? static_cast<float>(u[l] / z) : pi[l];
+            mx = std::max(mx, static_cast<double>(std::abs(v - pi[l])));
+            out[l] = v;
+          }
+        }
+      change[static_cast<std::size_t>(t)] = mx;
+    };
+    const int nt = std::max(1, threads);
+    std::vector<std::thread> pool;
+    for (int t = 1; t < nt; ++t) pool.emplace_back(work, t, rows * t / nt, rows * (t + 1) / nt);
+    work(0, 0, rows / nt);
+    for (auto& t : pool) t.join();
+    std::swap(probs, next);
+    res.iterations = it + 1;
+    res.last_change = *std::max_element(change.begin(), change.end());
+    if (res.last_change < options.tolerance) { res.converged = true; break; }
+  }
+  if (options.max_iterations == 0) res.converged = true;
+  return res;
+}
+
+}  // namespace gridtopo::places

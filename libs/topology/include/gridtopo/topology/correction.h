@@ -1,0 +1,40 @@
+#pragma once
+// Heuristic region correction after Mozos et al. Rules, applied in this order, each pass until nothing changes:
+//  R0 small free patches: a connected patch of labelled cells (any labels, 8-connected) smaller than
+//     min_place_area is not a place (isolated specks and one-cell free lines of scanned maps); it loses its label.
+//  R1 small regions: a room / corridor / doorway region smaller than its minimum area takes the label of the
+//     neighbouring region it shares the longest border with (isolated small regions are kept).
+//  R2 doorways separate: a doorway region that touches fewer than two non-doorway regions (so joins nothing)
+//     takes the label of its longest-border neighbour.
+//  R3 oversized doorways: a doorway region larger than max_doorway_area is not a door; it takes the label of its
+//     longest-border neighbour.
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <opencv2/core.hpp>
+
+namespace gridtopo::topology {
+
+struct CorrectionOptions : public mrpt::config::CLoadableOptions {
+  bool enabled = true;
+  double min_place_area = 0.5;      ///< m^2 (R0)
+  double min_room_area = 4.0;       ///< m^2 (R1)
+  double min_corridor_area = 4.0;   ///< m^2 (R1)
+  double min_doorway_area = 0.1;    ///< m^2 (R1)
+  bool doorways_must_separate = true;  ///< R2
+  double max_doorway_area = 6.0;    ///< m^2 (R3); 0 = off
+  int max_passes = 20;
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void dumpToTextStream(std::ostream& out) const override;
+  void validate(const std::string& where = "CorrectionOptions") const;
+};
+
+struct CorrectionStats {
+  int patches_removed = 0, small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, passes = 0;
+};
+
+/// Corrected copy of `labels` (CV_8U, 0..2 place labels, other values = no label).
+cv::Mat correctRegions(const cv::Mat& labels, double resolution, const CorrectionOptions& options,
+                       CorrectionStats* stats = nullptr);
+
+}  // namespace gridtopo::topology

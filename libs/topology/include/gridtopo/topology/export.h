@@ -1,0 +1,31 @@
+#pragma once
+// Exports of a topological map: GraphML, JSON, DOT, a PNG overlay, and the pixel-aligned label and
+// room-segmentation images.
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "gridtopo/places/occupancy.h"
+#include "gridtopo/topology/graph.h"
+#include "gridtopo/topology/regions.h"
+
+namespace gridtopo::topology {
+
+std::string toGraphML(const TopologicalGraph& g);
+std::string toJson(const TopologicalGraph& g);
+std::string toDot(const TopologicalGraph& g);
+
+/// Parses back what toJson() wrote (through OpenCV's JSON reader). Throws gridtopo::InputError.
+TopologicalGraph graphFromJson(const std::string& path);
+
+/// Colour overlay: the map in grey, place labels coloured (room blue, corridor green, doorway red), region
+/// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image.
+cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
+                      const TopologicalGraph& g, int scale = 2);
+
+/// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells.
+cv::Mat segmentationImage16(const cv::Mat& segmentation);
+
+/// A colour rendering of a segmentation (random but fixed colour per id) for viewing.
+cv::Mat colourSegmentation(const cv::Mat& segmentation);
+
+}  // namespace gridtopo::topology

@@ -1,0 +1,43 @@
+#pragma once
+// The topological graph of Mozos et al.: one node per region, one edge per pair of regions that share a border
+// (rooms and corridors are joined through doorway nodes where the labels have them).
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "gridtopo/topology/regions.h"
+
+namespace gridtopo::topology {
+
+struct GraphNode {
+  int id = 0;             ///< region id (value in the region image)
+  int label = 0;          ///< 0 room, 1 corridor, 2 doorway
+  int cells = 0;
+  double area_m2 = 0;
+  cv::Point2d centroid_px;  ///< pixels (x = column, y = row, row 0 at the top)
+  cv::Point2d centroid_m;   ///< metres, x right, y up, origin at the image's lower-left corner
+  cv::Rect bbox_px;
+  cv::Point anchor_px;      ///< a cell of the region: the centroid if it lies inside, else the nearest region cell
+  bool centroid_inside = true;  ///< false for non-convex regions (a corridor loop) whose centroid lies outside
+};
+
+struct GraphEdge {
+  int a = 0, b = 0;       ///< node ids, a < b
+  int border_cells = 0;   ///< 8-neighbour cell pairs along the shared border
+  bool via_doorway = false;  ///< one end is a doorway node
+  cv::Point2d contact_px;    ///< mean position of the border cells (pixels): where the two regions meet
+};
+
+struct TopologicalGraph {
+  double resolution = 0.05;
+  int rows = 0, cols = 0;
+  std::vector<GraphNode> nodes;
+  std::vector<GraphEdge> edges;
+  const GraphNode* node(int id) const;
+  /// Number of connected components (union-find over the edges).
+  int connectedComponents() const;
+};
+
+TopologicalGraph buildGraph(const RegionMap& regions, double resolution);
+
+}  // namespace gridtopo::topology

@@ -1,0 +1,42 @@
+#pragma once
+// From place labels to the topological map: region correction, regions, graph, room segmentation.
+// Options of the whole `gridtopo-topology` run, loadable from an INI file (config-ini/topology.ini).
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/topology/correction.h"
+#include "gridtopo/topology/graph.h"
+#include "gridtopo/topology/regions.h"
+
+namespace gridtopo::topology {
+
+struct TopologyOptions : public mrpt::config::CLoadableOptions {
+  places::RelaxationOptions relaxation;  ///< section [relaxation]
+  CorrectionOptions correction;          ///< section [correction]
+  int threads = 2;                       ///< section [topology]
+  double resolution = 0.05;              ///< [topology] m per pixel for plain images without a YAML file
+  int free_threshold = 250;              ///< [topology] grey >= this is free in plain images
+  int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
+  std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
+
+  /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void dumpToTextStream(std::ostream& out) const override;
+};
+
+struct TopologyResult {
+  cv::Mat labels;     ///< CV_8U after correction: 0..2, places::kNoLabel for non-free cells
+  CorrectionStats correction;
+  RegionMap regions;
+  TopologicalGraph graph;
+  cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
+};
+
+/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
+TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
+                             const std::string& segmentation = "regions");
+
+}  // namespace gridtopo::topology

@@ -1,0 +1,201 @@
+#include "gridtopo/topology/export.h"
+
+#include <iomanip>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::topology {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+}  // namespace
+
+std::string toGraphML(const TopologicalGraph& g) {
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+    << "<graphml xmlns=\"http://graphml.graphdrawing.org/xmlns\">\n";
+  const char* keys[][3] = {{"label", "node", "string"},   {"area_m2", "node", "double"},
+                           {"cells", "node", "int"},      {"x_m", "node", "double"},
+                           {"y_m", "node", "double"},     {"col", "node", "double"},
+                           {"row", "node", "double"},     {"bbox_x", "node", "int"},
+                           {"bbox_y", "node", "int"},     {"bbox_w", "node", "int"},
+                           {"bbox_h", "node", "int"},     {"border_cells", "edge", "int"},
+                           {"via_doorway", "edge", "boolean"}};
+  for (const auto& k : keys)
+    o << "  <key id=\"" << k[0] << "\" for=\"" << k[1] << "\" attr.name=\"" << k[0] << "\" attr.type=\"" << k[2]
+      << "\"/>\n";
+  o << "  <graph id=\"topology\" edgedefault=\"undirected\">\n";
+  for (const auto& n : g.nodes) {
+    o << "    <node id=\"n" << n.id << "\">"
+      << "<data key=\"label\">" << places::labelName(n.label) << "</data>"
+      << "<data key=\"area_m2\">" << num(n.area_m2) << "</data>"
+      << "<data key=\"cells\">" << n.cells << "</data>"
+      << "<data key=\"x_m\">" << num(n.centroid_m.x) << "</data>"
+      << "<data key=\"y_m\">" << num(n.centroid_m.y) << "</data>"
+      << "<data key=\"col\">" << num(n.centroid_px.x) << "</data>"
+      << "<data key=\"row\">" << num(n.centroid_px.y) << "</data>"
+      << "<data key=\"bbox_x\">" << n.bbox_px.x << "</data>"
+      << "<data key=\"bbox_y\">" << n.bbox_px.y << "</data>"
+      << "<data key=\"bbox_w\">" << n.bbox_px.width << "</data>"
+      << "<data key=\"bbox_h\">" << n.bbox_px.height << "</data></node>\n";
+  }
+  for (const auto& e : g.edges)
+    o << "    <edge source=\"n" << e.a << "\" target=\"n" << e.b << "\">"
+      << "<data key=\"border_cells\">" << e.border_cells << "</data>"
+      << "<data key=\"via_doorway\">" << (e.via_doorway ? "true" : "false") << "</data></edge>\n";
+  o << "  </graph>\n</graphml>\n";
+  return o.str();
+}
+
+std::string toJson(const TopologicalGraph& g) {
+  std::ostringstream o;
+  o << "{\n  \"format\": \"gridtopo-topology\",\n  \"resolution\": " << num(g.resolution) << ",\n  \"rows\": " << g.rows
+    << ",\n  \"cols\": " << g.cols << ",\n  \"nodes\": [";
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const auto& n = g.nodes[i];
+    o << (i ? "," : "") << "\n    {\"id\": " << n.id << ", \"label\": \"" << places::labelName(n.label)
+      << "\", \"area_m2\": " << num(n.area_m2) << ", \"cells\": " << n.cells << ", \"centroid_m\": [" << num(n.centroid_m.x)
+      << ", " << num(n.centroid_m.y) << "], \"centroid_px\": [" << num(n.centroid_px.x) << ", " << num(n.centroid_px.y)
+      << "], \"bbox_px\": [" << n.bbox_px.x << ", " << n.bbox_px.y << ", " << n.bbox_px.width << ", "
+      << n.bbox_px.height << "]}";
+  }
+  o << "\n  ],\n  \"edges\": [";
+  for (std::size_t i = 0; i < g.edges.size(); ++i) {
+    const auto& e = g.edges[i];
+    o << (i ? "," : "") << "\n    {\"a\": " << e.a << ", \"b\": " << e.b << ", \"border_cells\": " << e.border_cells
+      << ", \"via_doorway\": " << (e.via_doorway ? 1 : 0) << ", \"contact_px\": [" << num(e.contact_px.x) << ", "
+      << num(e.contact_px.y) << "]}";
+  }
+  o << "\n  ]\n}\n";
+  return o.str();
+}
+
+std::string toDot(const TopologicalGraph& g) {
+  static const char* colour[] = {"lightblue", "palegreen", "salmon"};
+  std::ostringstream o;
+  o << "graph topology {\n  node [style=filled];\n";
+  for (const auto& n : g.nodes)
+    o << "  n" << n.id << " [label=\"" << n.id << " " << places::labelName(n.label) << "\\n" << std::fixed
+      << std::setprecision(1) << n.area_m2 << " m2\", fillcolor=" << colour[n.label] << ", pos=\""
+      << std::setprecision(2) << n.centroid_m.x << "," << n.centroid_m.y << "!\"];\n";
+  for (const auto& e : g.edges)
+    o << "  n" << e.a << " -- n" << e.b << (e.via_doorway ? "" : " [style=dashed]") << ";\n";
+  o << "}\n";
+  return o.str();
+}
+
+TopologicalGraph graphFromJson(const std::string& path) {
+  cv::FileStorage fs;
+  try {
+    fs.open(path, cv::FileStorage::READ | cv::FileStorage::FORMAT_JSON);
+  } catch (const cv::Exception&) {
+    throw InputError(path, "not valid JSON");
+  }
+  if (!fs.isOpened() || static_cast<std::string>(fs["format"]) != "gridtopo-topology")
+    throw InputError(path, 0, "format", "not a gridtopo topology JSON file");
+  TopologicalGraph g;
+  g.resolution = static_cast<double>(fs["resolution"]);
+  g.rows = static_cast<int>(fs["rows"]);
+  g.cols = static_cast<int>(fs["cols"]);
+  for (const auto& n : fs["nodes"]) {
+    GraphNode gn;
+    gn.id = static_cast<int>(n["id"]);
+    const std::string l = static_cast<std::string>(n["label"]);
+    gn.label = l == "room" ? 0 : l == "corridor" ? 1 : l == "doorway" ? 2 : -1;
+    if (gn.label < 0) throw InputError(path, 0, "label", "unknown label '" + l + "'");
+    gn.area_m2 = static_cast<double>(n["area_m2"]);
+    gn.cells = static_cast<int>(n["cells"]);
+    gn.centroid_m = cv::Point2d(static_cast<double>(n["centroid_m"][0]), static_cast<double>(n["centroid_m"][1]));
+    gn.centroid_px = cv::Point2d(static_cast<double>(n["centroid_px"][0]), static_cast<double>(n["centroid_px"][1]));
+    gn.bbox_px = cv::Rect(static_cast<int>(n["bbox_px"][0]), static_cast<int>(n["bbox_px"][1]),
+                          static_cast<int>(n["bbox_px"][2]), static_cast<int>(n["bbox_px"][3]));
+    g.nodes.push_back(gn);
+  }
+  for (const auto& e : fs["edges"]) {
+    GraphEdge ge;
+    ge.a = static_cast<int>(e["a"]);
+    ge.b = static_cast<int>(e["b"]);
+    ge.border_cells = static_cast<int>(e["border_cells"]);
+    ge.via_doorway = static_cast<int>(e["via_doorway"]) != 0;
+    ge.contact_px = cv::Point2d(static_cast<double>(e["contact_px"][0]), static_cast<double>(e["contact_px"][1]));
+    g.edges.push_back(ge);
+  }
+  return g;
+}
+
+cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& rm,
+                      const TopologicalGraph& g, int scale) {
+  scale = std::max(1, scale);
+  static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
+  cv::Mat img(occ.cells.size(), CV_8UC3);
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x) {
+      const unsigned char s = occ.cells.at<unsigned char>(y, x);
+      cv::Vec3b c = s == places::kFree ? cv::Vec3b(255, 255, 255) : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
+                                                                                          : cv::Vec3b(180, 180, 180);
+      const unsigned char l = labels.at<unsigned char>(y, x);
+      if (l < places::kNumLabels) c = tint[l];
+      // Region borders in dark grey.
+      const int id = rm.ids.at<int>(y, x);
+      if (id > 0 && ((x + 1 < img.cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
+                     (y + 1 < img.rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
+        c = cv::Vec3b(60, 60, 60);
+      img.at<cv::Vec3b>(y, x) = c;
+    }
+  cv::Mat big;
+  cv::resize(img, big, cv::Size(), scale, scale, cv::INTER_NEAREST);
+  auto px = [&](cv::Point2d p) { return cv::Point(static_cast<int>((p.x + 0.5) * scale), static_cast<int>((p.y + 0.5) * scale)); };
+  auto pt = [&](const GraphNode& n) { return px(cv::Point2d(n.anchor_px)); };
+  // Each edge runs node -> contact point -> node. The half at a node whose centroid lies outside its region (a
+  // corridor loop) is left out: a straight line would cross walls; the coloured region shows the connection.
+  for (const auto& e : g.edges) {
+    const GraphNode *a = g.node(e.a), *b = g.node(e.b);
+    if (!a || !b) continue;
+    const cv::Point c = px(e.contact_px);
+    for (const GraphNode* n : {a, b})
+      if (n->centroid_inside) cv::line(big, pt(*n), c, cv::Scalar(30, 30, 30), std::max(1, scale), cv::LINE_AA);
+    cv::circle(big, c, scale, cv::Scalar(30, 30, 30), cv::FILLED, cv::LINE_AA);
+  }
+  static const cv::Scalar node_colour[] = {{160, 60, 0}, {0, 120, 0}, {0, 0, 200}};
+  for (const auto& n : g.nodes) {
+    const int rad = n.label == 2 ? 2 * scale : 4 * scale;
+    cv::circle(big, pt(n), rad, node_colour[n.label], cv::FILLED, cv::LINE_AA);
+    cv::circle(big, pt(n), rad, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    if (n.label != 2)
+      cv::putText(big, std::to_string(n.id), pt(n) + cv::Point(rad + 1, -rad), cv::FONT_HERSHEY_SIMPLEX,
+                  0.3 * scale, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+  return big;
+}
+
+cv::Mat segmentationImage16(const cv::Mat& seg) {
+  double mx = 0;
+  cv::minMaxLoc(seg, nullptr, &mx);
+  if (mx > 65535) throw std::runtime_error("segmentation has more than 65535 segments");
+  cv::Mat out;
+  seg.convertTo(out, CV_16U);
+  return out;
+}
+
+cv::Mat colourSegmentation(const cv::Mat& seg) {
+  cv::Mat out(seg.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int y = 0; y < seg.rows; ++y)
+    for (int x = 0; x < seg.cols; ++x) {
+      const unsigned id = static_cast<unsigned>(seg.at<int>(y, x));
+      if (!id) continue;
+      const unsigned h = id * 2654435761u;
+      out.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<unsigned char>(64 + (h & 0x7f)),
+                                          static_cast<unsigned char>(64 + ((h >> 8) & 0xbf)),
+                                          static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
+    }
+  return out;
+}
+
+}  // namespace gridtopo::topology

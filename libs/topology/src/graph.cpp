@@ -1,0 +1,93 @@
+#include "gridtopo/topology/graph.h"
+
+#include <functional>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::topology {
+
+const GraphNode* TopologicalGraph::node(int id) const {
+  for (const auto& n : nodes)
+    if (n.id == id) return &n;
+  return nullptr;
+}
+
+int TopologicalGraph::connectedComponents() const {
+  std::vector<int> parent(nodes.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  auto index = [&](int id) {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (nodes[i].id == id) return static_cast<int>(i);
+    return -1;
+  };
+  int comps = static_cast<int>(nodes.size());
+  for (const auto& e : edges) {
+    const int a = find(index(e.a)), b = find(index(e.b));
+    if (a != b) parent[a] = b, --comps;
+  }
+  return comps;
+}
+
+TopologicalGraph buildGraph(const RegionMap& rm, double resolution) {
+  TopologicalGraph g;
+  g.resolution = resolution;
+  g.rows = rm.ids.rows, g.cols = rm.ids.cols;
+  for (const Region& r : rm.regions) {
+    GraphNode n;
+    n.id = r.id, n.label = r.label, n.cells = r.cells, n.area_m2 = r.area_m2;
+    n.centroid_px = r.centroid;
+    n.centroid_m = cv::Point2d((r.centroid.x + 0.5) * resolution, (g.rows - r.centroid.y - 0.5) * resolution);
+    n.bbox_px = r.bbox;
+    g.nodes.push_back(n);
+  }
+  // Anchors: centroid cell if inside the region, else the region cell nearest to the centroid.
+  std::vector<double> best(rm.regions.size(), 1e300);
+  for (auto& n : g.nodes) {
+    const cv::Point c(static_cast<int>(std::lround(n.centroid_px.x)), static_cast<int>(std::lround(n.centroid_px.y)));
+    n.centroid_inside = c.inside(cv::Rect(0, 0, rm.ids.cols, rm.ids.rows)) && rm.ids.at<int>(c) == n.id;
+    if (n.centroid_inside) n.anchor_px = c, best[static_cast<std::size_t>(n.id - 1)] = -1;
+  }
+  for (int y = 0; y < rm.ids.rows; ++y)
+    for (int x = 0; x < rm.ids.cols; ++x) {
+      const int id = rm.ids.at<int>(y, x);
+      if (id <= 0) continue;
+      GraphNode& n = g.nodes[static_cast<std::size_t>(id - 1)];
+      const double d = (x - n.centroid_px.x) * (x - n.centroid_px.x) + (y - n.centroid_px.y) * (y - n.centroid_px.y);
+      if (d < best[static_cast<std::size_t>(id - 1)]) best[static_cast<std::size_t>(id - 1)] = d, n.anchor_px = cv::Point(x, y);
+    }
+  // Edges with their contact points (same half-neighbourhood scan as regionAdjacency).
+  struct Acc {
+    int n = 0;
+    double sx = 0, sy = 0;
+  };
+  std::map<std::pair<int, int>, Acc> acc;
+  static const int d[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};
+  for (int y = 0; y < rm.ids.rows; ++y)
+    for (int x = 0; x < rm.ids.cols; ++x) {
+      const int a = rm.ids.at<int>(y, x);
+      if (a <= 0) continue;
+      for (const auto& o : d) {
+        const int yy = y + o[0], xx = x + o[1];
+        if (yy < 0 || xx < 0 || yy >= rm.ids.rows || xx >= rm.ids.cols) continue;
+        const int b = rm.ids.at<int>(yy, xx);
+        if (b <= 0 || b == a) continue;
+        Acc& e = acc[{std::min(a, b), std::max(a, b)}];
+        e.n++, e.sx += 0.5 * (x + xx), e.sy += 0.5 * (y + yy);
+      }
+    }
+  const int door = static_cast<int>(places::PlaceLabel::Doorway);
+  for (const auto& [k, v] : acc) {
+    GraphEdge e;
+    e.a = k.first, e.b = k.second, e.border_cells = v.n;
+    e.contact_px = cv::Point2d(v.sx / v.n, v.sy / v.n);
+    e.via_doorway = rm.region(e.a).label == door || rm.region(e.b).label == door;
+    g.edges.push_back(e);
+  }
+  return g;
+}
+
+}  // namespace gridtopo::topology

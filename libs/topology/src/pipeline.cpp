@@ -1,0 +1,47 @@
+#include "gridtopo/topology/pipeline.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cmath>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/topology/segmentation.h"
+
+namespace gridtopo::topology {
+
+void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
+  threads = s.read_int(sec, "threads", threads);
+  resolution = s.read_double(sec, "resolution", resolution);
+  free_threshold = s.read_int(sec, "free_threshold", free_threshold);
+  overlay_scale = s.read_int(sec, "overlay_scale", overlay_scale);
+  segmentation = s.read_string(sec, "segmentation", segmentation);
+  const std::string where = "[" + sec + "]";
+  if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
+  if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
+  if (free_threshold < 1 || free_threshold > 255) throw InputError(where, 0, "free_threshold", "must be in [1, 255]");
+  if (segmentation != "regions" && segmentation != "doorways")
+    throw InputError(where, 0, "segmentation", "must be regions or doorways");
+  if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
+  relaxation.loadFromConfigFile(s, "relaxation");
+  correction.loadFromConfigFile(s, "correction");
+}
+
+void TopologyOptions::dumpToTextStream(std::ostream& out) const {
+  out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
+      << "\nfree_threshold = " << free_threshold << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\n[relaxation]\n";
+  relaxation.dumpToTextStream(out);
+  out << "[correction]\n";
+  correction.dumpToTextStream(out);
+}
+
+TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
+                             const std::string& segmentation) {
+  TopologyResult r;
+  r.labels = correctRegions(labels, resolution, correction, &r.correction);
+  r.regions = extractRegions(r.labels, resolution);
+  r.graph = buildGraph(r.regions, resolution);
+  r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions) : roomSegmentation(r.regions);
+  return r;
+}
+
+}  // namespace gridtopo::topology

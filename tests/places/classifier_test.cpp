@@ -1,0 +1,143 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/places/boost_classifier.h"
+#include "gridtopo/places/model.h"
+#include "gridtopo/places/training.h"
+
+using namespace gridtopo::places;
+namespace fs = std::filesystem;
+
+namespace {
+// Two noisy features; the class depends on feature 1 only (f1 > 0.6), feature 0 is noise.
+void synthetic(int n, cv::Mat& X, std::vector<int>& y, int seed) {
+  cv::RNG rng(static_cast<uint64_t>(seed));
+  X.create(n, 2, CV_32F);
+  y.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    X.at<float>(i, 0) = rng.uniform(0.f, 1.f);
+    X.at<float>(i, 1) = rng.uniform(0.f, 1.f);
+    y[static_cast<std::size_t>(i)] = X.at<float>(i, 1) > 0.6f;
+  }
+}
+}  // namespace
+
+TEST(BoostedClassifier, LearnsAThresholdOnTheRightFeature) {
+  cv::Mat X;
+  std::vector<int> y;
+  synthetic(2000, X, y, 1);
+  BoostOptions o;
+  o.weak_count = 20;
+  const auto clf = trainBoostedClassifier(X, y, o);
+  ASSERT_EQ(clf.stumps.size(), 20u);
+  EXPECT_EQ(clf.stumps[0].feature, 1);
+  EXPECT_NEAR(clf.stumps[0].threshold, 0.6, 0.02);
+  cv::Mat Xt;
+  std::vector<int> yt;
+  synthetic(1000, Xt, yt, 2);
+  int correct = 0;
+  for (int i = 0; i < Xt.rows; ++i) correct += (clf.probability(Xt.ptr<float>(i)) > 0.5) == (yt[static_cast<std::size_t>(i)] == 1);
+  EXPECT_GT(correct, 980);
+  const float hi[2] = {0.5f, 0.95f}, lo[2] = {0.5f, 0.1f};
+  EXPECT_GT(clf.probability(hi), 0.9);
+  EXPECT_LT(clf.probability(lo), 0.1);
+}
+
+TEST(BoostedClassifier, NeedsBothClasses) {
+  cv::Mat X(10, 2, CV_32F, cv::Scalar(0));
+  EXPECT_THROW(trainBoostedClassifier(X, std::vector<int>(10, 1), BoostOptions()), std::invalid_argument);
+}
+
+TEST(PlacesModel, DecisionListProbabilitiesSumToOne) {
+  PlacesModel m;
+  m.order = {2, 0, 1};
+  m.first.stumps = {{0, 0.5f, -1.f, 1.f}};
+  m.second.stumps = {{1, 0.5f, -0.5f, 0.5f}};
+  const float f[2] = {0.9f, 0.1f};
+  float p[3];
+  m.probabilities(f, p);
+  EXPECT_NEAR(p[0] + p[1] + p[2], 1.0, 1e-6);
+  EXPECT_NEAR(p[2], 1 / (1 + std::exp(-2.0)), 1e-6);  // doorway first, H = 1
+  EXPECT_GT(p[1], p[0]);                               // second: corridor (H = -0.5 for "room")
+}
+
+TEST(PlacesModel, SaveLoadRoundTripAndMismatch) {
+  PlacesModel m;
+  m.feature_names = featureNames(m.features);
+  m.order = {1, 0, 2};
+  m.first.stumps = {{3, 1.25f, -0.3f, 0.7f}, {5, 2.f, 0.1f, -0.1f}};
+  m.first.bias = -0.4;
+  m.second.stumps = {{7, 0.5f, -1.f, 1.f}};
+  m.compatibility = {{{0.5, -0.2, 0.1}, {-0.2, 0.6, 0.0}, {0.1, 0.0, 0.3}}};
+  const fs::path dir = fs::temp_directory_path() / "gridtopo_places_model_test";
+  fs::create_directories(dir);
+  const std::string path = (dir / "model.yml").string();
+  m.save(path);
+  const PlacesModel r = PlacesModel::load(path);
+  EXPECT_EQ(r.order, m.order);
+  ASSERT_EQ(r.first.stumps.size(), 2u);
+  EXPECT_EQ(r.first.stumps[1].feature, 5);
+  EXPECT_FLOAT_EQ(r.first.stumps[0].threshold, 1.25f);
+  EXPECT_DOUBLE_EQ(r.first.bias, -0.4);
+  EXPECT_DOUBLE_EQ(r.compatibility[0][1], -0.2);
+  // A model trained with other features is refused with a clear error.
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const auto pos = text.find("min_chord");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 9, "old_chord");
+  const std::string bad = (dir / "bad.yml").string();
+  std::ofstream(bad) << text;
+  try {
+    PlacesModel::load(bad);
+    FAIL() << "mismatched model accepted";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_EQ(e.field(), "feature_names");
+  }
+  std::ofstream(dir / "not_a_model.yml") << "%YAML:1.0\nfoo: 1\n";
+  EXPECT_THROW(PlacesModel::load((dir / "not_a_model.yml").string()), gridtopo::InputError);
+  EXPECT_THROW(PlacesModel::load((dir / "missing.yml").string()), gridtopo::InputError);
+}
+
+TEST(Training, SyntheticRoomsAndCorridors) {
+  // Corridors (long 2 m wide) and rooms (5 x 5 m) as separate labelled maps; the trained model tells them apart.
+  auto make = [](bool corridor) {
+    OccupancyImage occ;
+    occ.resolution = 0.1;
+    occ.cells = cv::Mat(corridor ? 30 : 60, corridor ? 160 : 60, CV_8U, cv::Scalar(kOccupied));
+    const cv::Rect r = corridor ? cv::Rect(5, 5, 150, 20) : cv::Rect(5, 5, 50, 50);
+    occ.cells(r).setTo(kFree);
+    cv::Mat codes(occ.cells.size(), CV_8U, cv::Scalar(0));
+    codes(r).setTo(corridor ? 115 : 77);
+    return std::make_pair(occ, codes);
+  };
+  ScanSimulationOptions scan;
+  scan.num_beams = 120;
+  scan.lattice_spacing = 0.2;
+  TrainingOptions to;
+  to.order = "corridor,room,doorway";
+  to.boost.weak_count = 10;
+  std::vector<MapSamples> s;
+  for (bool c : {true, false, true, false}) {
+    const auto [occ, codes] = make(c);
+    s.push_back(computeSamples(occ, &codes, scan, FeatureOptions()));
+  }
+  // A doorway class is needed for the second classifier: label the corridor ends as doorway in one map.
+  for (std::size_t i = 0; i < s[2].labels.size(); ++i)
+    if (s[2].lattice.samples[i].x < 12) s[2].labels[i] = 2;
+  const PlacesModel m = trainModel({&s[0], &s[1], &s[2], &s[3]}, scan, FeatureOptions(), to);
+  int correct = 0, total = 0;
+  for (int k : {1, 3})
+    for (int i = 0; i < s[static_cast<std::size_t>(k)].features.rows; ++i) {
+      float p[3];
+      m.probabilities(s[static_cast<std::size_t>(k)].features.ptr<float>(i), p);
+      correct += (std::max_element(p, p + 3) - p) == s[static_cast<std::size_t>(k)].labels[static_cast<std::size_t>(i)];
+      ++total;
+    }
+  EXPECT_GT(correct, 0.9 * total);
+  EXPECT_GT(m.compatibility[0][0], 0.0);
+  EXPECT_LT(m.compatibility[0][1], 0.0);  // rooms and corridors never neighbours here
+}

@@ -1,0 +1,106 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "gridtopo/places/features.h"
+#include "synthetic.h"
+
+using namespace gridtopo::places;
+
+namespace {
+std::vector<float> featuresAt(const OccupancyImage& occ, cv::Point p) {
+  ScanSimulationOptions o;
+  const auto scans = simulateScans(occ, {p}, o);
+  const cv::Mat f = extractFeatures(scans, FeatureOptions(), 1);
+  return std::vector<float>(f.ptr<float>(0), f.ptr<float>(0) + f.cols);
+}
+int idx(const std::string& name) {
+  const auto n = featureNames();
+  return static_cast<int>(std::find(n.begin(), n.end(), name) - n.begin());
+}
+}  // namespace
+
+TEST(Features, EveryFeatureDocumented) {
+  EXPECT_EQ(featureNames().size(), numFeatures());
+  for (const auto& d : featureDescriptions()) EXPECT_NE(d.find(": "), std::string::npos) << d;
+}
+
+TEST(Features, SquareRoom) {
+  const auto occ = test::rectangleRoom(4.0, 4.0, 0.05);
+  const auto f = featuresAt(occ, {45, 45});
+  EXPECT_NEAR(f[idx("area")], 16.0, 0.6);
+  EXPECT_NEAR(f[idx("perimeter")], 16.0, 0.6);
+  EXPECT_NEAR(f[idx("compactness")], 16.0, 0.5);
+  EXPECT_NEAR(f[idx("min_chord")], 4.0, 0.1);
+  EXPECT_NEAR(f[idx("max_chord")], 4.0 * std::sqrt(2.0), 0.15);
+  EXPECT_NEAR(f[idx("ellipse_ratio")], 1.0, 0.03);
+  // A uniform square of side 4 has second moment 4^2/12 per axis: ellipse semi-axis 2 sqrt(16/12) = 2.31 m.
+  EXPECT_NEAR(f[idx("ellipse_major")], 2.309, 0.08);
+  EXPECT_NEAR(f[idx("min_beam")], 2.0, 0.06);
+  EXPECT_NEAR(f[idx("centroid_offset")], 0.0, 0.1);
+  EXPECT_NEAR(f[idx("hu1")], 1.0 / 6.0, 0.01);  // Hu1 of a square
+  EXPECT_EQ(f[idx("gaps_large")], 0.0f);
+}
+
+TEST(Features, LongCorridor) {
+  const auto occ = test::rectangleRoom(20.0, 2.0, 0.05);
+  const auto f = featuresAt(occ, {205, 25});
+  EXPECT_NEAR(f[idx("min_chord")], 2.0, 0.1);
+  EXPECT_NEAR(f[idx("perp_chord")], 20.0, 0.3);
+  EXPECT_NEAR(f[idx("area")], 40.0, 1.5);
+  EXPECT_LT(f[idx("ellipse_ratio")], 0.15);
+  EXPECT_NEAR(f[idx("chord_centering")], 0.5, 0.05);
+  EXPECT_GT(f[idx("kurtosis")], 0.0);  // a few very long beams along the corridor
+}
+
+TEST(Features, IndependentOfResolution) {
+  const auto a = featuresAt(test::rectangleRoom(6.0, 3.0, 0.05), {5 + 40, 5 + 20});
+  const auto b = featuresAt(test::rectangleRoom(6.0, 3.0, 0.025), {5 + 80, 5 + 40});
+  for (const char* n : {"area", "perimeter", "mean_beam", "min_chord", "max_chord", "ellipse_major", "ellipse_minor"})
+    EXPECT_NEAR(a[idx(n)], b[idx(n)], 0.05 * std::max(1.0f, std::abs(a[idx(n)]))) << n;
+}
+
+TEST(Features, PolygonMomentsEqualOpenCV) {
+  std::vector<cv::Point2d> p;
+  std::vector<cv::Point2f> pf;
+  cv::RNG rng(5);
+  for (int k = 0; k < 90; ++k) {
+    const double r = rng.uniform(0.5, 6.0), th = 2 * M_PI * k / 90;
+    p.emplace_back(r * std::cos(th) + 1.0, r * std::sin(th) - 2.0);
+    pf.emplace_back(static_cast<float>(p.back().x), static_cast<float>(p.back().y));
+  }
+  const cv::Moments a = polygonMoments(p), b = cv::moments(pf);
+  for (auto [x, y] : {std::pair{a.m00, b.m00}, {a.m10, b.m10}, {a.m01, b.m01}, {a.m20, b.m20}, {a.m11, b.m11},
+                      {a.m02, b.m02}, {a.m30, b.m30}, {a.m21, b.m21}, {a.m12, b.m12}, {a.m03, b.m03}})
+    EXPECT_NEAR(x, y, 1e-3 * std::max(1.0, std::abs(y)));
+}
+
+TEST(Features, ContextFeaturesAreWindowMeans) {
+  const auto occ = test::rectangleRoom(2.0, 1.0, 0.1);  // 20 x 10 free cells, one block per cell
+  const auto lat = buildLattice(occ, 0.1);
+  ASSERT_EQ(lat.samples.size(), 200u);
+  cv::Mat f(static_cast<int>(lat.samples.size()), 2, CV_32F, cv::Scalar(3.f));
+  for (std::size_t i = 0; i < lat.samples.size(); ++i)
+    f.at<float>(static_cast<int>(i), 1) = lat.samples[i] == cv::Point(12, 10) ? 9.f : 0.f;
+  const cv::Mat c = addContextFeatures(lat, f, 0.1, 0.1);  // 3 x 3 window
+  ASSERT_EQ(c.cols, 4);
+  for (std::size_t i = 0; i < lat.samples.size(); ++i) {
+    EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 2), 3.f);  // constant stays constant, also at the walls
+    const cv::Point p = lat.samples[i];
+    const bool near = std::abs(p.x - 12) <= 1 && std::abs(p.y - 10) <= 1;
+    if (!near) {
+      EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 3), 0.f);
+    }
+  }
+  // At (11, 9) the window holds 9 samples (interior), one of them 9: mean 1. At the corner (5, 5): 4 samples.
+  for (std::size_t i = 0; i < lat.samples.size(); ++i)
+    if (lat.samples[i] == cv::Point(11, 9)) {
+      EXPECT_FLOAT_EQ(c.at<float>(static_cast<int>(i), 3), 1.f);
+    }
+  FeatureOptions o;
+  o.context_radius = 1.0;
+  EXPECT_EQ(featureNames(o).size(), 2 * numFeatures());
+  EXPECT_EQ(featureNames(o).back(), featureNames().back() + "_ctx");
+}

@@ -1,0 +1,71 @@
+#include <gtest/gtest.h>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/places/relaxation.h"
+
+using namespace gridtopo::places;
+
+TEST(Relaxation, CompatibilitiesFromBlockLabels) {
+  cv::Mat lab(20, 20, CV_32S, cv::Scalar(0));
+  lab(cv::Rect(0, 10, 20, 10)).setTo(1);
+  lab.at<int>(10, 5) = 2;
+  std::array<std::array<double, 3>, 3> counts{};
+  accumulateNeighbourCounts(lab, counts);
+  EXPECT_EQ(counts[0][1], counts[1][0]);
+  const auto r = compatibilityFromCounts(counts);
+  EXPECT_GT(r[0][0], 0.3);
+  EXPECT_GT(r[1][1], 0.3);
+  EXPECT_LT(r[0][1], 0.0);
+  EXPECT_GT(r[2][0], -1.0);
+  for (const auto& row : r)
+    for (double v : row) EXPECT_TRUE(v >= -1 && v <= 1);
+}
+
+TEST(Relaxation, ConvergesAndRemovesANoisyCell) {
+  // 10 x 10 lattice, all "room" with P = 0.7, except one cell the classifier thought "corridor".
+  cv::Mat p(10, 10, CV_32FC3, cv::Scalar(0.7, 0.2, 0.1));
+  p.at<cv::Vec3f>(5, 5) = cv::Vec3f(0.3f, 0.6f, 0.1f);
+  cv::Mat valid(10, 10, CV_8U, cv::Scalar(1));
+  Compatibility r{{{0.5, -0.5, 0.0}, {-0.5, 0.5, 0.0}, {0.0, 0.0, 0.5}}};
+  RelaxationOptions o;
+  o.max_iterations = 200;
+  o.tolerance = 1e-4;
+  const auto res = relaxLabels(p, valid, r, o, 2);
+  EXPECT_TRUE(res.converged);
+  EXPECT_LT(res.iterations, 200);
+  EXPECT_GT(p.at<cv::Vec3f>(5, 5)[0], 0.9f);
+  EXPECT_GT(p.at<cv::Vec3f>(0, 0)[0], 0.9f);
+  const cv::Vec3f v = p.at<cv::Vec3f>(3, 7);
+  EXPECT_NEAR(v[0] + v[1] + v[2], 1.0, 1e-5);
+}
+
+TEST(Relaxation, ThreadsDoNotChangeResults) {
+  cv::Mat p(17, 13, CV_32FC3);
+  cv::RNG rng(3);
+  for (int y = 0; y < p.rows; ++y)
+    for (int x = 0; x < p.cols; ++x) {
+      cv::Vec3f v(rng.uniform(0.1f, 1.f), rng.uniform(0.1f, 1.f), rng.uniform(0.1f, 1.f));
+      p.at<cv::Vec3f>(y, x) = v / (v[0] + v[1] + v[2]);
+    }
+  cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
+  Compatibility r{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+  cv::Mat a = p.clone(), b = p.clone();
+  relaxLabels(a, valid, r, RelaxationOptions(), 1);
+  relaxLabels(b, valid, r, RelaxationOptions(), 3);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+}
+
+TEST(Labelling, BadInputs) {
+  EXPECT_THROW(occupancyFromGrey(cv::Mat(), 0.05, "x.png"), gridtopo::InputError);
+  EXPECT_THROW(occupancyFromGrey(cv::Mat(5, 5, CV_8U, cv::Scalar(255)), -1, "x.png"), gridtopo::InputError);
+  EXPECT_THROW(occupancyFromGrey(cv::Mat(5, 5, CV_16U, cv::Scalar(255)), 0.05, "x.png"), gridtopo::InputError);
+  const auto occ = occupancyFromGrey(cv::Mat(20, 20, CV_8U, cv::Scalar(0)), 0.05, "black.png");
+  PlacesModel m;
+  try {
+    labelPlaces(occ, m, RelaxationOptions(), 1, "black.png");
+    FAIL() << "map without free space accepted";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no free cell"), std::string::npos);
+  }
+}

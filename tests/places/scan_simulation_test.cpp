@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/places/scan_simulation.h"
+#include "synthetic.h"
+
+using namespace gridtopo::places;
+
+namespace {
+// Reference: march along the ray in small steps until a non-free cell (slow, obviously right).
+double castRay(const OccupancyImage& occ, cv::Point p, double th) {
+  const double step = occ.resolution / 20;
+  for (double d = 0;; d += step) {
+    const double x = p.x + 0.5 + d / occ.resolution * std::cos(th), y = p.y + 0.5 - d / occ.resolution * std::sin(th);
+    const int c = static_cast<int>(std::floor(x)), r = static_cast<int>(std::floor(y));
+    if (r < 0 || c < 0 || r >= occ.rows() || c >= occ.cols() || !occ.isFree(r, c)) return d;
+  }
+}
+}  // namespace
+
+TEST(ScanSimulation, SquareRoomAxisAndDiagonalBeams) {
+  const auto occ = test::rectangleRoom(4.0, 4.0, 0.05);  // 80 x 80 free cells
+  ScanSimulationOptions o;
+  const std::vector<cv::Point> s{{45, 45}};  // cell (40,40) of the room: centre at 2.025 m from the left wall
+  const auto scans = simulateScans(occ, s, o);
+  ASSERT_EQ(scans.size(), 1u);
+  const auto* b = scans.scan(0);
+  EXPECT_NEAR(b[0] * 1e-3, 4.0 - 2.025, 0.03);   // +x
+  EXPECT_NEAR(b[180] * 1e-3, 2.025, 0.03);       // -x
+  EXPECT_NEAR(b[90] * 1e-3, 2.025, 0.03);        // up (decreasing row)
+  EXPECT_NEAR(b[270] * 1e-3, 4.0 - 2.025, 0.03); // down
+  EXPECT_NEAR(b[45] * 1e-3, std::sqrt(2.0) * (4.0 - 2.025), 0.08);
+}
+
+TEST(ScanSimulation, MatchesRayCastingEverywhere) {
+  // An L-shaped room with a pillar, at random cells and every 7th beam.
+  auto occ = test::rectangleRoom(6.0, 4.0, 0.05);
+  occ.cells(cv::Rect(60, 5, 65, 40)).setTo(kOccupied);
+  occ.cells(cv::Rect(30, 50, 6, 6)).setTo(kOccupied);
+  ScanSimulationOptions o;
+  std::vector<cv::Point> s;
+  cv::RNG rng(7);
+  while (s.size() < 40) {
+    cv::Point p(rng.uniform(0, occ.cols()), rng.uniform(0, occ.rows()));
+    if (occ.isFree(p.y, p.x)) s.push_back(p);
+  }
+  const auto scans = simulateScans(occ, s, o);
+  int close = 0, total = 0;
+  double sum = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int k = 0; k < 360; k += 7) {
+      const double ref = castRay(occ, s[i], k * M_PI / 180);
+      const double err = std::abs(scans.scan(i)[k] * 1e-3 - ref);
+      close += err < 0.1;
+      sum += err;
+      ++total;
+    }
+  // A digital line may graze past a wall corner that the exact ray clips (or the reverse): rare, large errors.
+  EXPECT_GT(close, 0.97 * total);
+  EXPECT_LT(sum / total, 0.05);
+}
+
+TEST(ScanSimulation, ThreadsDoNotChangeResults) {
+  auto occ = test::rectangleRoom(5.0, 3.0, 0.05);
+  occ.cells(cv::Rect(40, 20, 10, 30)).setTo(kOccupied);
+  const auto lat = buildLattice(occ, 0.1);
+  ScanSimulationOptions o1, o2;
+  o1.threads = 1, o2.threads = 3;
+  EXPECT_EQ(simulateScans(occ, lat.samples, o1).ranges_mm, simulateScans(occ, lat.samples, o2).ranges_mm);
+}
+
+TEST(ScanSimulation, LatticeCoversEveryFreeCell) {
+  const auto occ = test::rectangleRoom(2.0, 1.0, 0.05);
+  const auto lat = buildLattice(occ, 0.1);
+  EXPECT_EQ(lat.stride, 2);
+  for (int r = 0; r < occ.rows(); ++r)
+    for (int c = 0; c < occ.cols(); ++c)
+      if (occ.isFree(r, c)) {
+        const int i = lat.sampleOfPixel(r, c);
+        ASSERT_GE(i, 0);
+        EXPECT_LE(std::abs(lat.samples[static_cast<std::size_t>(i)].x - c), 1);
+      }
+  EXPECT_EQ(lat.samples.size(), 21u * 11u);  // the room starts at an odd cell: 21 x 11 blocks
+}
+
+TEST(ScanSimulation, RejectsBadOptions) {
+  ScanSimulationOptions o;
+  o.num_beams = 7;
+  EXPECT_THROW(o.validate(), gridtopo::InputError);
+  o = ScanSimulationOptions();
+  o.max_range = -1;
+  EXPECT_THROW(o.validate(), gridtopo::InputError);
+}

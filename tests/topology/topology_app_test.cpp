@@ -1,0 +1,87 @@
+// End-to-end: gridtopo-topology on lab_intel with the shipped model, and its errors on bad input.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/topology/export.h"
+
+namespace fs = std::filesystem;
+using namespace gridtopo;
+
+namespace {
+const std::string kBin = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-topology";
+const std::string kData = GRIDTOPO_DATA_DIR;
+const std::string kModel = kData + "/models/places_model.yml";
+
+int run(const std::string& args, const fs::path& err) {
+  return std::system((kBin + " " + args + " -q 2> " + err.string() + " > /dev/null").c_str());
+}
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+fs::path fresh(const std::string& n) {
+  const fs::path d = fs::temp_directory_path() / ("gridtopo_topology_app_" + n);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+}  // namespace
+
+TEST(TopologyApp, LabIntelEndToEnd) {
+  const fs::path d = fresh("intel");
+  const std::string map = kData + "/places/maps/lab_intel.png";
+  ASSERT_EQ(run(map + " -m " + kModel + " -o " + (d / "out").string(), d / "err"), 0) << slurp(d / "err");
+  for (const char* f : {"topology.graphml", "topology.json", "topology.dot", "overlay.png", "labels.png",
+                        "segmentation.png", "segmentation_colour.png", "topology_posegraph.graph", "options.ini"})
+    EXPECT_TRUE(fs::exists(d / "out" / f)) << f;
+  const cv::Mat in = cv::imread(map, cv::IMREAD_UNCHANGED);
+  const cv::Mat labels = cv::imread((d / "out" / "labels.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat seg16 = cv::imread((d / "out" / "segmentation.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(labels.size(), in.size());
+  ASSERT_EQ(seg16.size(), in.size());
+  EXPECT_EQ(labels.type(), CV_8U);
+  EXPECT_EQ(seg16.type(), CV_16U);
+  // The graph is one connected piece with rooms, a corridor and doorways.
+  const auto g = topology::graphFromJson((d / "out" / "topology.json").string());
+  int n[3] = {0, 0, 0};
+  for (const auto& v : g.nodes) n[v.label]++;
+  EXPECT_GE(n[0], 15);
+  EXPECT_GE(n[1], 1);
+  EXPECT_GE(n[2], 10);
+  // Segmentation against the benchmark ground truth (the shipped model saw this building: a regression bound).
+  cv::Mat seg;
+  seg16.convertTo(seg, CV_32S);
+  const cv::Mat gt = topology::groundTruthRooms(
+      cv::imread(kData + "/places/groundtruth/lab_intel_gt_segmentation.png", cv::IMREAD_UNCHANGED));
+  const auto s = topology::scoreSegmentation(seg, gt);
+  EXPECT_GT(s.recall, 0.85);
+  EXPECT_GT(s.precision, 0.90);
+}
+
+TEST(TopologyApp, BadInputsGiveClearErrors) {
+  const fs::path d = fresh("bad");
+  cv::imwrite((d / "black.png").string(), cv::Mat(50, 50, CV_8U, cv::Scalar(0)));
+  EXPECT_NE(run((d / "black.png").string() + " -m " + kModel + " -o " + (d / "o1").string(), d / "err"), 0);
+  EXPECT_NE(slurp(d / "err").find("no free cell"), std::string::npos) << slurp(d / "err");
+  EXPECT_FALSE(fs::exists(d / "o1" / "topology.json"));
+
+  std::ofstream(d / "map.txt") << "not a map\n";
+  EXPECT_NE(run((d / "map.txt").string() + " -m " + kModel + " -o " + (d / "o2").string(), d / "err"), 0);
+  EXPECT_NE(slurp(d / "err").find("map.txt"), std::string::npos) << slurp(d / "err");
+
+  std::string model = slurp(kModel);
+  model.replace(model.find("min_chord"), 9, "old_chord");
+  std::ofstream(d / "old_model.yml") << model;
+  EXPECT_NE(run(kData + "/places/maps/Fr52_original.png -m " + (d / "old_model.yml").string() + " -o " +
+                    (d / "o3").string(), d / "err"), 0);
+  EXPECT_NE(slurp(d / "err").find("feature_names"), std::string::npos) << slurp(d / "err");
+
+  EXPECT_NE(run(kData + "/places/maps/Fr52_original.png -m " + (d / "nope.yml").string() + " -o " +
+                    (d / "o4").string(), d / "err"), 0);
+  EXPECT_NE(slurp(d / "err").find("not found"), std::string::npos) << slurp(d / "err");
+}

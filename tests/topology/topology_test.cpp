@@ -1,0 +1,198 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <set>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/topology/export.h"
+#include "gridtopo/topology/mrpt_graph.h"
+#include "gridtopo/topology/pipeline.h"
+#include "gridtopo/topology/segmentation.h"
+
+using namespace gridtopo;
+using namespace gridtopo::topology;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr unsigned char R = 0, C = 1, D = 2, N = places::kNoLabel;
+// A floor plan at 0.05 m: a corridor 20 x 2 m, three 4 x 4 m rooms above it, each joined by a 1 x 0.4 m door.
+cv::Mat floorPlan() {
+  cv::Mat l(140, 420, CV_8U, cv::Scalar(N));
+  l(cv::Rect(10, 100, 400, 40)).setTo(C);
+  for (int i = 0; i < 3; ++i) {
+    l(cv::Rect(20 + 130 * i, 10, 80, 80)).setTo(R);
+    l(cv::Rect(50 + 130 * i, 90, 20, 10)).setTo(D);
+  }
+  return l;
+}
+}  // namespace
+
+TEST(Regions, FloorPlanRegionsAndGraph) {
+  const cv::Mat l = floorPlan();
+  const RegionMap rm = extractRegions(l, 0.05);
+  ASSERT_EQ(rm.regions.size(), 7u);
+  int rooms = 0, doors = 0;
+  for (const auto& r : rm.regions) {
+    rooms += r.label == R, doors += r.label == D;
+    if (r.label == R) {
+      EXPECT_NEAR(r.area_m2, 16.0, 1e-9);
+    }
+  }
+  EXPECT_EQ(rooms, 3);
+  EXPECT_EQ(doors, 3);
+  const TopologicalGraph g = buildGraph(rm, 0.05);
+  ASSERT_EQ(g.edges.size(), 6u);  // room - door - corridor, three times; rooms never touch the corridor
+  for (const auto& e : g.edges) EXPECT_TRUE(e.via_doorway);
+  EXPECT_EQ(g.connectedComponents(), 1);
+  const GraphNode* room = nullptr;
+  for (const auto& n : g.nodes)
+    if (n.label == R && n.bbox_px.x == 20) room = &n;
+  ASSERT_NE(room, nullptr);
+  EXPECT_NEAR(room->centroid_px.x, 59.5, 1e-9);
+  EXPECT_NEAR(room->centroid_m.x, 3.0, 1e-9);
+  EXPECT_NEAR(room->centroid_m.y, (140 - 49.5 - 0.5) * 0.05, 1e-9);
+  EXPECT_EQ(room->cells, 6400);
+}
+
+TEST(Segmentation, DoorsSplitRoomsAndJoinTheirNeighbours) {
+  const cv::Mat l = floorPlan();
+  const cv::Mat seg = roomSegmentation(extractRegions(l, 0.05));
+  EXPECT_EQ(segmentCount(seg), 4);
+  EXPECT_EQ(cv::countNonZero(seg), cv::countNonZero(l != N));
+  // Door cells next to the room belong to the room, next to the corridor to the corridor.
+  EXPECT_EQ(seg.at<int>(91, 60), seg.at<int>(50, 60));
+  EXPECT_EQ(seg.at<int>(99, 60), seg.at<int>(120, 60));
+  // Scored against itself: perfect.
+  const auto s = scoreSegmentation(seg, seg);
+  EXPECT_DOUBLE_EQ(s.precision, 1.0);
+  EXPECT_DOUBLE_EQ(s.recall, 1.0);
+}
+
+TEST(Correction, RulesOnTheFloorPlan) {
+  cv::Mat l = floorPlan();
+  l(cv::Rect(30, 20, 6, 6)).setTo(C);        // R1: a 0.09 m^2 corridor speck inside room 1
+  l(cv::Rect(300, 40, 10, 10)).setTo(D);     // R2: a doorway blob inside room 3 joins nothing
+  l(cv::Rect(200, 5, 3, 3)).setTo(R);        // R0: an isolated 9-cell free patch
+  CorrectionOptions o;
+  CorrectionStats st;
+  const cv::Mat c = correctRegions(l, 0.05, o, &st);
+  EXPECT_EQ(st.patches_removed, 1);
+  EXPECT_GE(st.small_merged, 1);
+  EXPECT_EQ(st.doorways_not_separating, 1);
+  EXPECT_EQ(c.at<unsigned char>(22, 32), R);
+  EXPECT_EQ(c.at<unsigned char>(45, 305), R);
+  EXPECT_EQ(c.at<unsigned char>(6, 201), N);
+  EXPECT_EQ(cv::countNonZero(c != floorPlan()), 0);  // exactly the original plan again
+  o.enabled = false;
+  EXPECT_EQ(cv::countNonZero(correctRegions(l, 0.05, o) != l), 0);
+}
+
+TEST(Export, FilesParseBack) {
+  const auto rm = extractRegions(floorPlan(), 0.05);
+  const auto g = buildGraph(rm, 0.05);
+  const fs::path dir = fs::temp_directory_path() / "gridtopo_topology_export_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "t.json") << toJson(g);
+  const auto back = graphFromJson((dir / "t.json").string());
+  ASSERT_EQ(back.nodes.size(), g.nodes.size());
+  ASSERT_EQ(back.edges.size(), g.edges.size());
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    EXPECT_EQ(back.nodes[i].id, g.nodes[i].id);
+    EXPECT_EQ(back.nodes[i].label, g.nodes[i].label);
+    EXPECT_NEAR(back.nodes[i].area_m2, g.nodes[i].area_m2, 1e-9);
+    EXPECT_NEAR(back.nodes[i].centroid_m.y, g.nodes[i].centroid_m.y, 1e-9);
+    EXPECT_EQ(back.nodes[i].bbox_px, g.nodes[i].bbox_px);
+  }
+  for (std::size_t i = 0; i < g.edges.size(); ++i) {
+    EXPECT_EQ(back.edges[i].a, g.edges[i].a);
+    EXPECT_EQ(back.edges[i].b, g.edges[i].b);
+    EXPECT_EQ(back.edges[i].via_doorway, g.edges[i].via_doorway);
+  }
+  // GraphML: one <node> per node, one <edge> per edge, every edge endpoint declared.
+  const std::string gml = toGraphML(g);
+  std::set<std::string> ids;
+  const std::regex node_re("<node id=\"(n[0-9]+)\">"), edge_re("<edge source=\"(n[0-9]+)\" target=\"(n[0-9]+)\">");
+  for (auto it = std::sregex_iterator(gml.begin(), gml.end(), node_re); it != std::sregex_iterator(); ++it)
+    ids.insert((*it)[1]);
+  EXPECT_EQ(ids.size(), g.nodes.size());
+  std::size_t edges = 0;
+  for (auto it = std::sregex_iterator(gml.begin(), gml.end(), edge_re); it != std::sregex_iterator(); ++it, ++edges) {
+    EXPECT_TRUE(ids.count((*it)[1]));
+    EXPECT_TRUE(ids.count((*it)[2]));
+  }
+  EXPECT_EQ(edges, g.edges.size());
+  EXPECT_NE(gml.find("</graphml>"), std::string::npos);
+  const std::string dot = toDot(g);
+  std::size_t dash = 0;
+  for (std::size_t p = 0; (p = dot.find(" -- ", p)) != std::string::npos; ++p) ++dash;
+  EXPECT_EQ(dash, g.edges.size());
+  std::ofstream(dir / "bad.json") << "{\"format\": \"other\"}";
+  EXPECT_THROW(graphFromJson((dir / "bad.json").string()), InputError);
+  // Overlay and 16-bit segmentation image.
+  places::OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(floorPlan().size(), CV_8U, cv::Scalar(places::kOccupied));
+  occ.cells.setTo(places::kFree, floorPlan() != N);
+  const cv::Mat ov = renderOverlay(occ, floorPlan(), rm, g, 2);
+  EXPECT_EQ(ov.size(), cv::Size(840, 280));
+  const cv::Mat s16 = segmentationImage16(roomSegmentation(rm));
+  EXPECT_EQ(s16.type(), CV_16U);
+  EXPECT_TRUE(cv::imwrite((dir / "seg.png").string(), s16));
+  const cv::Mat s16b = cv::imread((dir / "seg.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(cv::norm(s16, s16b, cv::NORM_INF), 0.0);
+}
+
+TEST(Evaluation, SegmentationScoreDefinition) {
+  cv::Mat gt(10, 20, CV_32S, cv::Scalar(0));
+  gt(cv::Rect(0, 0, 10, 10)).setTo(1);
+  gt(cv::Rect(10, 0, 10, 10)).setTo(2);
+  cv::Mat seg(10, 20, CV_32S, cv::Scalar(1));  // one segment over both rooms
+  auto s = scoreSegmentation(seg, gt);
+  EXPECT_DOUBLE_EQ(s.recall, 1.0);
+  EXPECT_DOUBLE_EQ(s.precision, 0.5);
+  seg(cv::Rect(0, 0, 5, 10)).setTo(2);  // room 1 split in halves, the second half merged with room 2
+  s = scoreSegmentation(seg, gt);
+  EXPECT_DOUBLE_EQ(s.recall, (0.5 + 1.0) / 2);
+  EXPECT_DOUBLE_EQ(s.precision, (1.0 + 100.0 / 150.0) / 2);
+  EXPECT_NEAR(s.precision_weighted, (50.0 + 100.0) / 200.0, 1e-12);
+}
+
+TEST(Evaluation, ConfusionMatrix) {
+  cv::Mat truth(1, 4, CV_8U), pred(1, 4, CV_8U);
+  truth.at<unsigned char>(0) = 77, truth.at<unsigned char>(1) = 115, truth.at<unsigned char>(2) = 179, truth.at<unsigned char>(3) = 77;
+  pred.at<unsigned char>(0) = R, pred.at<unsigned char>(1) = C, pred.at<unsigned char>(2) = R, pred.at<unsigned char>(3) = N;
+  ConfusionMatrix m;
+  m.add(truth, pred);
+  EXPECT_EQ(m.total(), 3);
+  EXPECT_EQ(m.unpredicted, 1);
+  EXPECT_DOUBLE_EQ(m.accuracy(), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(m.precision(0), 0.5);
+  EXPECT_DOUBLE_EQ(m.recall(2), 0.0);
+}
+
+TEST(Evaluation, GroundTruthRoomsOfLabIntel) {
+  const cv::Mat gt = cv::imread(std::string(GRIDTOPO_DATA_DIR) + "/places/groundtruth/lab_intel_gt_segmentation.png",
+                                cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(gt.empty());
+  EXPECT_EQ(segmentCount(groundTruthRooms(gt)), 26);
+}
+
+TEST(Export, MrptPoseGraphRoundTrip) {
+  const auto g = buildGraph(extractRegions(floorPlan(), 0.05), 0.05);
+  const auto pg = toMrptPoseGraph(g);
+  EXPECT_EQ(pg.nodes.size(), g.nodes.size());
+  EXPECT_EQ(pg.edgeCount(), g.edges.size());
+  const fs::path p = fs::temp_directory_path() / "gridtopo_topology_posegraph.graph";
+  pg.saveToTextFile(p.string());
+  mrpt::graphs::CNetworkOfPoses2D back;
+  back.loadFromTextFile(p.string());
+  ASSERT_EQ(back.nodes.size(), g.nodes.size());
+  const auto& n0 = g.nodes.front();
+  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.centroid_m.x, 1e-6);
+  EXPECT_EQ(back.edgeCount(), g.edges.size());
+}
