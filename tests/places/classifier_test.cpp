@@ -141,3 +141,19 @@ TEST(Training, SyntheticRoomsAndCorridors) {
   EXPECT_GT(m.compatibility[0][0], 0.0);
   EXPECT_LT(m.compatibility[0][1], 0.0);  // rooms and corridors never neighbours here
 }
+
+TEST(BoostedClassifier, DeterministicForAFixedSeed) {
+  cv::Mat X;
+  std::vector<int> y;
+  synthetic(3000, X, y, 9);
+  BoostOptions o;
+  o.weak_count = 15;
+  const auto a = trainBoostedClassifier(X, y, o), b = trainBoostedClassifier(X, y, o);
+  ASSERT_EQ(a.stumps.size(), b.stumps.size());
+  for (std::size_t i = 0; i < a.stumps.size(); ++i) {
+    EXPECT_EQ(a.stumps[i].feature, b.stumps[i].feature);
+    EXPECT_EQ(a.stumps[i].threshold, b.stumps[i].threshold);
+    EXPECT_EQ(a.stumps[i].left, b.stumps[i].left);
+    EXPECT_EQ(a.stumps[i].right, b.stumps[i].right);
+  }
+}

@@ -32,7 +32,7 @@ int TopologicalGraph::connectedComponents() const {
   return comps;
 }
 
-TopologicalGraph buildGraph(const RegionMap& rm, double resolution) {
+TopologicalGraph buildGraph(const RegionMap& rm, double resolution, cv::Point2d origin) {
   TopologicalGraph g;
   g.resolution = resolution;
   g.rows = rm.ids.rows, g.cols = rm.ids.cols;
@@ -40,7 +40,7 @@ TopologicalGraph buildGraph(const RegionMap& rm, double resolution) {
     GraphNode n;
     n.id = r.id, n.label = r.label, n.cells = r.cells, n.area_m2 = r.area_m2;
     n.centroid_px = r.centroid;
-    n.centroid_m = cv::Point2d((r.centroid.x + 0.5) * resolution, (g.rows - r.centroid.y - 0.5) * resolution);
+    n.centroid_m = origin + cv::Point2d((r.centroid.x + 0.5) * resolution, (g.rows - r.centroid.y - 0.5) * resolution);
     n.bbox_px = r.bbox;
     g.nodes.push_back(n);
   }

@@ -35,11 +35,11 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation) {
+                             const std::string& segmentation, cv::Point2d origin) {
   TopologyResult r;
   r.labels = correctRegions(labels, resolution, correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
-  r.graph = buildGraph(r.regions, resolution);
+  r.graph = buildGraph(r.regions, resolution, origin);
   r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions) : roomSegmentation(r.regions);
   return r;
 }

@@ -15,7 +15,7 @@ struct GraphNode {
   int cells = 0;
   double area_m2 = 0;
   cv::Point2d centroid_px;  ///< pixels (x = column, y = row, row 0 at the top)
-  cv::Point2d centroid_m;   ///< metres, x right, y up, origin at the image's lower-left corner
+  cv::Point2d centroid_m;   ///< metres, x right, y up: origin + ((col + 0.5) res, (rows - row - 0.5) res)
   cv::Rect bbox_px;
   cv::Point anchor_px;      ///< a cell of the region: the centroid if it lies inside, else the nearest region cell
   bool centroid_inside = true;  ///< false for non-convex regions (a corridor loop) whose centroid lies outside
@@ -38,6 +38,7 @@ struct TopologicalGraph {
   int connectedComponents() const;
 };
 
-TopologicalGraph buildGraph(const RegionMap& regions, double resolution);
+/// `origin`: world coordinates (m) of the lower-left corner of the image (the map's x_min, y_min).
+TopologicalGraph buildGraph(const RegionMap& regions, double resolution, cv::Point2d origin = {0, 0});
 
 }  // namespace gridtopo::topology

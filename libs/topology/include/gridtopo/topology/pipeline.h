@@ -37,6 +37,6 @@ struct TopologyResult {
 
 /// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation = "regions");
+                             const std::string& segmentation = "regions", cv::Point2d origin = {0, 0});
 
 }  // namespace gridtopo::topology
