@@ -4,6 +4,10 @@
 #include <filesystem>
 #include <numeric>
 
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/serialization/CArchive.h>
+
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/map_io.h"
@@ -150,11 +154,22 @@ TEST(SessionSlam, SavesTheSameFilesAsTheWritersAndSendsTheMapToTopology) {
   ASSERT_TRUE(s.runner()->waitIdle(60s));
   const auto snap = s.slamSnapshot();
   s.saveSlamOutputs(tmp / "out");
-  for (const char* f : {"trajectory.txt", "map.png", "map.pgm", "map.yaml", "map.gridmap.gz", "map.simplemap",
-                        "stats.txt", "options.ini"})
+  for (const char* f : {"trajectory.txt", "map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz",
+                        "map.simplemap", "stats.txt", "options.ini"})
     EXPECT_TRUE(std::filesystem::is_regular_file(tmp / ("out/" + std::string(f)))) << f;
   expectSameTrajectory(io::readTrajectory(tmp / "out/trajectory.txt"), directTrajectory());
   const auto grid = io::readGridMap(tmp / "out/map.gridmap.gz");
+  // The simple map holds one keyframe per filter update of the best particle (as gridtopo-slam writes it).
+  {
+    mrpt::maps::CSimpleMap sm;
+    mrpt::io::CFileGZInputStream f(tmp / "out/map.simplemap");
+    auto a = mrpt::serialization::archiveFrom(f);
+    a >> sm;
+    EXPECT_EQ(sm.size(), snap->steps);
+  }
+  // The ROS pair reads back to the same grid.
+  const auto ros = io::readGridMap(tmp / "out/map.yaml");
+  EXPECT_EQ(ros->getSizeX(), grid->getSizeX());
   const auto expected = slam::toOccupancyGrid(snap->best_map);
   EXPECT_EQ(grid->getSizeX(), expected.getSizeX());
   EXPECT_EQ(grid->getSizeY(), expected.getSizeY());

@@ -3,13 +3,15 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <unordered_set>
@@ -292,24 +294,25 @@ void Session::saveSlamOutputs(const std::string& dir) {
   if (s->state == RunState::Running) throw std::runtime_error("pause the run before saving");
   if (s->trajectory.empty() || s->trajectory_scans != s->scans_fed)
     throw std::runtime_error("the run has no complete trajectory yet (process at least one scan)");
+  // The files and formats of gridtopo-slam (apps/slam/main.cpp), from the snapshot.
   const auto grid = slam::toOccupancyGrid(s->best_map);
   mrpt::maps::CSimpleMap sm;
   const auto& sc = runner_->scans();
-  for (const auto& st : s->stats) {
-    if (st.scan_index >= s->trajectory.size()) continue;
-    const auto& p = s->trajectory[st.scan_index].pose;
+  for (const slam::TrajectoryNode* n : slam::pathOf(s->particles[s->best].node)) {
     auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(io::toMrptScan(sc[st.scan_index].scan));
-    auto pdf = mrpt::poses::CPosePDFGaussian::Create();
-    pdf->mean = mrpt::poses::CPose2D(p.x, p.y, p.phi);
-    sm.insert(mrpt::poses::CPosePDF::Ptr(pdf), sf);
+    sf->insert(io::toMrptScan(sc[n->scan_index].scan));
+    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
+                  mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
+              sf);
   }
   std::ostringstream stats;
-  stats << "# step scan_index timestamp time_s neff resampled particles failed_matches unique_tiles map_bytes\n";
+  stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles "
+           "map_bytes\n";
   for (const auto& st : s->stats)
     stats << st.step << ' ' << st.scan_index << ' ' << io::formatDouble(st.timestamp) << ' ' << st.time_s << ' '
           << st.neff << ' ' << (st.resampled ? 1 : 0) << ' ' << st.particles << ' ' << st.failed_matches << ' '
-          << st.unique_tiles << ' ' << st.map_bytes << '\n';
+          << st.evaluations << ' ' << st.unique_tiles << ' ' << st.map_bytes << '\n';
+  // A loadable [slam] INI (saveToConfigFile), so `gridtopo-slam -c` and the GUI can rerun with it.
   mrpt::config::CConfigFileMemory ini;
   runner_->options().saveToConfigFile(ini, "slam");
   OutputSet out;
@@ -319,14 +322,27 @@ void Session::saveSlamOutputs(const std::string& dir) {
                         {"gridtopo-gui " + log_path_, "one pose per laser scan, best particle (" +
                                                          std::to_string(s->scans_fed) + " scans)"});
   });
-  out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(grid, p); });
-  out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(grid, p); });
-  out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(sm, p); });
   out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, stats.str()); });
+  out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(grid, p); });
+  out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
+    if (!cv::imwrite(p, slam::renderMap(grid, s->trajectory))) throw std::runtime_error("cannot write " + p);
+  });
+  out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(grid, p); });
+  {
+    // The ROS pair names its image inside the YAML: written side by side in a scratch directory, then moved in
+    // with the others (as gridtopo-slam does).
+    const fs::path scratch = fs::temp_directory_path() / ("gridtopo-gui-" + std::to_string(::getpid()));
+    fs::create_directories(scratch);
+    io::writeRosMap(grid, (scratch / "map").string());
+    for (const char* ext : {".pgm", ".yaml"})
+      out.write((d / (std::string("map") + ext)).string(), [&](const std::string& p) {
+        fs::copy_file(scratch / (std::string("map") + ext), p, fs::copy_options::overwrite_existing);
+      });
+    fs::remove_all(scratch);
+  }
+  out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(sm, p); });
   out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, ini.getContent()); });
   out.commit();
-  // The ROS pair names its image inside the YAML, so it is written under its final names (each file atomically).
-  io::writeRosMap(grid, (d / "map").string());
 }
 
 void Session::useSlamMap() {
