@@ -51,6 +51,7 @@ bool benchFrames(gui::MainFrame* f, int n, const std::string& out) {
   std::ostringstream o;
   for (int phase = 0; phase < 2; ++phase) {
     c->fit();
+    c->auto_fit = false;
     if (phase == 1) {
       const double res = f->session().map().resolution;
       c->view().zoomAt(sz.x / 2.0, sz.y / 2.0, 2.0 / (res * c->view().ppm));

@@ -25,6 +25,7 @@ void MapCanvas::fit() {
     view_.fit(x0, y0, x1, y1, sz.x, sz.y);
     fitted_ = true;
   }
+  auto_fit = true;
   Refresh(false);
 }
 
@@ -36,7 +37,7 @@ wxPoint MapCanvas::toClient(double x, double y) const {
 cv::Mat MapCanvas::renderImage() {
   const wxSize sz = GetClientSize();
   if (screen_.cols != sz.x || screen_.rows != sz.y) screen_.create(std::max(1, sz.y), std::max(1, sz.x), CV_8UC3);
-  if (!fitted_) {
+  if (!fitted_ || (auto_fit && mode_ == session::ViewMode::Slam && s_.runner())) {
     double x0, y0, x1, y1;
     if (s_.bounds(mode_, x0, y0, x1, y1)) view_.fit(x0, y0, x1, y1, sz.x, sz.y), fitted_ = true;
   }
@@ -75,6 +76,7 @@ void MapCanvas::onMouse(wxMouseEvent& e) {
   if (e.GetEventType() == wxEVT_MOUSEWHEEL) {
     const double steps = static_cast<double>(e.GetWheelRotation()) / std::max(1, e.GetWheelDelta());
     view_.zoomAt(p.x, p.y, std::pow(1.25, steps));
+    auto_fit = false;
     Refresh(false);
     return;
   }
@@ -117,6 +119,7 @@ void MapCanvas::onMouse(wxMouseEvent& e) {
       paintAt(p, false);
     } else if (dragging_ && moved_) {
       view_.pan(p.x - last_.x, p.y - last_.y);
+      auto_fit = false;
       Refresh(false);
     }
     last_ = p;

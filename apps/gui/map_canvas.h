@@ -25,6 +25,8 @@ class MapCanvas : public wxPanel {
   /// Screen position (client pixels) of a world point.
   wxPoint toClient(double x, double y) const;
 
+  /// Keep the whole map in view while it grows (set by fit(), cleared by any pan or zoom of the user).
+  bool auto_fit = true;
   PaintTool tool = PaintTool::None;
   unsigned char paint_code = 77;
   int brush_radius = 5;  ///< cells
