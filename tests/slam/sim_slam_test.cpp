@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <mrpt/config/CConfigFile.h>
 
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_export.h"
@@ -34,10 +33,6 @@ TEST(SimulatedSlam, LoopAroundOfficeStaysCloseToGroundTruth) {
   const auto log = sim::simulate(plan, sim::officeLoopWaypoints(1), so);
   ASSERT_GT(log.records.size(), 300u);
   slam::SlamOptions o;
-  if (const char* ini = std::getenv("GRIDTOPO_TEST_INI")) {
-    mrpt::config::CConfigFile cfg(ini);
-    o.loadFromConfigFile(cfg, "slam");
-  }
   o.particles = 15;
   slam::RbpfSlam slam(o);
   for (const auto& r : log.records) slam.processScan(r);
