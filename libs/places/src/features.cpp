@@ -123,8 +123,8 @@ const std::vector<cv::Point2d>& beamDirections(int M) {
 cv::Moments polygonMoments(const std::vector<cv::Point2d>& p) {
   double a00 = 0, a10 = 0, a01 = 0, a20 = 0, a11 = 0, a02 = 0, a30 = 0, a21 = 0, a12 = 0, a03 = 0;
   const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x0 = p[(i + n - 1) % n].x, y0 = p[(i + n - 1) % n].y, x1 = p[i].x, y1 = p[i].y;
+  for (std::size_t i = 0, prev = n - 1; i < n; prev = i++) {
+    const double x0 = p[prev].x, y0 = p[prev].y, x1 = p[i].x, y1 = p[i].y;
     const double d = x0 * y1 - x1 * y0, sx = x0 + x1, sy = y0 + y1;
     const double x0s = x0 * x0, x1s = x1 * x1, y0s = y0 * y0, y1s = y1 * y1;
     a00 += d;
@@ -148,15 +148,15 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   int gs = 0, gl = 0;
   double bmax = 0, bmin = 1e18;
   for (int k = 0; k < M; ++k) bmax = std::max<double>(bmax, b[k]), bmin = std::min<double>(bmin, b[k]);
-  const double bmax_safe = std::max(bmax, 1e-6);
+  const double inv_bmax = 1.0 / std::max(bmax, 1e-6);
   for (int k = 0; k < M; ++k) {
-    const double x = b[k], y = b[(k + 1) % M];
+    const double x = b[k], y = b[k + 1 < M ? k + 1 : 0];
     const double d = std::abs(x - y);
     diff.add(d);
     diffc.add(std::abs(std::min(x, o.beam_cap) - std::min(y, o.beam_cap)));
     beam.add(x);
     ratio.add(std::max(x, y) > 0 ? std::min(x, y) / std::max(x, y) : 1.0);
-    rel.add(x / bmax_safe);
+    rel.add(x * inv_bmax);
     gs += d > o.gap_small;
     gl += d > o.gap_large;
   }
@@ -188,13 +188,13 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   const double A = std::abs(m.m00);
   double L = 0;
   for (int k = 0; k < M; ++k) {
-    const cv::Point2d d = poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>((k + 1) % M)];
+    const cv::Point2d d = poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>(k + 1 < M ? k + 1 : 0)];
     L += std::sqrt(d.x * d.x + d.y * d.y);
   }
   cv::Point2d cen(0, 0);
   if (A > 1e-12) cen = cv::Point2d(m.m10 / m.m00, m.m01 / m.m00);
   MeanStd cd;
-  for (const auto& p : poly) cd.add(std::hypot(p.x - cen.x, p.y - cen.y));
+  for (const auto& p : poly) cd.add(std::sqrt((p.x - cen.x) * (p.x - cen.x) + (p.y - cen.y) * (p.y - cen.y)));
   double l1 = 0, l2 = 0;
   if (A > 1e-12) {
     const double a = m.mu20, c = m.mu02, bb = m.mu11;

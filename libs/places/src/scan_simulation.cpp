@@ -69,34 +69,33 @@ namespace {
 // (k increasing) measures the free run behind each cell (the beam pointing to decreasing k), a backward pass the
 // run ahead.
 void sweepFamily(const cv::Mat& cells, const cv::Mat& sample_index, double resolution, double slope, int beam_back,
-                 int beam_ahead, double max_range_mm, SimulatedScans& out) {
+                 int beam_ahead, double max_range_mm, cv::Mat& by_beam) {
   const int n_major = cells.cols, n_minor = cells.rows;
   std::vector<int> offset(static_cast<std::size_t>(n_major));
   for (int k = 0; k < n_major; ++k) offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor(k * slope + 0.5));
   const int min_off = *std::min_element(offset.begin(), offset.end());
   const int max_off = *std::max_element(offset.begin(), offset.end());
   const double step_mm = resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
-  const std::size_t M = static_cast<std::size_t>(out.num_beams);
   // Run lengths in steps, converted to mm through a small table (runs beyond max range saturate).
   const int max_run = static_cast<int>(max_range_mm / step_mm) + 2;
   std::vector<std::uint16_t> mm(static_cast<std::size_t>(max_run) + 1);
   for (int r = 0; r <= max_run; ++r)
     mm[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(std::lround(std::min((r + 0.5) * step_mm, max_range_mm)));
-  std::uint16_t* ranges = out.ranges_mm.data();
   for (int j = -max_off; j <= n_minor - 1 - min_off; ++j) {
     // The columns where line j is inside the image form one interval (offset is monotonic).
     int k0 = 0, k1 = n_major;
     while (k0 < n_major && (j + offset[static_cast<std::size_t>(k0)] < 0 || j + offset[static_cast<std::size_t>(k0)] >= n_minor)) ++k0;
     while (k1 > k0 && (j + offset[static_cast<std::size_t>(k1 - 1)] < 0 || j + offset[static_cast<std::size_t>(k1 - 1)] >= n_minor)) --k1;
     for (int pass = 0; pass < 2; ++pass) {
-      const std::size_t beam = static_cast<std::size_t>(pass == 0 ? beam_back : beam_ahead);
+      // Beam-major output: one row per beam, so a sweep's writes stay within one row (cache friendly).
+      std::uint16_t* row_out = by_beam.ptr<std::uint16_t>(pass == 0 ? beam_back : beam_ahead);
       int run = 0;
       for (int t = k0; t < k1; ++t) {
         const int k = pass == 0 ? t : k0 + k1 - 1 - t;
         const int row = j + offset[static_cast<std::size_t>(k)];
         if (cells.ptr<unsigned char>(row)[k] != kFree) { run = 0; continue; }
         const int idx = sample_index.ptr<int>(row)[k];
-        if (idx >= 0) ranges[static_cast<std::size_t>(idx) * M + beam] = mm[static_cast<std::size_t>(std::min(run, max_run))];
+        if (idx >= 0) row_out[idx] = mm[static_cast<std::size_t>(std::min(run, max_run))];
         ++run;
       }
     }
@@ -122,6 +121,7 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     sample_index.at<int>(p.y, p.x) = static_cast<int>(i);
   }
   const double max_mm = options.max_range * 1000.0;
+  cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U, cv::Scalar(0));
   cv::Mat cells_t, index_t;
   cv::transpose(occ.cells, cells_t);
   cv::transpose(sample_index, index_t);
@@ -134,10 +134,10 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
     if (std::abs(dc) >= std::abs(dr)) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(occ.cells, sample_index, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, out);
+      sweepFamily(occ.cells, sample_index, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, by_beam);
     } else {
       // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
-      sweepFamily(cells_t, index_t, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, out);
+      sweepFamily(cells_t, index_t, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, by_beam);
     }
   };
   auto worker = [&](bool report) {
@@ -152,6 +152,9 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   for (int t = 1; t < nt; ++t) pool.emplace_back(worker, false);
   worker(true);  // the calling thread works too and reports progress
   for (auto& t : pool) t.join();
+  // Sample-major for the feature extraction.
+  cv::Mat by_sample(static_cast<int>(samples.size()), M, CV_16U, out.ranges_mm.data());
+  cv::transpose(by_beam, by_sample);
   if (progress) progress(n_dirs, n_dirs);
   return out;
 }
