@@ -43,7 +43,7 @@ ACES_REL=datasets/slam/aces.relations.gz
   echo "# gridtopo-slam benchmark"
   echo
   echo "Produced by \`scripts/bench_slam.sh $QUICK\` on $(date -u +%Y-%m-%d) ($(nproc) cores, $THREADS threads," \
-       "commit $(git rev-parse --short HEAD)). Errors: Freiburg relations metric (gridtopo-eval), mean ± std."
+       "commit $(git rev-parse --short HEAD), load average at start: $(cut -d" " -f1-3 /proc/loadavg)). Errors: Freiburg relations metric (gridtopo-eval), mean ± std."
   echo
   echo "| log | particles | proposal | translational (m) | rotational (deg) | wall (s) | peak RSS (MB) |"
   echo "|---|---|---|---|---|---|---|"

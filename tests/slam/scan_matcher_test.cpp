@@ -51,9 +51,6 @@ TEST(ScanMatcher, LikelihoodPeaksAtTheTruePose) {
 TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
   Fixture f;
   ScanMatcherOptions o;
-  if (getenv("OCC")) o.occupied_log_odds = atof(getenv("OCC"));
-  if (getenv("KERN")) o.kernel = atoi(getenv("KERN"));
-  if (getenv("HILL")) o.method = MatchMethod::HillClimb;
   const Pose2 truths[] = {{6.3, 2.8, 0.0}, {4.1, 2.9, 0.1}, {8.2, 2.7, -0.08}, {2.1, 4.5, -1.4}};
   const Pose2 offsets[] = {{0.12, -0.07, 0.04}, {-0.1, 0.1, -0.05}, {0.05, 0.13, 0.06}, {-0.13, -0.02, -0.03}};
   double sum_xy = 0, sum_th = 0, evals = 0;
@@ -65,7 +62,6 @@ TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
       ASSERT_TRUE(r.ok);
       const double exy = std::hypot(r.pose.x - t.x, r.pose.y - t.y), eth = std::abs(wrapAngle(r.pose.theta - t.theta));
       evals += r.evaluations;
-      if (exy > 0.02) std::printf("truth ll %.2f m %d  found ll %.2f m %d at %.3f %.3f %.4f evals %d\n", scoreScan(f.map, t, scan, o).log_likelihood, scoreScan(f.map, t, scan, o).matched, r.score.log_likelihood, r.score.matched, r.pose.x - t.x, r.pose.y - t.y, r.pose.theta - t.theta, r.evaluations);
       EXPECT_LT(exy, 0.02) << t.x << "," << t.y << " offset " << d.x << "," << d.y;
       EXPECT_LT(eth, 0.01);
       sum_xy += exy;
@@ -108,4 +104,18 @@ TEST(PreparedScan, ClassifiesReturnsNoReturnsAndNaN) {
   EXPECT_EQ(p.size(), 1u);           // only the hit is matched
   o.clear_no_return = false;
   EXPECT_EQ(prepareScan(s, o, 0.05).map_beams.size(), 2u);
+}
+
+TEST(ScanMatcher, ExperimentalGaussNewtonRecoversSmallOffsets) {
+  Fixture f;
+  ScanMatcherOptions o;
+  o.method = MatchMethod::GaussNewton;
+  const Pose2 t{6.3, 2.8, 0.0};
+  const auto scan = f.scanAt(t);
+  for (const Pose2 d : {Pose2{0.03, -0.02, 0.01}, Pose2{-0.02, 0.03, -0.015}, Pose2{0.0, 0.04, 0.02}}) {
+    const MatchResult r = matchScan(f.map, {t.x + d.x, t.y + d.y, t.theta + d.theta}, scan, o);
+    ASSERT_TRUE(r.ok);
+    EXPECT_LT(std::hypot(r.pose.x - t.x, r.pose.y - t.y), 0.01);
+    EXPECT_LT(std::abs(wrapAngle(r.pose.theta - t.theta)), 0.005);
+  }
 }

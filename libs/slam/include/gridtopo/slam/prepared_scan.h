@@ -18,7 +18,7 @@ struct BeamOptions {
   /// NaN / zero / negative readings carry no information and are ignored.
   bool clear_no_return = true;
   double no_return_range = 5.0;  ///< m
-  int matching_beam_step = 3;    ///< use every n-th hit beam for matching (all beams are inserted)
+  int matching_beam_step = 2;    ///< use every n-th hit beam for matching (all beams are inserted)
 };
 
 struct PreparedScan {

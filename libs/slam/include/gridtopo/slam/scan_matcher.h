@@ -32,8 +32,8 @@ struct ScanMatcherOptions {
   /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
   /// the match by up to half a cell, so it is off by default.
   bool free_check = false;
-  double step_xy = 0.03;              ///< m, initial hill-climbing step
-  double step_theta = 0.02;           ///< rad, initial hill-climbing step
+  double step_xy = 0.05;              ///< m, initial hill-climbing step
+  double step_theta = 0.05;           ///< rad, initial hill-climbing step
   int refinements = 6;                ///< number of step halvings
   int max_iterations = 200;           ///< safety cap on hill-climbing moves
   /// Informed / mode-only proposals: search the mode of p(z|m,x)·p(x|x_{t-1},u) (true) or of p(z|m,x) (false).

@@ -28,8 +28,8 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   double proposal_gain = 0.0;
 
   // Update policy (GMapping's linearUpdate / angularUpdate / temporalUpdate)
-  double linear_update = 0.3;    ///< m of travelled distance since the last processed scan
-  double angular_update = 0.2;   ///< rad of accumulated rotation
+  double linear_update = 0.25;    ///< m of travelled distance since the last processed scan
+  double angular_update = 0.15;   ///< rad of accumulated rotation
   double temporal_update = -1.0;  ///< s since the last processed scan; < 0 disables
   /// Logs without odometry: process a scan when this many seconds passed (0 = every scan).
   double no_odometry_period = 0.0;

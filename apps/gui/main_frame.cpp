@@ -1,0 +1,641 @@
+#include "main_frame.h"
+
+#include <wx/artprov.h>
+#include <wx/dnd.h>
+#include <wx/filedlg.h>
+#include <wx/notebook.h>
+#include <wx/numdlg.h>
+#include <wx/propgrid/advprops.h>
+#include <wx/propgrid/manager.h>
+#include <wx/propgrid/propgrid.h>
+#include <wx/splitter.h>
+#include <wx/textdlg.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
+
+namespace gridtopo::gui {
+
+namespace fs = std::filesystem;
+using session::ViewMode;
+
+namespace {
+enum Id {
+  kSaveSlam = wxID_HIGHEST + 1, kSaveTopology, kSaveLabels, kExportView, kClearRecent,
+  kSlamStart, kSlamPlay, kSlamPause, kSlamStep, kSlamRun, kSlamStop, kSlamUseMap, kSlamLoadIni, kSlamSaveIni,
+  kTopoModel, kTopoRun, kStageClassified, kStageRelaxed, kStageCorrected,
+  kLabelsStart, kLabelsOpen, kToolNone, kToolBrush, kToolFill, kCodeRoom, kCodeCorridor, kCodeDoorway, kCodeErase,
+  kBrushBigger, kBrushSmaller, kUndo,
+  kViewSlam, kViewTopology, kViewLabels, kFit,
+  kLayerParticles, kLayerPaths, kLayerBest, kLayerOdometry, kLayerScan, kLayerTrajectories, kLayerLabels,
+  kLayerRegions, kLayerGraph, kLayerScale,
+  kRecentFirst = wxID_HIGHEST + 200,
+};
+std::string fmtTime(double s) {
+  if (!(s >= 0)) return "-";
+  char b[32];
+  const int m = static_cast<int>(s / 60);
+  std::snprintf(b, sizeof b, "%d:%04.1f", m, s - 60 * m);
+  return b;
+}
+}  // namespace
+
+class DropTarget : public wxFileDropTarget {
+ public:
+  explicit DropTarget(MainFrame* f) : f_(f) {}
+  bool OnDropFiles(wxCoord, wxCoord, const wxArrayString& files) override {
+    f_->onDropFiles(files);
+    return true;
+  }
+
+ private:
+  MainFrame* f_;
+};
+
+MainFrame::MainFrame(const wxString& title, const wxSize& size)
+    : wxFrame(nullptr, wxID_ANY, title, wxDefaultPosition, size), timer_(this) {
+  recent_.load(session::RecentFiles::defaultFile());
+  buildMenus();
+  buildPanels();
+  CreateStatusBar(5);
+  const int widths[] = {230, 140, 170, 300, -1};
+  SetStatusWidths(5, widths);
+  SetDropTarget(new DropTarget(this));
+  canvas_->SetDropTarget(new DropTarget(this));  // GTK delivers drops to the window under the pointer
+  Bind(wxEVT_TIMER, &MainFrame::onTimer, this);
+  timer_.Start(33);  // at most 30 redraws per second, only when something changed
+}
+
+MainFrame::~MainFrame() {
+  timer_.Stop();
+  if (topology_future_.valid()) topology_future_.wait();
+  // The children (the canvas draws from s_) must go before the members: wxFrame's destructor would destroy
+  // them after s_, and GTK can deliver a paint event to the canvas in between.
+  canvas_->on_hover = nullptr;
+  canvas_->on_select = nullptr;
+  DestroyChildren();
+}
+
+void MainFrame::buildMenus() {
+  auto* file = new wxMenu;
+  file->Append(wxID_OPEN, "&Open...\tCtrl+O", "Open a log, map, trajectory, relations, topology output, model or INI");
+  recent_menu_ = new wxMenu;
+  file->AppendSubMenu(recent_menu_, "Open &recent");
+  file->AppendSeparator();
+  file->Append(kSaveSlam, "Save SLAM &outputs...\tCtrl+S", "map (PNG, PGM+YAML, .gridmap.gz), .simplemap, trajectory");
+  file->Append(kSaveTopology, "Save &topology outputs...", "the files gridtopo-topology writes");
+  file->Append(kSaveLabels, "Save &labels as...", "labelled image in the training code 77/115/179/0");
+  file->Append(kExportView, "&Export view to PNG...\tCtrl+E");
+  file->AppendSeparator();
+  file->Append(wxID_EXIT, "&Quit\tCtrl+Q");
+
+  auto* slam = new wxMenu;
+  slam->Append(kSlamStart, "&New run on the open log\tCtrl+N");
+  slam->Append(kSlamPlay, "&Play\tF5");
+  slam->Append(kSlamPause, "P&ause\tF6");
+  slam->Append(kSlamStep, "Single &step\tF7");
+  slam->Append(kSlamRun, "&Run to end\tF8");
+  slam->Append(kSlamStop, "S&top\tF9");
+  slam->AppendSeparator();
+  slam->Append(kSlamUseMap, "Send &map to topology / labels", "use the best particle's map as the session map");
+  slam->Append(kSlamLoadIni, "&Load INI...");
+  slam->Append(kSlamSaveIni, "Save options as &INI...");
+
+  auto* topo = new wxMenu;
+  topo->Append(kTopoModel, "Open place &model...");
+  topo->Append(kTopoRun, "&Run labelling + topology\tCtrl+T");
+  topo->AppendSeparator();
+  topo->AppendRadioItem(kStageClassified, "Labels as &classified");
+  topo->AppendRadioItem(kStageRelaxed, "Labels after &relaxation");
+  topo->AppendRadioItem(kStageCorrected, "Labels after region &correction");
+  topo->Check(kStageCorrected, true);
+
+  auto* labels = new wxMenu;
+  labels->Append(kLabelsStart, "&Start labelling the open map");
+  labels->Append(kLabelsOpen, "&Open a labelled image...");
+  labels->AppendSeparator();
+  labels->AppendRadioItem(kToolNone, "&Pan / inspect");
+  labels->AppendRadioItem(kToolBrush, "&Brush\tCtrl+B");
+  labels->AppendRadioItem(kToolFill, "&Flood fill\tCtrl+Shift+F");
+  labels->AppendSeparator();
+  labels->AppendRadioItem(kCodeRoom, "&Room (77)\tCtrl+Shift+1");
+  labels->AppendRadioItem(kCodeCorridor, "&Corridor (115)\tCtrl+Shift+2");
+  labels->AppendRadioItem(kCodeDoorway, "&Doorway (179)\tCtrl+Shift+3");
+  labels->AppendRadioItem(kCodeErase, "&Erase (0)\tCtrl+Shift+0");
+  labels->Append(kBrushBigger, "Bigger brush\tCtrl+]");
+  labels->Append(kBrushSmaller, "Smaller brush\tCtrl+[");
+  labels->Append(kUndo, "&Undo\tCtrl+Z");
+
+  auto* view = new wxMenu;
+  view->AppendRadioItem(kViewSlam, "&SLAM view\tCtrl+1");
+  view->AppendRadioItem(kViewTopology, "&Topology view\tCtrl+2");
+  view->AppendRadioItem(kViewLabels, "&Label painter\tCtrl+3");
+  view->Append(kFit, "&Fit to map\tHome");
+  view->AppendSeparator();
+  const std::pair<int, const char*> toggles[] = {
+      {kLayerParticles, "Particles"},           {kLayerPaths, "Every particle's trajectory"},
+      {kLayerBest, "Best particle's path"},     {kLayerOdometry, "Odometry-only path"},
+      {kLayerScan, "Current scan"},             {kLayerTrajectories, "Opened trajectories"},
+      {kLayerLabels, "Label overlay"},          {kLayerRegions, "Region ids"},
+      {kLayerGraph, "Topological graph"},       {kLayerScale, "Scale bar"}};
+  for (const auto& t : toggles) view->AppendCheckItem(t.first, t.second);
+
+  menubar_ = new wxMenuBar;
+  menubar_->Append(file, "&File");
+  menubar_->Append(slam, "&SLAM");
+  menubar_->Append(topo, "&Topology");
+  menubar_->Append(labels, "&Labels");
+  menubar_->Append(view, "&View");
+  SetMenuBar(menubar_);
+  rebuildRecentMenu();
+
+  // Handlers.
+  Bind(wxEVT_MENU, &MainFrame::onOpen, this, wxID_OPEN);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { Close(); }, wxID_EXIT);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    wxDirDialog d(this, "Output directory for the SLAM results");
+    if (d.ShowModal() != wxID_OK) return;
+    try {
+      s_.saveSlamOutputs(d.GetPath().ToStdString());
+      SetStatusText("saved to " + d.GetPath(), 4);
+    } catch (const std::exception& e) {
+      showError("Cannot save the SLAM outputs", e.what());
+    }
+  }, kSaveSlam);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    if (!s_.topology()) return showError("Nothing to save", "run or open a topology first");
+    wxDirDialog d(this, "Output directory for the topology");
+    if (d.ShowModal() != wxID_OK) return;
+    try {
+      session::saveTopologyOutputs(*s_.topology(), d.GetPath().ToStdString(), s_.topologyOptions());
+    } catch (const std::exception& e) {
+      showError("Cannot save the topology", e.what());
+    }
+  }, kSaveTopology);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    if (s_.canvas().empty()) return showError("Nothing to save", "start labelling a map first (Labels menu)");
+    wxFileDialog d(this, "Save labels", "", "labels.png", "PNG (*.png)|*.png", wxFD_SAVE | wxFD_OVERWRITE_PROMPT);
+    if (d.ShowModal() != wxID_OK) return;
+    try {
+      s_.canvas().save(d.GetPath().ToStdString());
+    } catch (const std::exception& e) {
+      showError("Cannot save the labels", e.what());
+    }
+  }, kSaveLabels);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    wxFileDialog d(this, "Export view", "", "view.png", "PNG (*.png)|*.png", wxFD_SAVE | wxFD_OVERWRITE_PROMPT);
+    if (d.ShowModal() != wxID_OK) return;
+    const cv::Mat img = canvas_->renderImage().clone();
+    try {
+      writeFileAtomically(d.GetPath().ToStdString(), [&](const std::string& p) {
+        if (!cv::imwrite(p + ".png", img)) throw std::runtime_error("cannot write " + p);
+        fs::rename(p + ".png", p);
+      });
+    } catch (const std::exception& e) {
+      showError("Cannot export the view", e.what());
+    }
+  }, kExportView);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    const std::size_t i = static_cast<std::size_t>(e.GetId() - kRecentFirst);
+    if (i < recent_.paths().size()) openFile(recent_.paths()[i]);
+  }, kRecentFirst, kRecentFirst + 20);
+
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { startSlam(); }, kSlamStart);
+  auto withRunner = [this](std::function<void(session::SlamRunner&)> f) {
+    return [this, f](wxCommandEvent&) {
+      if (!s_.runner()) {
+        if (!s_.hasLog()) return showError("No log", "open a CARMEN log or an MRPT rawlog first");
+        startSlam();
+      }
+      if (s_.runner()) f(*s_.runner());
+    };
+  };
+  Bind(wxEVT_MENU, withRunner([](session::SlamRunner& r) { r.play(); }), kSlamPlay);
+  Bind(wxEVT_MENU, withRunner([](session::SlamRunner& r) { r.pause(); }), kSlamPause);
+  Bind(wxEVT_MENU, withRunner([](session::SlamRunner& r) { r.step(1); }), kSlamStep);
+  Bind(wxEVT_MENU, withRunner([](session::SlamRunner& r) { r.play(); }), kSlamRun);
+  Bind(wxEVT_MENU, withRunner([](session::SlamRunner& r) { r.stop(); }), kSlamStop);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    try {
+      s_.useSlamMap();
+      setView(ViewMode::Topology);
+    } catch (const std::exception& e) {
+      showError("No SLAM map", e.what());
+    }
+  }, kSlamUseMap);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    wxFileDialog d(this, "SLAM INI", "", "", "INI (*.ini)|*.ini|All files|*", wxFD_OPEN | wxFD_FILE_MUST_EXIST);
+    if (d.ShowModal() == wxID_OK) openFile(d.GetPath().ToStdString());
+  }, kSlamLoadIni);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    if (!applyOptionGrid()) return;
+    wxFileDialog d(this, "Save SLAM options", "", "slam.ini", "INI (*.ini)|*.ini", wxFD_SAVE | wxFD_OVERWRITE_PROMPT);
+    if (d.ShowModal() != wxID_OK) return;
+    try {
+      writeTextFileAtomically(d.GetPath().ToStdString(), s_.slamOptionTable(documented_slam_ini).toIni());
+    } catch (const std::exception& e) {
+      showError("Cannot save the INI", e.what());
+    }
+  }, kSlamSaveIni);
+
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    wxFileDialog d(this, "Place model", "", "", "Models (*.yml;*.yaml;*.json)|*.yml;*.yaml;*.json|All files|*",
+                   wxFD_OPEN | wxFD_FILE_MUST_EXIST);
+    if (d.ShowModal() == wxID_OK) openFile(d.GetPath().ToStdString());
+  }, kTopoModel);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { startTopology(); }, kTopoRun);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    canvas_->layers().stage = e.GetId() == kStageClassified ? session::LabelStage::Classified
+                              : e.GetId() == kStageRelaxed  ? session::LabelStage::Relaxed
+                                                            : session::LabelStage::Corrected;
+    setView(ViewMode::Topology);
+  }, kStageClassified, kStageCorrected);
+
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    try {
+      s_.startLabelling();
+      canvas_->tool = PaintTool::Brush;
+      menubar_->Check(kToolBrush, true);
+      setView(ViewMode::Labels);
+    } catch (const std::exception& e) {
+      showError("Cannot start labelling", e.what());
+    }
+  }, kLabelsStart);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    wxFileDialog d(this, "Labelled image", "", "", "PNG (*.png)|*.png|All files|*", wxFD_OPEN | wxFD_FILE_MUST_EXIST);
+    if (d.ShowModal() != wxID_OK) return;
+    try {
+      s_.openLabelImage(d.GetPath().ToStdString());
+      setView(ViewMode::Labels);
+    } catch (const std::exception& e) {
+      showError("Cannot open the labels", e.what());
+    }
+  }, kLabelsOpen);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    canvas_->tool = e.GetId() == kToolBrush ? PaintTool::Brush : e.GetId() == kToolFill ? PaintTool::Fill : PaintTool::None;
+  }, kToolNone, kToolFill);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    const unsigned char codes[] = {77, 115, 179, 0};
+    canvas_->paint_code = codes[e.GetId() - kCodeRoom];
+  }, kCodeRoom, kCodeErase);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { canvas_->brush_radius = std::min(200, canvas_->brush_radius + 2); }, kBrushBigger);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { canvas_->brush_radius = std::max(0, canvas_->brush_radius - 2); }, kBrushSmaller);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    if (s_.canvas().undo()) s_.canvasChanged(), canvas_->Refresh(false);
+  }, kUndo);
+
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    setView(e.GetId() == kViewSlam ? ViewMode::Slam : e.GetId() == kViewTopology ? ViewMode::Topology : ViewMode::Labels);
+  }, kViewSlam, kViewLabels);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) { canvas_->fit(); }, kFit);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    auto& l = canvas_->layers();
+    bool* flags[] = {&l.particles, &l.particle_paths, &l.best_path, &l.odometry, &l.scan,
+                     &l.trajectories, &l.labels, &l.region_ids, &l.graph, &l.scale_bar};
+    *flags[e.GetId() - kLayerParticles] = e.IsChecked();
+    canvas_->Refresh(false);
+  }, kLayerParticles, kLayerScale);
+}
+
+void MainFrame::buildPanels() {
+  auto* split = new wxSplitterWindow(this, wxID_ANY, wxDefaultPosition, wxDefaultSize, wxSP_LIVE_UPDATE);
+  notebook_ = new wxNotebook(split, wxID_ANY);
+  auto* right = new wxSplitterWindow(split, wxID_ANY, wxDefaultPosition, wxDefaultSize, wxSP_LIVE_UPDATE);
+  right_split_ = right;
+  canvas_ = new MapCanvas(right, s_);
+  plots_ = new PlotPanel(right);
+  right->SetSashGravity(1.0);
+  right->Initialize(canvas_);  // the plots appear with the first SLAM run
+  plots_->Hide();
+  split->SplitVertically(notebook_, right, 300);
+  split->SetMinimumPaneSize(120);
+
+  // Inspector.
+  inspector_ = new wxTextCtrl(notebook_, wxID_ANY, "Click a particle (SLAM view), a cell or a graph node (topology view).",
+                              wxDefaultPosition, wxDefaultSize, wxTE_MULTILINE | wxTE_READONLY);
+  inspector_->SetFont(wxFont(9, wxFONTFAMILY_TELETYPE, wxFONTSTYLE_NORMAL, wxFONTWEIGHT_NORMAL));
+  inspector_->SetValue("Click a particle (SLAM view),\na cell or a graph node (topology view).\nHover: coordinates in the status bar.");
+  inspector_->ShowPosition(0);
+  // SLAM options.
+  auto* opt_panel = new wxPanel(notebook_);
+  grid_ = new wxPropertyGridManager(opt_panel, wxID_ANY, wxDefaultPosition, wxDefaultSize,
+                                    wxPG_SPLITTER_AUTO_CENTER | wxPG_DESCRIPTION);
+  auto* apply = new wxButton(opt_panel, wxID_APPLY, "Apply");
+  auto* defaults = new wxButton(opt_panel, wxID_ANY, "Defaults");
+  auto* save = new wxButton(opt_panel, wxID_SAVEAS, "Save INI...");
+  auto* bs = new wxBoxSizer(wxHORIZONTAL);
+  bs->Add(apply, 0, wxALL, 2);
+  bs->Add(defaults, 0, wxALL, 2);
+  bs->Add(save, 0, wxALL, 2);
+  auto* vs = new wxBoxSizer(wxVERTICAL);
+  vs->Add(grid_, 1, wxEXPAND);
+  vs->Add(bs, 0);
+  opt_panel->SetSizer(vs);
+  grid_->Bind(wxEVT_PG_SELECTED, [this](wxPropertyGridEvent& e) {
+    if (wxPGProperty* p = e.GetProperty()) grid_->SetDescription(p->GetLabel(), p->GetHelpString());
+    e.Skip();
+  });
+  apply->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
+    if (applyOptionGrid()) SetStatusText("options applied (used by the next run: SLAM > New run)", 4);
+  });
+  defaults->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
+    s_.slamOptions() = slam::SlamOptions();
+    rebuildOptionGrid();
+  });
+  save->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
+    wxCommandEvent e(wxEVT_MENU, kSlamSaveIni);
+    ProcessWindowEvent(e);
+  });
+  notebook_->AddPage(inspector_, "Inspector", true);
+  notebook_->AddPage(opt_panel, "SLAM options");
+  rebuildOptionGrid();
+
+  canvas_->on_hover = [this](const std::string& t) { SetStatusText(t, 4); };
+  canvas_->on_select = [this]() {
+    inspector_->SetValue(s_.selection().text);
+    notebook_->SetSelection(0);
+  };
+  auto& l = canvas_->layers();
+  const bool init[] = {l.particles, l.particle_paths, l.best_path, l.odometry, l.scan,
+                       l.trajectories, l.labels, l.region_ids, l.graph, l.scale_bar};
+  for (int i = 0; i < 10; ++i) menubar_->Check(kLayerParticles + i, init[i]);
+}
+
+void MainFrame::rebuildOptionGrid() {
+  // One page, created once; a rebuild empties it (Clear() + AddPage() on the manager corrupts its state).
+  if (grid_->GetPageCount() == 0) grid_->AddPage("options");
+  auto* page = grid_->GetPage(0);
+  page->Clear();
+  const auto table = s_.slamOptionTable(documented_slam_ini);
+  std::string section;
+  for (const auto& e : table.entries()) {
+    if (e.section != section) page->Append(new wxPropertyCategory("[" + e.section + "]")), section = e.section;
+    wxPGProperty* p = nullptr;
+    const wxString name = e.section + "_" + e.key;  // no '.': wxPropertyGrid reads it as a child path
+    if (e.key == "proposal") {
+      wxArrayString choices;
+      for (const char* c : {"informed", "mode-only", "odometry"}) choices.Add(c);
+      p = new wxEnumProperty(e.key, name, choices);
+      p->SetValueFromString(e.value);
+    } else if (e.type == session::OptionEntry::Type::Bool) {
+      p = new wxBoolProperty(e.key, name, e.value == "true");
+      p->SetAttribute(wxPG_BOOL_USE_CHECKBOX, true);
+    } else if (e.type == session::OptionEntry::Type::Int) {
+      p = new wxIntProperty(e.key, name, std::stol(e.value));
+    } else if (e.type == session::OptionEntry::Type::Double) {
+      p = new wxFloatProperty(e.key, name, std::stod(e.value));
+    } else {
+      p = new wxStringProperty(e.key, name, e.value);
+    }
+    std::string help = e.help.empty() ? std::string("(no help: see config-ini/slam.ini)") : e.help;
+    help += "  [default " + e.default_value + "]";
+    p->SetHelpString(help);
+    page->Append(p);
+  }
+}
+
+bool MainFrame::applyOptionGrid() {
+  auto table = s_.slamOptionTable(documented_slam_ini);
+  for (const auto& e : table.entries()) {
+    wxPGProperty* p = grid_->GetProperty(e.section + "_" + e.key);
+    if (!p) continue;
+    std::string v = p->GetValueAsString().ToStdString();
+    if (e.type == session::OptionEntry::Type::Bool) v = p->GetValue().GetBool() ? "true" : "false";
+    table.set(e.section, e.key, v);
+  }
+  try {
+    s_.setSlamOptions(table);
+    return true;
+  } catch (const std::exception& ex) {
+    showError("Invalid SLAM option", ex.what());
+    return false;
+  }
+}
+
+void MainFrame::rebuildRecentMenu() {
+  while (recent_menu_->GetMenuItemCount()) recent_menu_->Destroy(recent_menu_->FindItemByPosition(0));
+  for (std::size_t i = 0; i < recent_.paths().size(); ++i)
+    recent_menu_->Append(kRecentFirst + static_cast<int>(i), recent_.paths()[i]);
+  if (recent_.paths().empty()) recent_menu_->Append(kClearRecent, "(none)")->Enable(false);
+}
+
+void MainFrame::showError(const std::string& what, const std::string& msg) {
+  SetStatusText(what + ": " + msg, 4);
+  if (!script.empty()) {  // scripted run: no modal dialog, report on stderr
+    std::fprintf(stderr, "gridtopo-gui: %s: %s\n", what.c_str(), msg.c_str());
+    exit_code = 1;
+    return;
+  }
+  wxMessageBox(msg, what, wxOK | wxICON_ERROR, this);
+}
+
+bool MainFrame::openFile(const std::string& path, double resolution) {
+  io::MapReadOptions mo;
+  if (session::classifyFile(path) == session::FileKind::Map && session::mapNeedsResolution(path)) {
+    if (resolution > 0) {
+      mo.resolution = resolution;
+    } else {
+      wxTextEntryDialog d(this, "Resolution of " + fs::path(path).filename().string() + " (metres per pixel):",
+                          "Map resolution", "0.05");
+      if (d.ShowModal() != wxID_OK) return false;
+      double r = 0;
+      if (!d.GetValue().ToDouble(&r) || !(r > 0) || !std::isfinite(r)) {
+        showError("Invalid resolution", "'" + d.GetValue().ToStdString() + "' is not a positive number");
+        return false;
+      }
+      mo.resolution = r;
+    }
+  }
+  wxBusyCursor busy;
+  try {
+    const auto kind = s_.open(path, mo);
+    recent_.add(path);
+    try {
+      recent_.save(session::RecentFiles::defaultFile());
+    } catch (const std::exception&) {
+    }
+    rebuildRecentMenu();
+    SetStatusText(std::string("opened ") + session::toString(kind) + " " + path, 4);
+    switch (kind) {
+      case session::FileKind::Log:
+        plots_->clear();
+        setView(ViewMode::Slam);
+        break;
+      case session::FileKind::Map:
+        setView(s_.runner() ? ViewMode::Topology : ViewMode::Slam);
+        canvas_->fit();
+        break;
+      case session::FileKind::Topology: setView(ViewMode::Topology); break;
+      case session::FileKind::SlamIni: rebuildOptionGrid(); break;
+      default: break;
+    }
+    canvas_->Refresh(false);
+    return true;
+  } catch (const std::exception& e) {
+    showError("Cannot open " + fs::path(path).filename().string(), e.what());
+    return false;
+  }
+}
+
+void MainFrame::onOpen(wxCommandEvent&) {
+  wxFileDialog d(this, "Open", "", "",
+                 "All supported|*.clf;*.log;*.gz;*.rawlog;*.png;*.pgm;*.jpg;*.yaml;*.yml;*.gridmap;*.txt;*.relations;"
+                 "*.json;*.graphml;*.ini|All files|*",
+                 wxFD_OPEN | wxFD_FILE_MUST_EXIST | wxFD_MULTIPLE);
+  if (d.ShowModal() != wxID_OK) return;
+  wxArrayString paths;
+  d.GetPaths(paths);
+  onDropFiles(paths);
+}
+
+void MainFrame::onDropFiles(const wxArrayString& files) {
+  for (const auto& f : files) openFile(f.ToStdString());
+}
+
+void MainFrame::showPlots(bool show) {
+  if (show == right_split_->IsSplit()) return;
+  if (show) {
+    const int h = right_split_->GetClientSize().y;
+    right_split_->SplitHorizontally(canvas_, plots_, std::max(100, h - 190));
+  } else {
+    right_split_->Unsplit(plots_);
+  }
+}
+
+void MainFrame::setView(ViewMode m) {
+  showPlots(m == ViewMode::Slam && s_.runner());
+  canvas_->setMode(m);
+  menubar_->Check(m == ViewMode::Slam ? kViewSlam : m == ViewMode::Topology ? kViewTopology : kViewLabels, true);
+  canvas_->fit();
+}
+
+void MainFrame::startSlam() {
+  if (!applyOptionGrid()) return;
+  try {
+    s_.startSlam(runner_options);
+    failure_shown_ = false;
+    plots_->clear();
+    drawn_version_ = 0;
+    setView(ViewMode::Slam);
+  } catch (const std::exception& e) {
+    showError("Cannot start the SLAM", e.what());
+  }
+}
+
+void MainFrame::startTopology() {
+  if (topology_future_.valid()) return;
+  if (s_.map().empty() && s_.runner()) {
+    try {
+      s_.useSlamMap();
+    } catch (const std::exception&) {
+    }
+  }
+  if (s_.map().empty()) return showError("No map", "open a map or run the SLAM first");
+  if (!s_.model()) return showError("No place model", "open a model trained by gridtopo-train (Topology > Open place model)");
+  // The worker gets copies: the session is only touched again on the GUI thread when the result arrives.
+  const session::MapLayer map = s_.map();
+  const auto model = s_.model();
+  const auto options = s_.topologyOptions();
+  topology_progress_ = 0;
+  topology_future_ = std::async(std::launch::async, [this, map, model, options] {
+    return session::computeTopology(map, model, options, [this](const std::string&, std::size_t d, std::size_t n) {
+      topology_progress_ = static_cast<int>(100 * d / std::max<std::size_t>(n, 1));
+    });
+  });
+  SetStatusText("labelling places...", 4);
+}
+
+void MainFrame::showOptionsTab() {
+  notebook_->SetSelection(1);
+  if (auto* p = grid_->GetProperty("slam_particles")) {
+    grid_->SelectProperty(p, true);
+    grid_->SetDescription(p->GetLabel(), p->GetHelpString());
+    grid_->GetGrid()->EnsureVisible(p);
+  }
+}
+
+std::string MainFrame::inspectorText() const { return inspector_->GetValue().ToStdString(); }
+
+void MainFrame::refreshNow() {
+  canvas_->Refresh(false);
+  canvas_->Update();
+  if (const auto snap = s_.slamSnapshot()) plots_->update(*snap);
+  updateStatus();
+}
+
+bool MainFrame::screenshot(const std::string& path) {
+  Raise();
+  refreshNow();
+  wxYield();
+  const wxRect r = GetScreenRect();
+  wxScreenDC screen;
+  wxBitmap bmp(r.width, r.height);
+  {
+    wxMemoryDC mem(bmp);
+    mem.Blit(0, 0, r.width, r.height, &screen, r.x, r.y);
+  }
+  return bmp.SaveFile(path, wxBITMAP_TYPE_PNG);
+}
+
+void MainFrame::updateStatus() {
+  const auto s = s_.slamSnapshot();
+  if (!s) return;
+  SetStatusText(wxString::Format("scan %zu / %zu (%zu updates)", s->scans_fed, s->scans_total, s->steps), 0);
+  SetStatusText("t " + fmtTime(s->log_time) + " / " + fmtTime(s->log_duration), 1);
+  SetStatusText(wxString::Format("%.0f scans/s, %s", s->scans_per_second, session::toString(s->state)), 2);
+  std::string right = "ETA " + fmtTime(s->state == session::RunState::Running ? s->eta_seconds : -1);
+  if (const auto err = s_.relationsError(*s))
+    right += wxString::Format("  rel. err %.3f m / %.2f deg (%zu)", err->translational.mean, err->rotational.mean,
+                              err->translational.count)
+                 .ToStdString();
+  SetStatusText(right, 3);
+  if (s->state == session::RunState::Failed && !failure_shown_) {
+    failure_shown_ = true;
+    showError("SLAM failed", s->error);
+  }
+}
+
+void MainFrame::onTimer(wxTimerEvent&) {
+  if (topology_future_.valid()) {
+    if (topology_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      try {
+        s_.setTopology(topology_future_.get());
+        SetStatusText(wxString::Format("topology: %zu regions, %zu edges, %.2f s", s_.topology()->topo.graph.nodes.size(),
+                                       s_.topology()->topo.graph.edges.size(), s_.topology()->seconds),
+                      4);
+        setView(ViewMode::Topology);
+      } catch (const std::exception& e) {
+        topology_future_ = {};
+        showError("Labelling failed", e.what());
+      }
+    } else {
+      SetStatusText(wxString::Format("labelling places... %d%%", topology_progress_.load()), 4);
+    }
+  }
+  if (const auto* r = s_.runner()) {
+    const auto v = r->snapshotVersion();
+    if (v != drawn_version_) {
+      drawn_version_ = v;
+      if (canvas_->mode() == ViewMode::Slam) canvas_->Refresh(false);
+      if (++plot_tick_ % 10 == 0 || r->snapshot()->state != session::RunState::Running) {
+        plots_->update(*r->snapshot());
+        updateStatus();
+      } else {
+        const auto s = r->snapshot();
+        SetStatusText(wxString::Format("scan %zu / %zu (%zu updates)", s->scans_fed, s->scans_total, s->steps), 0);
+      }
+    }
+  }
+  if (!script.empty()) {
+    if (script.front()()) script.erase(script.begin());
+    if (script.empty() && quit_when_done) Close(true);
+  }
+}
+
+}  // namespace gridtopo::gui

@@ -1,0 +1,194 @@
+#pragma once
+// Everything gridtopo-gui shows, with no GUI types: the open log, map, trajectories, ground-truth relations,
+// the SLAM run and its snapshots, the topology result, the label canvas and the selection. Every open*()
+// reads into temporaries first and only then replaces the current content, so a bad file (reported by the
+// reader as gridtopo::InputError "file:line: field: message") leaves the session exactly as it was.
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gridtopo/eval/relations.h"
+#include "gridtopo/eval/relations_metric.h"
+#include "gridtopo/io/map_io.h"
+#include "gridtopo/io/scan_record.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/places/model.h"
+#include "gridtopo/session/label_canvas.h"
+#include "gridtopo/session/map_layer.h"
+#include "gridtopo/session/option_table.h"
+#include "gridtopo/session/render.h"
+#include "gridtopo/session/slam_runner.h"
+#include "gridtopo/session/topology_state.h"
+#include "gridtopo/slam/slam_options.h"
+#include "gridtopo/topology/pipeline.h"
+
+namespace gridtopo::session {
+
+enum class FileKind { Unknown, Log, Map, Trajectory, Relations, Topology, Model, SlamIni, TopologyIni };
+const char* toString(FileKind k);
+/// Kind of a file from its name, and from its first bytes where names are ambiguous (.yml/.yaml: ROS map vs
+/// OpenCV model; .txt: trajectory; .gz: log vs relations).
+FileKind classifyFile(const std::string& path);
+/// A plain image (.png/.pgm/.jpg) with no ROS .yaml beside it: the user must give its resolution.
+bool mapNeedsResolution(const std::string& path);
+
+enum class ViewMode { Slam, Topology, Labels };
+
+struct Layers {
+  bool map = true;
+  bool particles = true;
+  bool particle_paths = false;  ///< every particle's trajectory (through the shared tree)
+  bool best_path = true;        ///< the best particle's corrected path
+  bool odometry = true;         ///< odometry-only path, aligned at the start
+  bool scan = true;             ///< the current scan in the world
+  bool trajectories = true;     ///< trajectory files opened by the user
+  bool labels = true;
+  LabelStage stage = LabelStage::Corrected;
+  bool region_ids = true;
+  bool graph = true;
+  bool inspection = true;       ///< simulated scan of the inspected cell, highlighted particle path
+  bool scale_bar = true;
+};
+
+struct NamedTrajectory {
+  std::string path;
+  std::vector<io::TimedPose> poses;
+};
+
+struct Selection {
+  enum class Kind { None, Cell, Node, Particle } kind = Kind::None;
+  std::optional<CellInspection> cell;
+  std::optional<NodeInspection> node;
+  int particle = -1;
+  double particle_weight = 0;
+  slam::Pose2 particle_pose;
+  std::vector<cv::Point2d> particle_path;  ///< world points of the selected particle's trajectory
+  std::string text;                        ///< what the inspector panel shows
+};
+
+class Session {
+ public:
+  Session();
+  ~Session();
+
+  // ---- files (strong guarantee: on exception nothing changes)
+  /// Opens by kind (classifyFile). Maps use `map_options` (resolution/origin for plain images).
+  FileKind open(const std::string& path, const io::MapReadOptions& map_options = {});
+  void openLog(const std::string& path, std::size_t max_scans = 0);
+  void openMap(const std::string& path, const io::MapReadOptions& options = {});
+  void openTrajectory(const std::string& path);
+  void openRelations(const std::string& path);
+  void openTopology(const std::string& path);  ///< needs the map it was computed on to be open for labels
+  void openModel(const std::string& path);
+  void openSlamIni(const std::string& path, const std::string& section = "slam");
+  void openTopologyIni(const std::string& path);
+  void openLabelImage(const std::string& path);  ///< into the label canvas (starts one on the current map)
+  /// Replaces the map by a `cols` x `rows` tiling of itself (the frame-rate benchmark's big map).
+  void tileMap(int cols, int rows);
+
+  // ---- what is open
+  const MapLayer& map() const { return map_; }
+  bool hasLog() const { return scans_ != nullptr; }
+  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
+  const std::string& logPath() const { return log_path_; }
+  const std::vector<NamedTrajectory>& trajectories() const { return trajectories_; }
+  const std::vector<eval::Relation>& relations() const { return relations_; }
+  const std::string& relationsPath() const { return relations_path_; }
+  const std::shared_ptr<const places::PlacesModel>& model() const { return model_; }
+  const std::string& modelPath() const { return model_path_; }
+
+  // ---- SLAM
+  slam::SlamOptions& slamOptions() { return slam_options_; }
+  const std::string& slamIniPath() const { return slam_ini_path_; }
+  /// The options as a property-grid table (help from config-ini/slam.ini if `documented_ini` exists).
+  OptionTable slamOptionTable(const std::string& documented_ini = "") const;
+  /// Applies an edited table (validated; throws InputError naming the key, options unchanged on error).
+  void setSlamOptions(const OptionTable& table);
+  /// Starts a new run on the open log (paused). Throws if no log is open or the options are invalid.
+  void startSlam(const RunnerOptions& options = {});
+  SlamRunner* runner() { return runner_.get(); }
+  const SlamRunner* runner() const { return runner_.get(); }
+  void stopSlam();
+  /// Odometry-only path of the scans fed so far, aligned with the filter's first pose.
+  std::vector<cv::Point2d> odometryPath(const SlamSnapshot& s) const;
+  /// Relations error of the snapshot's trajectory (cached per trajectory); nullopt without relations.
+  std::optional<eval::RelationsResult> relationsError(const SlamSnapshot& s);
+  /// Writes map.png, map.pgm + map.yaml, map.gridmap.gz, map.simplemap, trajectory.txt, stats.txt, options.ini
+  /// from the latest snapshot (the run must be paused or over), with the io writers gridtopo-slam uses.
+  void saveSlamOutputs(const std::string& dir);
+  /// Makes the SLAM's current best map the session map (for the topology view and the label painter), through
+  /// the same conversion as the saved map (slam::toOccupancyGrid + io::gridToImage).
+  void useSlamMap();
+
+  // ---- topology
+  topology::TopologyOptions& topologyOptions() { return topology_options_; }
+  const TopologyData* topology() const { return topology_.get(); }
+  void setTopology(TopologyData t);
+  /// Synchronous labelling + topology of the current map with the current model (the GUI runs it in a thread
+  /// on copies: see computeTopology()).
+  void runTopology();
+
+  // ---- label painting
+  LabelCanvas& canvas() { return canvas_; }
+  const LabelCanvas& canvas() const { return canvas_; }
+  /// Starts a blank canvas on the current map (throws if none).
+  void startLabelling();
+
+  // ---- selection (world coordinates; `radius_m` is the pick tolerance for particles and nodes)
+  const Selection& select(ViewMode mode, double x, double y, double radius_m);
+  const Selection& selection() const { return selection_; }
+  void clearSelection() { selection_ = {}; }
+  /// Hover text: world coordinates and the occupancy of the cell under (x, y).
+  std::string hoverText(ViewMode mode, double x, double y) const;
+
+  // ---- view
+  /// Draws the view of `mode` into `screen` (BGR, its size is the window's).
+  void render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, const Layers& layers);
+  /// World bounding box of what `mode` shows (for fit-to-map); false when there is nothing.
+  bool bounds(ViewMode mode, double& xmin, double& ymin, double& xmax, double& ymax) const;
+  /// While the SLAM runs, the map image is rebuilt at most this often (s); particles, paths and the scan are
+  /// drawn from every snapshot. Keeps the GUI's share of the CPU small on 2-core machines.
+  double live_map_interval = 0.25;
+  /// Latest SLAM snapshot (null without a run).
+  std::shared_ptr<const SlamSnapshot> slamSnapshot() const;
+
+ private:
+  const MapLayer& labelsMap() const;
+
+  MapLayer map_;
+  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
+  std::string log_path_;
+  std::vector<NamedTrajectory> trajectories_;
+  std::vector<eval::Relation> relations_;
+  std::string relations_path_;
+  std::shared_ptr<const places::PlacesModel> model_;
+  std::string model_path_;
+  slam::SlamOptions slam_options_;
+  std::string slam_ini_path_;
+  topology::TopologyOptions topology_options_;
+  std::unique_ptr<SlamRunner> runner_;
+  std::unique_ptr<TopologyData> topology_;
+  LabelCanvas canvas_;
+  Selection selection_;
+
+  // caches
+  std::uint64_t relations_cache_key_ = ~0ull;
+  std::optional<eval::RelationsResult> relations_cache_;
+  std::uint64_t slam_raster_version_ = ~0ull;
+  MapRaster slam_raster_;
+  std::chrono::steady_clock::time_point slam_raster_time_{};
+  MapLayer slam_layer_;
+  int topo_raster_key_ = -1;
+  std::uint64_t topo_generation_ = 0, map_generation_ = 0;
+  MapRaster topo_raster_, map_raster_, label_raster_;
+  std::uint64_t map_raster_generation_ = ~0ull, label_raster_generation_ = ~0ull, label_generation_ = 0;
+  std::uint64_t topo_raster_generation_ = ~0ull;
+
+ public:
+  /// Call after modifying the canvas so the view redraws it.
+  void canvasChanged() { ++label_generation_; }
+};
+
+}  // namespace gridtopo::session

@@ -1,0 +1,128 @@
+#pragma once
+// Runs the RBPF SLAM (gridtopo::slam::RbpfSlam) on a log in a worker thread with play / pause / step / stop,
+// and publishes read-only snapshots the GUI draws from. A snapshot shares the particle map tiles and the
+// trajectory-tree nodes with the filter (both are immutable once shared: the map is copy-on-write and tree
+// nodes are const), so taking one costs a few vector copies, never a map copy, and the GUI thread never reads
+// memory the filter writes.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "gridtopo/io/scan_record.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/rbpf_slam.h"
+
+namespace gridtopo::session {
+
+enum class RunState { Paused, Running, Finished, Stopped, Failed };
+const char* toString(RunState s);
+
+struct ParticleView {
+  slam::Pose2 pose;
+  double weight = 0.0;            ///< normalised weight (sums to 1 over the particles)
+  double log_weight_total = 0.0;  ///< accumulated log weight (the best particle has the largest)
+  slam::TrajectoryNodePtr node;   ///< newest node of the particle's path (shared, immutable)
+};
+
+struct SlamSnapshot {
+  std::uint64_t version = 0;  ///< increases with every published snapshot
+  RunState state = RunState::Paused;
+  std::string error;          ///< what() of the exception that stopped the run (state Failed)
+
+  std::size_t scans_fed = 0;    ///< scans given to the filter so far
+  std::size_t scans_total = 0;  ///< scans in the log
+  std::size_t steps = 0;        ///< scans processed by the filter (update policy)
+  double log_time = 0.0;        ///< timestamp of the last scan fed minus the first one (s)
+  double log_duration = 0.0;    ///< last minus first timestamp of the log (s)
+
+  std::vector<ParticleView> particles;
+  std::size_t best = 0;        ///< index of the best particle
+  slam::GridMap best_map;      ///< shares its tiles with the filter (copy-on-write)
+  /// The pose of every scan fed so far (RbpfSlam::trajectory()); filled when the run pauses, ends, and at
+  /// most every RunnerOptions::trajectory_interval seconds while running (see trajectory_scans).
+  std::vector<io::TimedPose> trajectory;
+  std::size_t trajectory_scans = 0;  ///< scans_fed when `trajectory` was computed
+  std::vector<slam::StepStats> stats;  ///< one per processed scan
+
+  std::size_t last_scan = 0;  ///< index of the last scan fed (valid when scans_fed > 0)
+  slam::Pose2 last_scan_pose;  ///< best particle's pose for that scan (robot frame origin)
+
+  double wall_seconds = 0.0;   ///< time spent running (excluding pauses)
+  double scans_per_second = 0.0;
+  double eta_seconds = 0.0;    ///< at the current rate; 0 when unknown
+  std::size_t rss_bytes = 0;   ///< resident memory of the process
+  std::size_t peak_rss_bytes = 0;
+};
+
+struct RunnerOptions {
+  double snapshot_interval = 0.05;    ///< s between snapshots while running (the GUI draws at most this often)
+  double trajectory_interval = 1.0;   ///< s between full-trajectory computations while running
+  std::size_t max_scans = 0;          ///< feed at most this many scans (0 = the whole log)
+};
+
+/// Resident set size and its peak (bytes) of this process, from /proc/self/status (0 if unavailable).
+void processMemory(std::size_t& rss, std::size_t& peak);
+
+class SlamRunner {
+ public:
+  /// Validates the options and builds the filter (throws gridtopo::InputError on bad options or an empty log).
+  /// The runner starts paused; the worker thread waits for play() or step().
+  SlamRunner(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const slam::SlamOptions& options,
+             const RunnerOptions& runner = {});
+  ~SlamRunner();  ///< stops and joins the worker
+  SlamRunner(const SlamRunner&) = delete;
+  SlamRunner& operator=(const SlamRunner&) = delete;
+
+  void play();                   ///< process scans continuously until the end of the log or pause()
+  void pause();                  ///< pause after the scan in progress (a snapshot is published)
+  void step(std::size_t n = 1);  ///< process scans until `n` more are processed by the filter, then pause
+  void stop();                   ///< end the run for good (the filter keeps its state for saving)
+
+  /// Blocks until the worker is paused, finished, stopped or failed, or `timeout` passes. True if it is.
+  bool waitIdle(std::chrono::milliseconds timeout = std::chrono::milliseconds(600000)) const;
+
+  std::shared_ptr<const SlamSnapshot> snapshot() const;
+  std::uint64_t snapshotVersion() const { return version_.load(); }
+  const slam::SlamOptions& options() const { return options_; }
+  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
+  std::shared_ptr<const std::vector<io::ScanRecord>> scansPtr() const { return scans_; }
+  std::size_t scanLimit() const { return limit_; }
+
+ private:
+  void run();
+  void publish(bool with_trajectory);
+  bool idle() const;  // requires mu_
+
+  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
+  slam::SlamOptions options_;
+  RunnerOptions ropt_;
+  std::size_t limit_ = 0;
+  std::unique_ptr<slam::RbpfSlam> slam_;  // touched by the worker only (and by the constructor)
+
+  mutable std::mutex mu_;
+  mutable std::condition_variable cv_;  // commands -> worker, and worker -> waitIdle
+  RunState state_ = RunState::Paused;
+  bool quit_ = false;
+  std::size_t pending_steps_ = 0;  // >0: step mode
+  std::shared_ptr<const SlamSnapshot> snapshot_;
+  std::atomic<std::uint64_t> version_{0};
+
+  // worker-only
+  std::size_t next_scan_ = 0;
+  double wall_ = 0.0;
+  std::chrono::steady_clock::time_point last_snapshot_{}, last_trajectory_{};
+  std::size_t peak_rss_ = 0;
+  std::vector<io::TimedPose> last_trajectory_poses_;
+  std::size_t last_trajectory_scans_ = 0;
+  std::string error_;
+  std::thread worker_;
+};
+
+}  // namespace gridtopo::session

@@ -1,0 +1,145 @@
+// Smoke test of the real gridtopo-gui binary under Xvfb: a short slice of Intel run through the test hooks
+// (--run-steps, --screenshot, --quit), the topology view on a floor plan with a scripted mouse click on a cell
+// (wxUIActionSimulator through XTest), and a bad file. Screenshots are checked for map pixels, particles, the
+// trajectory and the label overlay (not a blank or black window).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "test_helpers.h"
+
+using namespace gridtopo;
+
+namespace {
+const std::string kGui = GRIDTOPO_BIN_DIR "/gridtopo-gui";
+
+int runGui(const std::string& args, const std::string& log) {
+  const std::string cmd = std::string(GRIDTOPO_XVFB_RUN) + " -a -s '-screen 0 1400x1000x24' " + kGui + " " + args +
+                          " > " + log + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+std::string slurp(const std::string& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+// Pixels within `tol` of a BGR colour.
+int countColour(const cv::Mat& img, cv::Vec3b c, int tol = 0) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r)
+    for (int x = 0; x < img.cols; ++x) {
+      const cv::Vec3b v = img.at<cv::Vec3b>(r, x);
+      if (std::abs(v[0] - c[0]) <= tol && std::abs(v[1] - c[1]) <= tol && std::abs(v[2] - c[2]) <= tol) ++n;
+    }
+  return n;
+}
+int countIf(const cv::Mat& img, const std::function<bool(const cv::Vec3b&)>& f) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r)
+    for (int x = 0; x < img.cols; ++x) n += f(img.at<cv::Vec3b>(r, x));
+  return n;
+}
+}  // namespace
+
+TEST(GuiSmoke, SlamViewShowsMapParticlesAndTrajectory) {
+  guitest::TempDir tmp;
+  const int rc = runGui("--max-scans 400 --particles 10 --run-steps 40 --size 1100x800 --screenshot " + (tmp / "slam.png") +
+                            " --export-view " + (tmp / "view.png") + " --quit " GRIDTOPO_DATA_DIR "/slam/intel.clf.gz",
+                        tmp / "log.txt");
+  ASSERT_EQ(rc, 0) << slurp(tmp / "log.txt");
+  EXPECT_NE(slurp(tmp / "log.txt").find("40 updates"), std::string::npos) << slurp(tmp / "log.txt");
+  const cv::Mat shot = cv::imread(tmp / "slam.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(shot.empty());
+  EXPECT_EQ(shot.cols, 1100);
+  cv::Scalar mean, sd;
+  cv::meanStdDev(shot, mean, sd);
+  EXPECT_GT(sd[0] + sd[1] + sd[2], 30.0) << "blank window";
+  EXPECT_GT(mean[0] + mean[1] + mean[2], 60.0) << "black window";
+  // Map: free cells white, occupied cells dark; particles: the best one pure red (BGR 0,0,255); trajectory: the
+  // best particle's path (BGR 0,0,230).
+  const int free_px = countColour(shot, {255, 255, 255}, 6);
+  const int wall_px = countIf(shot, [](const cv::Vec3b& v) { return v[0] < 40 && v[1] < 40 && v[2] < 40; });
+  const int best_particle = countColour(shot, {0, 0, 255}, 0);
+  const int path_px = countColour(shot, {0, 0, 230}, 0);
+  EXPECT_GT(free_px, 5000);
+  EXPECT_GT(wall_px, 200);
+  EXPECT_GE(best_particle, 15);
+  EXPECT_GE(path_px, 30);
+  // The other particles: colour (255 (1 - w), 60, 255 w) by weight.
+  const int other_particles = countIf(shot, [](const cv::Vec3b& v) { return v[1] == 60 && std::abs(v[0] + v[2] - 255) <= 3; });
+  EXPECT_GE(other_particles, 5);
+  std::cerr << "free " << free_px << " walls " << wall_px << " best particle " << best_particle << " other particles "
+            << other_particles << " path " << path_px << "\n";
+  // The exported view is the canvas alone and shows the same layers.
+  const cv::Mat view = cv::imread(tmp / "view.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(view.empty());
+  EXPECT_GT(countColour(view, {0, 0, 230}, 0), 30);
+  EXPECT_LT(view.cols, shot.cols);
+}
+
+TEST(GuiSmoke, TopologyViewAndAClickedCellShowItsLabel) {
+  guitest::TempDir tmp;
+  cv::imwrite(tmp / "plan.png", guitest::floorPlan());
+  guitest::handMadeModel().save(tmp / "model.yml");
+  struct Click {
+    int col, row;
+    const char* label;
+  };
+  for (const Click& c : {Click{25, 25, "label: room"}, Click{60, 96, "label: corridor"}}) {
+    const std::string shot = tmp / ("topo_" + std::to_string(c.col) + ".png");
+    const int rc = runGui("--model " + (tmp / "model.yml") + " --resolution 0.05 --run-topology --view topology"
+                              " --size 1000x700 --click-cell " + std::to_string(c.col) + "," + std::to_string(c.row) +
+                              " --inspector-out " + (tmp / "insp.txt") + " --screenshot " + shot + " --quit " +
+                              (tmp / "plan.png"),
+                          tmp / "log.txt");
+    ASSERT_EQ(rc, 0) << slurp(tmp / "log.txt");
+    const std::string insp = slurp(tmp / "insp.txt");
+    EXPECT_NE(insp.find("cell (col " + std::to_string(c.col) + ", row " + std::to_string(c.row) + ")"), std::string::npos)
+        << insp;
+    EXPECT_NE(insp.find(c.label), std::string::npos) << insp;
+    EXPECT_NE(insp.find("after relaxation"), std::string::npos) << insp;
+    EXPECT_NE(insp.find("min_chord"), std::string::npos) << insp;
+    const cv::Mat img = cv::imread(shot, cv::IMREAD_COLOR);
+    ASSERT_FALSE(img.empty());
+    // Room overlay (blue dominant) and corridor overlay (green dominant) both visible.
+    const int room_px = countIf(img, [](const cv::Vec3b& v) { return v[0] > v[1] + 40 && v[0] > v[2] + 60; });
+    const int corr_px = countIf(img, [](const cv::Vec3b& v) { return v[1] > v[0] + 40 && v[1] > v[2] + 40; });
+    EXPECT_GT(room_px, 5000);
+    EXPECT_GT(corr_px, 2000);
+  }
+}
+
+TEST(GuiSmoke, TopologyOfALabelledFloorPlanWithTheShippedModel) {
+  const std::string model = GRIDTOPO_DATA_DIR "/models/places_model.yml";
+  if (!std::filesystem::exists(model)) GTEST_SKIP() << "no shipped model " << model;
+  guitest::TempDir tmp;
+  // lab_intel (763 x 708 cells), a cell deep inside a room of the labelled map training_intel.png.
+  const cv::Mat truth = cv::imread(GRIDTOPO_DATA_DIR "/places/labelled/training_intel.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(truth.at<unsigned char>(180, 330), 77);
+  const int rc = runGui("--model " + model + " --resolution 0.05 --run-topology --view topology --size 1300x1000"
+                        " --click-cell 330,180 --inspector-out " + (tmp / "insp.txt") + " --screenshot " +
+                            (tmp / "shot.png") + " --quit " GRIDTOPO_DATA_DIR "/places/maps/lab_intel.png",
+                        tmp / "log.txt");
+  ASSERT_EQ(rc, 0) << slurp(tmp / "log.txt");
+  const std::string insp = slurp(tmp / "insp.txt");
+  EXPECT_NE(insp.find("cell (col 330, row 180)"), std::string::npos) << insp;
+  EXPECT_NE(insp.find("label: room"), std::string::npos) << insp;
+  const cv::Mat img = cv::imread(tmp / "shot.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  EXPECT_GT(countIf(img, [](const cv::Vec3b& v) { return v[0] > v[1] + 40 && v[0] > v[2] + 60; }), 20000);
+  EXPECT_GT(countIf(img, [](const cv::Vec3b& v) { return v[1] > v[0] + 40 && v[1] > v[2] + 40; }), 5000);
+}
+
+TEST(GuiSmoke, BadFileExitsNonZeroWithFileAndLine) {
+  guitest::TempDir tmp;
+  std::ofstream(tmp / "bad.clf") << "# comment\nODOM 0 0 0 0 0 0 1.0 h 1.0\nFLASER 3 1.0 x 1.0 0 0 0 0 0 0 2 h 2\n";
+  const int rc = runGui("--quit " + (tmp / "bad.clf"), tmp / "log.txt");
+  EXPECT_EQ(rc, 1);
+  EXPECT_NE(slurp(tmp / "log.txt").find("bad.clf:3"), std::string::npos) << slurp(tmp / "log.txt");
+}

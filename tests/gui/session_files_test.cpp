@@ -1,0 +1,177 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/session/recent_files.h"
+#include "gridtopo/session/session.h"
+#include "test_helpers.h"
+
+using namespace gridtopo;
+using session::FileKind;
+
+namespace {
+void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+const std::string kLabIntel = GRIDTOPO_DATA_DIR "/places/maps/lab_intel.png";
+}  // namespace
+
+TEST(FileKinds, ByNameAndContent) {
+  guitest::TempDir tmp;
+  EXPECT_EQ(session::classifyFile("a/intel.clf.gz"), FileKind::Log);
+  EXPECT_EQ(session::classifyFile("a/x.LOG"), FileKind::Log);
+  EXPECT_EQ(session::classifyFile("a/x.rawlog"), FileKind::Log);
+  EXPECT_EQ(session::classifyFile("a/intel.relations.gz"), FileKind::Relations);
+  EXPECT_EQ(session::classifyFile("a/map.gridmap.gz"), FileKind::Map);
+  EXPECT_EQ(session::classifyFile("a/map.png"), FileKind::Map);
+  EXPECT_EQ(session::classifyFile("a/topology.graphml"), FileKind::Topology);
+  EXPECT_EQ(session::classifyFile("a/trajectory.txt"), FileKind::Trajectory);
+  write(tmp / "map.yaml", "image: map.pgm\nresolution: 0.05\n");
+  write(tmp / "model.yml", "%YAML:1.0\n---\nformat: gridtopo-places-model\n");
+  write(tmp / "slam.ini", "# c\n[slam]\nparticles = 3\n");
+  write(tmp / "topo.ini", "[topology]\nthreads = 1\n");
+  EXPECT_EQ(session::classifyFile(tmp / "map.yaml"), FileKind::Map);
+  EXPECT_EQ(session::classifyFile(tmp / "model.yml"), FileKind::Model);
+  EXPECT_EQ(session::classifyFile(tmp / "slam.ini"), FileKind::SlamIni);
+  EXPECT_EQ(session::classifyFile(tmp / "topo.ini"), FileKind::TopologyIni);
+  EXPECT_EQ(session::classifyFile("a/b.xyz"), FileKind::Unknown);
+  EXPECT_TRUE(session::mapNeedsResolution(kLabIntel));
+  cv::imwrite(tmp / "map.pgm", cv::Mat(4, 4, CV_8U, cv::Scalar(255)));
+  EXPECT_FALSE(session::mapNeedsResolution(tmp / "map.pgm"));  // has map.yaml beside it
+}
+
+TEST(SessionFiles, OpensAPlainImageMapWithTheGivenResolution) {
+  session::Session s;
+  io::MapReadOptions o;
+  o.resolution = 0.1;
+  EXPECT_EQ(s.open(kLabIntel, o), FileKind::Map);
+  const cv::Mat img = cv::imread(kLabIntel, cv::IMREAD_GRAYSCALE);
+  EXPECT_EQ(s.map().cols(), img.cols);
+  EXPECT_EQ(s.map().rows(), img.rows);
+  EXPECT_NEAR(s.map().resolution, 0.1, 1e-6);  // MRPT stores it as a float
+  // Pixel-aligned with the image: a free pixel is free and a black one occupied.
+  int free_r = -1, free_c = -1, occ_r = -1, occ_c = -1;
+  for (int r = 0; r < img.rows && (free_r < 0 || occ_r < 0); ++r)
+    for (int c = 0; c < img.cols; ++c) {
+      if (img.at<unsigned char>(r, c) == 255 && free_r < 0) free_r = r, free_c = c;
+      if (img.at<unsigned char>(r, c) == 0 && occ_r < 0) occ_r = r, occ_c = c;
+    }
+  EXPECT_LT(s.map().occupancy(free_r, free_c), 0.02);
+  EXPECT_GT(s.map().occupancy(occ_r, occ_c), 0.98);
+  // World <-> cell round trip.
+  const cv::Point2d w = s.map().cellCentre(free_r, free_c);
+  int r, c;
+  ASSERT_TRUE(s.map().worldToCell(w.x, w.y, r, c));
+  EXPECT_EQ(r, free_r);
+  EXPECT_EQ(c, free_c);
+}
+
+TEST(SessionFiles, BadFilesLeaveTheSessionUntouchedAndNameFileAndLine) {
+  guitest::TempDir tmp;
+  session::Session s;
+  s.openMap(kLabIntel);
+  s.openTrajectory([&] {
+    write(tmp / "good.txt", "0 0 0 0\n1 1 0 0\n");
+    return tmp / "good.txt";
+  }());
+  const cv::Mat map_before = s.map().grey.clone();
+
+  // A CARMEN log with a malformed third line.
+  write(tmp / "bad.clf",
+        "# a comment line\n"
+        "ODOM 0.0 0.0 0.0 0 0 0 1.0 host 1.0\n"
+        "FLASER 3 1.0 1.0 x 0 0 0 0 0 0 2.0 host 2.0\n");
+  try {
+    s.open(tmp / "bad.clf");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.clf:3"), std::string::npos) << e.what();
+  }
+  write(tmp / "bad.txt", "0 0 0 0\n1 1 nan? 0\n");
+  try {
+    s.open(tmp / "bad.txt");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.txt:2"), std::string::npos) << e.what();
+  }
+  write(tmp / "bad.ini", "[slam]\nparticles = 0\n");
+  const int particles = s.slamOptions().particles;
+  try {
+    s.open(tmp / "bad.ini");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("particles"), std::string::npos) << e.what();
+  }
+  write(tmp / "broken.png", "not a png at all");
+  EXPECT_THROW(s.open(tmp / "broken.png"), InputError);
+  write(tmp / "broken.graphml", "<graphml>\n<node id=\"n1\"><data key=\"label\">room</data><data key=\"area_m2\">x</data></node>\n");
+  try {
+    s.open(tmp / "broken.graphml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.graphml:2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(s.open(tmp / "missing.clf"), InputError);
+  EXPECT_THROW(s.open(tmp / "what.xyz"), InputError);
+
+  EXPECT_FALSE(s.hasLog());
+  EXPECT_EQ(s.trajectories().size(), 1u);
+  EXPECT_EQ(s.slamOptions().particles, particles);
+  EXPECT_EQ(cv::countNonZero(s.map().grey != map_before), 0);
+}
+
+TEST(SessionFiles, SlamOptionTableEditsGoThroughTheOptionStruct) {
+  session::Session s;
+  auto t = s.slamOptionTable(GRIDTOPO_SOURCE_DIR "/config-ini/slam.ini");
+  const auto* p = t.find("slam", "particles");
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->type, session::OptionEntry::Type::Int);
+  EXPECT_EQ(p->value, "30");
+  EXPECT_EQ(p->default_value, "30");
+  // Help from the comments of config-ini/slam.ini: the comment above the key, not the section separator.
+  EXPECT_EQ(p->help, "Number of particles (>= 1).");
+  // Keys listed under one comment share it.
+  ASSERT_NE(t.find("slam", "angular_update"), nullptr);
+  EXPECT_EQ(t.find("slam", "angular_update")->help, t.find("slam", "linear_update")->help);
+  EXPECT_NE(t.find("slam", "linear_update")->help.find("travelled distance"), std::string::npos);
+  for (const auto& e : t.entries()) EXPECT_FALSE(e.help.empty()) << e.key << " has no help in config-ini/slam.ini";
+  ASSERT_TRUE(t.set("slam", "particles", "12"));
+  ASSERT_TRUE(t.set("slam", "proposal", "odometry"));
+  s.setSlamOptions(t);
+  EXPECT_EQ(s.slamOptions().particles, 12);
+  EXPECT_EQ(s.slamOptions().proposal.type, slam::ProposalType::Odometry);
+  // A bad value is refused with the key's name and changes nothing.
+  t.set("slam", "particles", "-3");
+  try {
+    s.setSlamOptions(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("particles"), std::string::npos);
+  }
+  EXPECT_EQ(s.slamOptions().particles, 12);
+  // Saved as INI and loaded like the CLI loads it.
+  guitest::TempDir tmp;
+  t.set("slam", "particles", "12");
+  { std::ofstream(tmp / "saved.ini") << t.toIni(); }
+  session::Session s2;
+  s2.openSlamIni(tmp / "saved.ini");
+  EXPECT_EQ(s2.slamOptions().particles, 12);
+  EXPECT_EQ(s2.slamOptions().proposal.type, slam::ProposalType::Odometry);
+}
+
+TEST(RecentFiles, MostRecentFirstWithoutDuplicatesAndPersisted) {
+  guitest::TempDir tmp;
+  session::RecentFiles r(3);
+  r.add("/a");
+  r.add("/b");
+  r.add("/a");
+  r.add("/c");
+  r.add("/d");
+  ASSERT_EQ(r.paths(), (std::vector<std::string>{"/d", "/c", "/a"}));
+  r.save(tmp / "cfg/recent");
+  session::RecentFiles q(3);
+  q.load(tmp / "cfg/recent");
+  EXPECT_EQ(q.paths(), r.paths());
+  q.load(tmp / "none");
+  EXPECT_TRUE(q.paths().empty());
+}

@@ -1,0 +1,223 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/io/log_reader.h"
+#include "gridtopo/io/map_io.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/session/session.h"
+#include "gridtopo/session/slam_runner.h"
+#include "gridtopo/slam/map_export.h"
+#include "test_helpers.h"
+
+using namespace gridtopo;
+using namespace std::chrono_literals;
+
+namespace {
+const std::string kIntel = GRIDTOPO_DATA_DIR "/slam/intel.clf.gz";
+constexpr std::size_t kScans = 250;
+
+std::shared_ptr<const std::vector<io::ScanRecord>> intelSlice() {
+  static const auto s = [] {
+    auto v = io::readScanLog(kIntel);
+    v.resize(kScans);
+    return std::make_shared<const std::vector<io::ScanRecord>>(std::move(v));
+  }();
+  return s;
+}
+slam::SlamOptions smallOptions() {
+  slam::SlamOptions o;
+  o.particles = 8;
+  o.seed = 7;
+  o.threads = 2;
+  return o;
+}
+// The reference: the filter run directly, without the runner.
+const std::vector<io::TimedPose>& directTrajectory() {
+  static const auto t = [] {
+    slam::RbpfSlam f(smallOptions());
+    for (const auto& r : *intelSlice()) f.processScan(r);
+    return f.trajectory();
+  }();
+  return t;
+}
+void expectSameTrajectory(const std::vector<io::TimedPose>& a, const std::vector<io::TimedPose>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].timestamp, b[i].timestamp) << i;
+    ASSERT_EQ(a[i].pose.x, b[i].pose.x) << i;
+    ASSERT_EQ(a[i].pose.y, b[i].pose.y) << i;
+    ASSERT_EQ(a[i].pose.phi, b[i].pose.phi) << i;
+  }
+}
+}  // namespace
+
+TEST(SlamRunner, StartsPausedAndStepsOneFilterUpdateAtATime) {
+  session::SlamRunner r(intelSlice(), smallOptions());
+  ASSERT_TRUE(r.waitIdle(10s));
+  auto s = r.snapshot();
+  EXPECT_EQ(s->state, session::RunState::Paused);
+  EXPECT_EQ(s->scans_fed, 0u);
+  EXPECT_EQ(s->scans_total, kScans);
+  r.step();
+  ASSERT_TRUE(r.waitIdle(30s));
+  s = r.snapshot();
+  EXPECT_EQ(s->state, session::RunState::Paused);
+  EXPECT_EQ(s->steps, 1u);
+  EXPECT_EQ(s->stats.size(), 1u);
+  r.step(5);
+  ASSERT_TRUE(r.waitIdle(30s));
+  s = r.snapshot();
+  EXPECT_EQ(s->steps, 6u);
+  // The scan that completed the 6th update is the last one fed.
+  EXPECT_EQ(s->stats.back().scan_index + 1, s->scans_fed);
+  EXPECT_EQ(s->particles.size(), 8u);
+  double wsum = 0;
+  for (const auto& p : s->particles) wsum += p.weight;
+  EXPECT_NEAR(wsum, 1.0, 1e-9);
+  EXPECT_GT(s->best_map.tileCount(), 0u);
+  // Paused: the trajectory covers every scan fed.
+  EXPECT_EQ(s->trajectory.size(), s->scans_fed);
+  EXPECT_EQ(s->trajectory_scans, s->scans_fed);
+  EXPECT_GT(s->rss_bytes, 0u);
+  EXPECT_GE(s->peak_rss_bytes, s->rss_bytes);
+}
+
+TEST(SlamRunner, PlayPauseResumeGivesExactlyTheDirectRun) {
+  session::RunnerOptions ro;
+  ro.snapshot_interval = 0.0;  // a snapshot after every scan: the most interference the GUI can cause
+  ro.trajectory_interval = 0.0;
+  session::SlamRunner r(intelSlice(), smallOptions(), ro);
+  r.step(3);
+  ASSERT_TRUE(r.waitIdle(30s));
+  r.play();
+  r.pause();
+  ASSERT_TRUE(r.waitIdle(30s));
+  const auto mid = r.snapshot();
+  EXPECT_TRUE(mid->state == session::RunState::Paused || mid->state == session::RunState::Finished);
+  r.play();
+  ASSERT_TRUE(r.waitIdle(60s));
+  const auto s = r.snapshot();
+  ASSERT_EQ(s->state, session::RunState::Finished);
+  EXPECT_EQ(s->scans_fed, kScans);
+  expectSameTrajectory(s->trajectory, directTrajectory());
+  EXPECT_EQ(s->stats.size(), s->steps);
+  EXPECT_GT(s->steps, 10u);
+  EXPECT_GT(s->wall_seconds, 0.0);
+  EXPECT_GT(s->scans_per_second, 0.0);
+  // Snapshots taken earlier are untouched by the run that went on (copy-on-write tiles, immutable nodes).
+  EXPECT_LE(mid->steps, s->steps);
+  EXPECT_LE(mid->trajectory.size(), s->trajectory.size());
+  for (std::size_t i = 0; i < mid->stats.size(); ++i) EXPECT_EQ(mid->stats[i].neff, s->stats[i].neff);
+}
+
+TEST(SlamRunner, StopEndsTheRunForGood) {
+  session::SlamRunner r(intelSlice(), smallOptions());
+  r.step(2);
+  ASSERT_TRUE(r.waitIdle(30s));
+  r.stop();
+  ASSERT_TRUE(r.waitIdle(10s));
+  const auto fed = r.snapshot()->scans_fed;
+  EXPECT_EQ(r.snapshot()->state, session::RunState::Stopped);
+  r.play();
+  r.step();
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(r.snapshot()->scans_fed, fed);
+  EXPECT_EQ(r.snapshot()->state, session::RunState::Stopped);
+}
+
+TEST(SlamRunner, BadOptionsAndEmptyLogsThrowBeforeAnyThreadStarts) {
+  auto o = smallOptions();
+  o.particles = 0;
+  EXPECT_THROW(session::SlamRunner(intelSlice(), o), InputError);
+  o = smallOptions();
+  o.resolution = -0.05;
+  EXPECT_THROW(session::SlamRunner(intelSlice(), o), InputError);
+  EXPECT_THROW(session::SlamRunner(std::make_shared<const std::vector<io::ScanRecord>>(), smallOptions()), InputError);
+}
+
+TEST(SessionSlam, SavesTheSameFilesAsTheWritersAndSendsTheMapToTopology) {
+  guitest::TempDir tmp;
+  session::Session s;
+  s.openLog(kIntel, kScans);
+  s.slamOptions() = smallOptions();
+  s.startSlam();
+  EXPECT_THROW(s.saveSlamOutputs(tmp / "early"), std::runtime_error);  // nothing processed yet
+  s.runner()->play();
+  ASSERT_TRUE(s.runner()->waitIdle(60s));
+  const auto snap = s.slamSnapshot();
+  s.saveSlamOutputs(tmp / "out");
+  for (const char* f : {"trajectory.txt", "map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz",
+                        "map.simplemap", "stats.txt", "options.ini"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(tmp / ("out/" + std::string(f)))) << f;
+  expectSameTrajectory(io::readTrajectory(tmp / "out/trajectory.txt"), directTrajectory());
+  const auto grid = io::readGridMap(tmp / "out/map.gridmap.gz");
+  // The simple map holds one keyframe per filter update of the best particle (as gridtopo-slam writes it).
+  {
+    mrpt::maps::CSimpleMap sm;
+    mrpt::io::CFileGZInputStream f(tmp / "out/map.simplemap");
+    auto a = mrpt::serialization::archiveFrom(f);
+    a >> sm;
+    EXPECT_EQ(sm.size(), snap->steps);
+  }
+  // The ROS pair reads back to the same grid.
+  const auto ros = io::readGridMap(tmp / "out/map.yaml");
+  EXPECT_EQ(ros->getSizeX(), grid->getSizeX());
+  const auto expected = slam::toOccupancyGrid(snap->best_map);
+  EXPECT_EQ(grid->getSizeX(), expected.getSizeX());
+  EXPECT_EQ(grid->getSizeY(), expected.getSizeY());
+  // The INI written back loads into the same options.
+  session::Session s2;
+  s2.openSlamIni(tmp / "out/options.ini");
+  EXPECT_EQ(s2.slamOptions().particles, 8);
+  EXPECT_EQ(s2.slamOptions().seed, 7u);
+
+  s.useSlamMap();
+  EXPECT_EQ(s.map().cols(), static_cast<int>(expected.getSizeX()));
+  EXPECT_EQ(s.map().rows(), static_cast<int>(expected.getSizeY()));
+  EXPECT_EQ(cv::countNonZero(s.map().grey != io::gridToImage(expected)), 0);
+}
+
+TEST(SessionSlam, SelectingAParticleGivesItsPoseWeightAndPath) {
+  session::Session s;
+  s.openLog(kIntel, kScans);
+  s.slamOptions() = smallOptions();
+  s.startSlam();
+  s.runner()->step(4);
+  ASSERT_TRUE(s.runner()->waitIdle(30s));
+  const auto snap = s.slamSnapshot();
+  const auto& p = snap->particles[3];
+  const auto& sel = s.select(session::ViewMode::Slam, p.pose.x + 0.001, p.pose.y, 0.002);
+  ASSERT_EQ(sel.kind, session::Selection::Kind::Particle);
+  // Particles may coincide: the one picked is at that pose.
+  EXPECT_NEAR(sel.particle_pose.x, p.pose.x, 1e-12);
+  EXPECT_EQ(sel.particle_path.size(), 4u);  // one node per filter update
+  EXPECT_NE(sel.text.find("weight"), std::string::npos);
+  // Nothing within the radius: not a particle.
+  EXPECT_NE(s.select(session::ViewMode::Slam, p.pose.x + 50, p.pose.y, 0.1).kind, session::Selection::Kind::Particle);
+}
+
+TEST(SessionSlam, RelationsErrorUsesOnlyRelationsInsideTheProcessedPart) {
+  session::Session s;
+  s.openLog(kIntel, 1200);
+  s.openRelations(GRIDTOPO_DATA_DIR "/slam/intel.relations.gz");
+  s.slamOptions() = smallOptions();
+  s.startSlam();
+  s.runner()->play();
+  ASSERT_TRUE(s.runner()->waitIdle(60s));
+  const auto snap = s.slamSnapshot();
+  const auto err = s.relationsError(*snap);
+  ASSERT_TRUE(err.has_value());
+  std::size_t inside = 0;
+  for (const auto& r : s.relations()) inside += std::max(r.t1, r.t2) <= snap->trajectory.back().timestamp;
+  EXPECT_EQ(err->translational.count, inside);
+  EXPECT_GT(inside, 5u);
+  EXPECT_LT(err->translational.mean, 0.2);  // 250 scans of Intel: no loop yet, small local errors
+}

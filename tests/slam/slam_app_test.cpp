@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "gridtopo/io/trajectory_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Result {
+  int status;
+  std::string output;
+};
+Result run(const std::string& args) {
+  const std::string cmd = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-slam " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int st = pclose(p);
+  return {WEXITSTATUS(st), out};
+}
+const std::string kIntel = std::string(GRIDTOPO_DATA_DIR) + "/slam/intel.clf.gz";
+}  // namespace
+
+TEST(SlamApp, WritesEveryOutputForAShortIntelSlice) {
+  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_out";
+  fs::remove_all(out);
+  const Result r = run("-i " + kIntel + " -o " + out.string() + " -c " + GRIDTOPO_SOURCE_DIR +
+                       "/config-ini/slam.ini -p 4 -t 2 -q --max-scans 400");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz", "map.simplemap",
+                        "trajectory.txt", "stats.txt", "options.ini"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto traj = gridtopo::io::readTrajectory((out / "trajectory.txt").string());
+  EXPECT_EQ(traj.size(), 400u);  // a pose for every scan
+  std::ifstream stats(out / "stats.txt");
+  std::string line;
+  int lines = 0;
+  while (std::getline(stats, line)) lines += !line.empty() && line[0] != '#';
+  EXPECT_GT(lines, 20);
+  EXPECT_LT(lines, 400);
+}
+
+TEST(SlamApp, BadIniValuesFailWithFileSectionAndKey) {
+  const fs::path ini = fs::temp_directory_path() / "gridtopo_slam_app_bad.ini";
+  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_bad_out";
+  fs::remove_all(out);
+  std::ofstream(ini) << "[slam]\nparticles = 0\n";
+  Result r = run("-i " + kIntel + " -o " + out.string() + " -c " + ini.string() + " -q --max-scans 10");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find(ini.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("[slam] particles"), std::string::npos) << r.output;
+  std::ofstream(ini) << "[slam]\nresolution = -0.05\n";
+  r = run("-i " + kIntel + " -o " + out.string() + " -c " + ini.string() + " -q --max-scans 10");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("[slam] resolution"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "trajectory.txt"));  // nothing written
+  r = run("-i " + kIntel + " -o " + out.string() + " -p 0 -q --max-scans 10");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("particles"), std::string::npos) << r.output;
+  r = run("-i /nonexistent.clf -o " + out.string() + " -q");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("/nonexistent.clf"), std::string::npos) << r.output;
+}
