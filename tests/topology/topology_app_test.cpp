@@ -6,6 +6,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "gridtopo/io/map_io.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
 
@@ -84,4 +85,32 @@ TEST(TopologyApp, BadInputsGiveClearErrors) {
   EXPECT_NE(run(kData + "/places/maps/Fr52_original.png -m " + (d / "nope.yml").string() + " -o " +
                     (d / "o4").string(), d / "err"), 0);
   EXPECT_NE(slurp(d / "err").find("not found"), std::string::npos) << slurp(d / "err");
+}
+
+// A probabilistic grid like the ones gridtopo-slam writes: free cells are confident (p_free 0.95) but never reach the
+// grey 250 of the floor-plan images. Such a .gridmap.gz must be labelled like the image it came from.
+TEST(TopologyApp, SlamStyleGridmapIsLabelled) {
+  const fs::path d = fresh("gridmap");
+  const auto grid = io::readGridMap(kData + "/places/maps/lab_intel.png");
+  const int w = static_cast<int>(grid->getSizeX()), h = static_cast<int>(grid->getSizeY());
+  int free_cells = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float p = grid->getCell(x, y);
+      if (p > 0.9f) ++free_cells;
+      grid->setCell(x, y, p > 0.9f ? 0.95f : (p < 0.1f ? 0.05f : 0.5f));
+    }
+  ASSERT_GT(free_cells, 10000);
+  const std::string gm = (d / "slam_like.gridmap.gz").string();
+  io::writeGridmapGz(*grid, gm);
+  ASSERT_EQ(run(gm + " -m " + kModel + " -o " + (d / "out").string(), d / "err"), 0) << slurp(d / "err");
+  const auto g = topology::graphFromJson((d / "out" / "topology.json").string());
+  int n[3] = {0, 0, 0};
+  for (const auto& v : g.nodes) n[v.label]++;
+  EXPECT_GE(n[0], 15);
+  EXPECT_GE(n[1], 1);
+  EXPECT_GE(n[2], 10);
+  // The labels cover as many cells as the image's free space.
+  const cv::Mat labels = cv::imread((d / "out" / "labels.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_GT(cv::countNonZero(labels), free_cells * 9 / 10);
 }

@@ -13,12 +13,15 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   threads = s.read_int(sec, "threads", threads);
   resolution = s.read_double(sec, "resolution", resolution);
   free_threshold = s.read_int(sec, "free_threshold", free_threshold);
+  grid_free_threshold = s.read_int(sec, "grid_free_threshold", grid_free_threshold);
   overlay_scale = s.read_int(sec, "overlay_scale", overlay_scale);
   segmentation = s.read_string(sec, "segmentation", segmentation);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
   if (free_threshold < 1 || free_threshold > 255) throw InputError(where, 0, "free_threshold", "must be in [1, 255]");
+  if (grid_free_threshold < 129 || grid_free_threshold > 255)
+    throw InputError(where, 0, "grid_free_threshold", "must be in [129, 255] (p_free > 0.5)");
   if (segmentation != "regions" && segmentation != "doorways")
     throw InputError(where, 0, "segmentation", "must be regions or doorways");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
@@ -28,10 +31,19 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
 
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
-      << "\nfree_threshold = " << free_threshold << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\n[relaxation]\n";
+      << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
+      << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
+}
+
+int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
+  auto endsWith = [&](const std::string& suffix) {
+    return map_path.size() >= suffix.size() &&
+           map_path.compare(map_path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  return endsWith(".gridmap") || endsWith(".gridmap.gz") ? grid_free_threshold : free_threshold;
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,

@@ -19,12 +19,20 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int threads = 2;                       ///< section [topology]
   double resolution = 0.05;              ///< [topology] m per pixel for plain images without a YAML file
   int free_threshold = 250;              ///< [topology] grey >= this is free in plain images
+  /// [topology] grey = round(255 p_free) >= this is free in probabilistic grids (.gridmap/.gridmap.gz, e.g. a
+  /// gridtopo-slam map, whose clamped log-odds never reach grey 250). 204 = p_free >= 0.8, i.e. ROS map_saver's
+  /// free_thresh 0.196.
+  int grid_free_threshold = 204;
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
+
+  /// The free threshold for a map file: grid_free_threshold for .gridmap(.gz), free_threshold otherwise
+  /// (plain images and ROS YAML maps, whose readers already give 0 / 205 / 254-255 greys).
+  int freeThresholdFor(const std::string& map_path) const;
 };
 
 struct TopologyResult {
