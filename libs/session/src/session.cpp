@@ -202,7 +202,7 @@ void Session::openTopologyIni(const std::string& path) {
 void Session::openLabelImage(const std::string& path) {
   if (map_.empty()) throw InputError(path, "open the map the labels were painted on first");
   LabelCanvas c;
-  c.reset(map_.grey, topology_options_.free_threshold);
+  c.reset(map_.grey, freeThresholdFor(map_, topology_options_));
   c.load(path);
   canvas_ = std::move(c);
   ++label_generation_;
@@ -369,7 +369,7 @@ void Session::runTopology() { setTopology(computeTopology(map_, model_, topology
 
 void Session::startLabelling() {
   if (map_.empty()) throw std::runtime_error("open a map first");
-  canvas_.reset(map_.grey, topology_options_.free_threshold);
+  canvas_.reset(map_.grey, freeThresholdFor(map_, topology_options_));
   ++label_generation_;
 }
 

@@ -30,6 +30,10 @@ const cv::Mat& TopologyData::labels(LabelStage s) const {
   return none;
 }
 
+int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& options) {
+  return map.source == "<slam>" ? options.grid_free_threshold : options.freeThresholdFor(map.source);
+}
+
 TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::PlacesModel> model,
                              const topology::TopologyOptions& options,
                              const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
@@ -39,7 +43,7 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   TopologyData t;
   t.map = map;
   t.model = model;
-  t.occ = places::occupancyFromGrey(map.grey, map.resolution, map.source, options.free_threshold);
+  t.occ = places::occupancyFromGrey(map.grey, map.resolution, map.source, freeThresholdFor(map, options));
   // places::labelPlaces(), step by step, keeping the scans and the features.
   if (places::countFree(t.occ) == 0) throw InputError(map.source, "the map has no free cell (nothing to label)");
   places::ScanSimulationOptions scan = model->scan;

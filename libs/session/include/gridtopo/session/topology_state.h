@@ -85,6 +85,10 @@ std::optional<NodeInspection> inspectNodeAt(const TopologyData& t, double x, dou
 /// World position of a graph node (its centroid, in the frame of t.map).
 cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n);
 
+/// The grey level from which a cell of `map` counts as free: the probabilistic-grid threshold for a map the SLAM
+/// built ("<slam>") or a .gridmap(.gz), the image threshold otherwise (topology::TopologyOptions::freeThresholdFor).
+int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& options);
+
 /// Writes the files gridtopo-topology writes (topology.graphml/.json/.dot, overlay.png, labels.png,
 /// labels_before_correction.png, segmentation.png, segmentation_colour.png, options.ini) into `dir`, all or
 /// nothing.
