@@ -11,34 +11,16 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "test_tmp_dir.h"
 
 namespace fs = std::filesystem;
+
+using gridtopo::test::tmpDir;
+using gridtopo::test::readText;
 
 namespace {
 const std::string kApp = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-import";
 const std::string kIntel = std::string(GRIDTOPO_DATA_DIR) + "/slam/intel.clf.gz";
-
-fs::path tmpDir() {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_import_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-// Removes this process's temporary directory when the tests are done.
-struct RemoveTmpDir : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(tmpDir(), ec);
-  }
-};
-const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 struct Run {
   int status;

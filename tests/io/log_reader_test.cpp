@@ -1,3 +1,4 @@
+#include "test_tmp_dir.h"
 #include "gridtopo/io/log_reader.h"
 
 #include <gtest/gtest.h>
@@ -14,24 +15,12 @@
 namespace fs = std::filesystem;
 using namespace gridtopo::io;
 
+using gridtopo::test::tmpDir;
+using gridtopo::test::readText;
+
 namespace {
 const std::string kIntel = std::string(GRIDTOPO_DATA_DIR) + "/slam/intel.clf.gz";
 const std::string kAces = std::string(GRIDTOPO_DATA_DIR) + "/slam/aces.clf.gz";
-
-fs::path tmpDir() {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_log_reader_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-// Removes this process's temporary directory when the tests are done.
-struct RemoveTmpDir : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(tmpDir(), ec);
-  }
-};
-const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
 
 double maxEndpointError(const LaserScan& a, const LaserScan& b) {
   double worst = 0;

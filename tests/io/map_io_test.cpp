@@ -1,3 +1,4 @@
+#include "test_tmp_dir.h"
 #include "gridtopo/io/map_io.h"
 
 #include <gtest/gtest.h>
@@ -21,30 +22,11 @@ namespace fs = std::filesystem;
 using namespace gridtopo::io;
 using mrpt::maps::COccupancyGridMap2D;
 
+using gridtopo::test::tmpDir;
+using gridtopo::test::readText;
+
 namespace {
 const fs::path kMaps = fs::path(GRIDTOPO_DATA_DIR) / "places" / "maps";
-
-fs::path tmpDir() {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_map_io_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-// Removes this process's temporary directory when the tests are done.
-struct RemoveTmpDir : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(tmpDir(), ec);
-  }
-};
-const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
-
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 // A 40 x 30 grid with free, occupied, unknown and intermediate cells, its lower-left corner at (x0, y0).
 COccupancyGridMap2D::Ptr sampleGrid(float x0, float y0, float res = 0.05f) {

@@ -18,26 +18,14 @@
 
 #include "gridtopo/core/error.h"
 #include "synthetic_scans.h"
+#include "test_tmp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo::io;
 
+using gridtopo::test::tmpDir;
+
 namespace {
-fs::path tmpDir() {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_rawlog_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-// Removes this process's temporary directory when the tests are done.
-struct RemoveTmpDir : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(tmpDir(), ec);
-  }
-};
-const auto* const kRemoveTmpDir = ::testing::AddGlobalTestEnvironment(new RemoveTmpDir);
-
 double maxEndpointError(const LaserScan& a, const LaserScan& b) {
   double worst = 0;
   for (std::size_t k = 0; k < a.size(); ++k) {
