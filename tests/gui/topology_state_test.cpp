@@ -136,6 +136,7 @@ TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
     for (std::size_t i = 0; i < t->topo.graph.nodes.size(); ++i) {
       EXPECT_EQ(s.topology()->topo.graph.nodes[i].label, t->topo.graph.nodes[i].label);
       EXPECT_NEAR(s.topology()->topo.graph.nodes[i].area_m2, t->topo.graph.nodes[i].area_m2, 1e-6);  // 9 digits
+      EXPECT_EQ(s.topology()->topo.graph.nodes[i].anchor_px, t->topo.graph.nodes[i].anchor_px) << g;
     }
     EXPECT_EQ(cv::countNonZero(s.topology()->topo.labels != t->topo.labels), 0) << g;
     // Inspecting a loaded output: the label is known, the probabilities are not.

@@ -107,6 +107,7 @@ TEST(Export, FilesParseBack) {
     EXPECT_NEAR(back.nodes[i].area_m2, g.nodes[i].area_m2, 1e-9);
     EXPECT_NEAR(back.nodes[i].centroid_m.y, g.nodes[i].centroid_m.y, 1e-9);
     EXPECT_EQ(back.nodes[i].bbox_px, g.nodes[i].bbox_px);
+    EXPECT_EQ(back.nodes[i].anchor_px, g.nodes[i].anchor_px);
   }
   for (std::size_t i = 0; i < g.edges.size(); ++i) {
     EXPECT_EQ(back.edges[i].a, g.edges[i].a);

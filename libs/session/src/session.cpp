@@ -610,12 +610,22 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
         for (const auto& e : g.edges) {
           const auto *a = g.node(e.a), *b = g.node(e.b);
           if (!a || !b) continue;
-          const cv::Point2d pa = v.toScreen(nodeWorld(*topology_, *a).x, nodeWorld(*topology_, *a).y);
-          const cv::Point2d pb = v.toScreen(nodeWorld(*topology_, *b).x, nodeWorld(*topology_, *b).y);
-          cv::line(screen, pa, pb, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+          const cv::Point2d wa = nodeAnchorWorld(*topology_, *a), wb = nodeAnchorWorld(*topology_, *b);
+          const cv::Point2d pa = v.toScreen(wa.x, wa.y), pb = v.toScreen(wb.x, wb.y);
+          if (!topology_->has_labelling) {  // a loaded graph has no contact points: straight lines
+            cv::line(screen, pa, pb, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+            continue;
+          }
+          // As in overlay.png: node -> contact point -> node, leaving out the half at a node whose centroid lies
+          // outside its region (a corridor loop), where a straight line would cross walls.
+          const cv::Point2d wc = pixelWorld(*topology_, e.contact_px);
+          const cv::Point2d pc = v.toScreen(wc.x, wc.y);
+          if (a->centroid_inside) cv::line(screen, pa, pc, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+          if (b->centroid_inside) cv::line(screen, pb, pc, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+          cv::circle(screen, pc, 2, cv::Scalar(20, 20, 20), cv::FILLED, cv::LINE_AA);
         }
         for (const auto& n : g.nodes) {
-          const cv::Point2d w = nodeWorld(*topology_, n);
+          const cv::Point2d w = nodeAnchorWorld(*topology_, n);
           const cv::Point2d p = v.toScreen(w.x, w.y);
           cv::circle(screen, p, 6, labelColour(n.label), cv::FILLED, cv::LINE_AA);
           cv::circle(screen, p, 6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
@@ -623,7 +633,7 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
       }
       if (layers.region_ids)
         for (const auto& n : g.nodes) {
-          const cv::Point2d w = nodeWorld(*topology_, n);
+          const cv::Point2d w = nodeAnchorWorld(*topology_, n);
           const cv::Point2d p = v.toScreen(w.x, w.y);
           cv::putText(screen, std::to_string(n.id), p + cv::Point2d(7, -5), cv::FONT_HERSHEY_SIMPLEX, 0.4,
                       cv::Scalar(0, 0, 0), 1, cv::LINE_AA);

@@ -102,6 +102,9 @@ topology::TopologicalGraph graphFromGraphML(const std::string& path) {
       n.cells = static_cast<int>(num("cells"));
       n.centroid_m = {num("x_m"), num("y_m")};
       n.centroid_px = {num("col"), num("row")};
+      n.anchor_px = data.count("anchor_col") && data.count("anchor_row")
+                        ? cv::Point(static_cast<int>(num("anchor_col")), static_cast<int>(num("anchor_row")))
+                        : cv::Point(cvRound(n.centroid_px.x), cvRound(n.centroid_px.y));
       n.bbox_px = cv::Rect(static_cast<int>(num("bbox_x")), static_cast<int>(num("bbox_y")),
                            static_cast<int>(num("bbox_w")), static_cast<int>(num("bbox_h")));
       g.nodes.push_back(n);
@@ -172,11 +175,16 @@ std::string fmt(double v, int prec = 3) {
 }
 }  // namespace
 
-cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n) {
-  // centroid_px is in pixels of the map image (row 0 top); cell (c, r) centre = cellCentre(r, c).
-  return {t.map.origin_x + (n.centroid_px.x + 0.5) * t.map.resolution,
-          t.map.origin_y + (t.map.rows() - n.centroid_px.y - 0.5) * t.map.resolution};
+cv::Point2d pixelWorld(const TopologyData& t, const cv::Point2d& px) {
+  // Pixels of the map image (row 0 top); cell (c, r) centre = cellCentre(r, c).
+  return {t.map.origin_x + (px.x + 0.5) * t.map.resolution, t.map.origin_y + (t.map.rows() - px.y - 0.5) * t.map.resolution};
 }
+
+cv::Point2d nodeAnchorWorld(const TopologyData& t, const topology::GraphNode& n) {
+  return pixelWorld(t, cv::Point2d(n.anchor_px));
+}
+
+cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n) { return pixelWorld(t, n.centroid_px); }
 
 CellInspection inspectCell(const TopologyData& t, int row, int col) {
   if (row < 0 || col < 0 || row >= t.map.rows() || col >= t.map.cols())

@@ -26,7 +26,8 @@ std::string toGraphML(const TopologicalGraph& g) {
                            {"y_m", "node", "double"},     {"col", "node", "double"},
                            {"row", "node", "double"},     {"bbox_x", "node", "int"},
                            {"bbox_y", "node", "int"},     {"bbox_w", "node", "int"},
-                           {"bbox_h", "node", "int"},     {"border_cells", "edge", "int"},
+                           {"bbox_h", "node", "int"},     {"anchor_col", "node", "int"},
+                           {"anchor_row", "node", "int"}, {"border_cells", "edge", "int"},
                            {"via_doorway", "edge", "boolean"}};
   for (const auto& k : keys)
     o << "  <key id=\"" << k[0] << "\" for=\"" << k[1] << "\" attr.name=\"" << k[0] << "\" attr.type=\"" << k[2]
@@ -44,7 +45,9 @@ std::string toGraphML(const TopologicalGraph& g) {
       << "<data key=\"bbox_x\">" << n.bbox_px.x << "</data>"
       << "<data key=\"bbox_y\">" << n.bbox_px.y << "</data>"
       << "<data key=\"bbox_w\">" << n.bbox_px.width << "</data>"
-      << "<data key=\"bbox_h\">" << n.bbox_px.height << "</data></node>\n";
+      << "<data key=\"bbox_h\">" << n.bbox_px.height << "</data>"
+      << "<data key=\"anchor_col\">" << n.anchor_px.x << "</data>"
+      << "<data key=\"anchor_row\">" << n.anchor_px.y << "</data></node>\n";
   }
   for (const auto& e : g.edges)
     o << "    <edge source=\"n" << e.a << "\" target=\"n" << e.b << "\">"
@@ -64,7 +67,7 @@ std::string toJson(const TopologicalGraph& g) {
       << "\", \"area_m2\": " << num(n.area_m2) << ", \"cells\": " << n.cells << ", \"centroid_m\": [" << num(n.centroid_m.x)
       << ", " << num(n.centroid_m.y) << "], \"centroid_px\": [" << num(n.centroid_px.x) << ", " << num(n.centroid_px.y)
       << "], \"bbox_px\": [" << n.bbox_px.x << ", " << n.bbox_px.y << ", " << n.bbox_px.width << ", "
-      << n.bbox_px.height << "]}";
+      << n.bbox_px.height << "], \"anchor_px\": [" << n.anchor_px.x << ", " << n.anchor_px.y << "]}";
   }
   o << "\n  ],\n  \"edges\": [";
   for (std::size_t i = 0; i < g.edges.size(); ++i) {
@@ -116,6 +119,10 @@ TopologicalGraph graphFromJson(const std::string& path) {
     gn.centroid_px = cv::Point2d(static_cast<double>(n["centroid_px"][0]), static_cast<double>(n["centroid_px"][1]));
     gn.bbox_px = cv::Rect(static_cast<int>(n["bbox_px"][0]), static_cast<int>(n["bbox_px"][1]),
                           static_cast<int>(n["bbox_px"][2]), static_cast<int>(n["bbox_px"][3]));
+    // Files written before anchors were exported: the centroid stands in.
+    gn.anchor_px = n["anchor_px"].empty()
+                       ? cv::Point(cvRound(gn.centroid_px.x), cvRound(gn.centroid_px.y))
+                       : cv::Point(static_cast<int>(n["anchor_px"][0]), static_cast<int>(n["anchor_px"][1]));
     g.nodes.push_back(gn);
   }
   for (const auto& e : fs["edges"]) {

@@ -82,8 +82,14 @@ struct NodeInspection {
 /// The graph node nearest to a world point within `radius_m`, if any.
 std::optional<NodeInspection> inspectNodeAt(const TopologyData& t, double x, double y, double radius_m);
 
+/// World position of the centre of map pixel `px` (column, row; row 0 at the top of the map image).
+cv::Point2d pixelWorld(const TopologyData& t, const cv::Point2d& px);
+
 /// World position of a graph node (its centroid, in the frame of t.map).
 cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n);
+/// World coordinates of a node's anchor: a cell of its region (the centroid when it lies inside the region). The graph
+/// is drawn through anchors so that, e.g., a corridor ring's node sits on the corridor, not in the courtyard.
+cv::Point2d nodeAnchorWorld(const TopologyData& t, const topology::GraphNode& n);
 
 /// The grey level from which a cell of `map` counts as free: the probabilistic-grid threshold for a map the SLAM
 /// built ("<slam>") or a .gridmap(.gz), the image threshold otherwise (topology::TopologyOptions::freeThresholdFor).
