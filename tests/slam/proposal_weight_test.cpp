@@ -4,6 +4,7 @@
 // integral) are commensurate. Checked against a brute-force numerical integral on a synthetic map.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 
 #include "gridtopo/sim/simulator.h"
@@ -95,4 +96,45 @@ TEST(ProposalWeight, FallbackWeightIsAMonteCarloEstimateOfTheSameIntegral) {
   // Hence a matched and a failed particle in the same step get commensurate weights.
   const ProposalPlan plan = planProposal(s.map, s.prev, s.u, true, s.scan, s.o, motion);
   EXPECT_NEAR(plan.log_weight_increment, mc, 0.1);
+}
+
+TEST(ProposalWeight, DefaultNarrowGridStillEstimatesTheIntegral) {
+  // The default 3×3×3 grid (±1 cm, ±0.005 rad) covers only the core of the integrand: its Riemann sum alone
+  // underestimates the integral; the Laplace approximation of the quadratic fit recovers it.
+  WeightScene s;
+  s.o.proposal = ProposalOptions{};
+  s.o.proposal.laplace_weight = true;
+  const OdometryMotionModel motion(s.o.motion);
+  const double exact = bruteForceLogIntegral(s, motion);
+  const ProposalPlan plan = planProposal(s.map, s.prev, s.u, true, s.scan, s.o, motion);
+  ASSERT_TRUE(plan.matched);
+  s.o.proposal.laplace_weight = false;
+  const double riemann = planProposal(s.map, s.prev, s.u, true, s.scan, s.o, motion).log_weight_increment;
+  EXPECT_NEAR(riemann, plan.gaussian.log_eta + 2.0 * std::log(0.01) + std::log(0.005), 1e-9);
+  std::printf("ln integral: brute force %.3f, grid (Laplace) %.3f, Riemann sum %.3f\n", exact,
+              plan.log_weight_increment, riemann);
+  EXPECT_NEAR(plan.log_weight_increment, exact, 0.15);
+  EXPECT_LT(std::abs(plan.log_weight_increment - exact), std::abs(riemann - exact));
+}
+
+TEST(ProposalWeight, LaplaceIntegralOfAGaussianIsExact) {
+  // ln f = a Gaussian in (x, y, θ) with correlations, sampled on a 3×3×3 grid: the quadratic fit is exact.
+  const Pose2 ref{1.0, 2.0, 3.1};
+  const double dxy = 0.01, dth = 0.005;
+  Eigen::Matrix3d cov;
+  cov << 4e-4, 1e-4, 1e-5, 1e-4, 3e-4, -2e-5, 1e-5, -2e-5, 1e-4;
+  const Eigen::Matrix3d P = cov.inverse();
+  const Eigen::Vector3d mu(0.004, -0.003, 0.002);
+  std::vector<Pose2> xs;
+  std::vector<double> lf;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k) {
+        const Eigen::Vector3d d(i * dxy, j * dxy, k * dth);
+        xs.push_back({ref.x + d.x(), ref.y + d.y(), wrapAngle(ref.theta + d.z())});
+        lf.push_back(-700.0 - 0.5 * (d - mu).dot(P * (d - mu)));
+      }
+  // ∫ exp(-700 - ½ eᵀPe) = exp(-700) (2π)^{3/2} sqrt(det cov)
+  const double exact = -700.0 + 1.5 * std::log(2.0 * M_PI) + 0.5 * std::log(cov.determinant());
+  EXPECT_NEAR(logIntegralOnGrid(xs, lf, ref, dxy, dth), exact, 1e-6);
 }

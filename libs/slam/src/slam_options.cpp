@@ -84,6 +84,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_delta_theta", o.proposal.delta_theta);
   f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
   f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
+  f("proposal_laplace_weight", o.proposal.laplace_weight);
 }
 
 template <class T>
