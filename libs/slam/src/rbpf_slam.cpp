@@ -67,7 +67,14 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.gaussian.cov(0, 0) += mx;
   plan.gaussian.cov(1, 1) += mx;
   plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
-  plan.log_weight_increment = inv_pgain == inv_gain ? plan.gaussian.log_eta : logSumExp(log_tau_weight);
+  // The weight factor approximates the integral ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx, so that it is
+  // commensurate with the weight of a particle whose matching failed (odometry proposal: p(z|m,x)^(1/gain) at a
+  // motion sample, a one-sample Monte-Carlo estimate of the same integral). η = Σ τ_j alone lacks the grid
+  // volume Δx·Δy·Δθ, and such particles would be discarded in every mixed step.
+  plan.log_weight_increment =
+      o.proposal.laplace_weight
+          ? logIntegralOnGrid(xs, log_tau_weight, m.pose, o.proposal.delta_xy, o.proposal.delta_theta)
+          : logSumExp(log_tau_weight) + 2.0 * std::log(o.proposal.delta_xy) + std::log(o.proposal.delta_theta);
   return plan;
 }
 

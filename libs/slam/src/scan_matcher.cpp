@@ -227,9 +227,33 @@ MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan
     r = hillClimb(map, r, scan, o, o.polish_step_xy, o.polish_step_theta, o.polish_refinements, prior);
   } else {
     r.pose = start;
-    r.score = scoreScan(map, start, scan, o);
-    r.evaluations = 1;
-    r = hillClimb(map, r, scan, o, o.step_xy, o.step_theta, o.refinements, prior);
+    double sxy = o.step_xy, sth = o.step_theta;
+    int refinements = o.refinements;
+    const int coarse = std::min(o.coarse_levels, o.refinements);
+    if (coarse > 0 && o.coarse_beam_step > 1) {
+      // Coarse-to-fine: the large steps only need to find the basin; every n-th matching beam does.
+      PreparedScan sub;
+      for (std::size_t b = 0; b < scan.size(); b += static_cast<std::size_t>(o.coarse_beam_step)) {
+        sub.ex.push_back(scan.ex[b]);
+        sub.ey.push_back(scan.ey[b]);
+        sub.fx.push_back(scan.fx[b]);
+        sub.fy.push_back(scan.fy[b]);
+      }
+      MatchResult c;
+      c.pose = start;
+      c.score = scoreScan(map, start, sub, o);
+      c = hillClimb(map, c, sub, o, sxy, sth, coarse - 1, prior);
+      r.pose = c.pose;
+      r.evaluations = c.evaluations + 1;  // counted as full evaluations (an upper bound on the work)
+      for (int i = 0; i < coarse; ++i) {
+        sxy *= 0.5;
+        sth *= 0.5;
+      }
+      refinements -= coarse;
+    }
+    r.score = scoreScan(map, r.pose, scan, o);
+    r.evaluations += 1;
+    r = hillClimb(map, r, scan, o, sxy, sth, refinements, prior);
   }
   r.ok = scan.size() > 0 && r.score.matched >= o.min_match_fraction * static_cast<double>(scan.size());
   return r;

@@ -75,6 +75,8 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("match_step_xy", o.matcher.step_xy);
   f("match_step_theta", o.matcher.step_theta);
   f("match_refinements", o.matcher.refinements);
+  f("match_coarse_levels", o.matcher.coarse_levels);
+  f("match_coarse_beam_step", o.matcher.coarse_beam_step);
   f("match_max_iterations", o.matcher.max_iterations);
   f("match_min_fraction", o.matcher.min_match_fraction);
   f("proposal_points_per_axis", o.proposal.points_per_axis);
@@ -82,6 +84,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_delta_theta", o.proposal.delta_theta);
   f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
   f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
+  f("proposal_laplace_weight", o.proposal.laplace_weight);
 }
 
 template <class T>
@@ -217,6 +220,8 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   positive("match_step_xy", matcher.step_xy);
   positive("match_step_theta", matcher.step_theta);
   if (matcher.refinements < 0) fail("match_refinements", "must be >= 0");
+  if (matcher.coarse_levels < 0) fail("match_coarse_levels", "must be >= 0");
+  if (matcher.coarse_beam_step < 1) fail("match_coarse_beam_step", "must be >= 1");
   if (matcher.max_iterations < 1) fail("match_max_iterations", "must be >= 1");
   if (matcher.gn_iterations < 0) fail("match_gn_iterations", "must be >= 0");
   if (matcher.gn_kernel < 0 || matcher.gn_kernel > 5) fail("match_gn_kernel", "must be in [0, 5]");

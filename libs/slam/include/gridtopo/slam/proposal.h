@@ -23,6 +23,10 @@ struct ProposalOptions {
   double delta_theta = 0.005;  ///< rad, grid spacing in θ
   double min_sigma_xy = 1e-3;  ///< m, floor on the proposal's standard deviations (numerical safety)
   double min_sigma_theta = 5e-4;
+  /// Weight factor ≈ ∫ p(z|m,x) p(x|x_{t-1},u) dx: false = the Riemann sum η·Δx·Δy·Δθ over the grid (the paper's
+  /// η times the grid volume), true = the Laplace approximation of a quadratic fit of ln τ over the grid (also
+  /// counts the mass outside a narrow grid; see logIntegralOnGrid).
+  bool laplace_weight = false;
 };
 
 struct GaussianProposal {
@@ -38,6 +42,13 @@ GaussianProposal fitProposal(const std::vector<Pose2>& poses, const std::vector<
 
 /// Draws from N(mean, cov) (3×3, positive semi-definite), angle wrapped.
 Pose2 sampleGaussian(const GaussianProposal& g, Rng& rng);
+
+/// ln ∫ f(x) dx from ln f at the poses of a regular grid around `reference` (spacing delta_xy, delta_theta):
+/// the Laplace approximation of a least-squares quadratic fit of ln f (the Gaussian integral of its peak), which
+/// also counts the mass outside a narrow grid; never less than the Riemann sum Σ f·Δx·Δy·Δθ, which it falls
+/// back to when the fit is not concave or its peak lies outside the grid.
+double logIntegralOnGrid(const std::vector<Pose2>& poses, const std::vector<double>& log_f, const Pose2& reference,
+                         double delta_xy, double delta_theta);
 
 /// ln Σ exp(v).
 double logSumExp(const std::vector<double>& v);

@@ -46,7 +46,7 @@ struct ProposalPlan {
   bool matched = false;            ///< false: fall back to the odometry proposal
   ProposalType type = ProposalType::Informed;
   GaussianProposal gaussian;       ///< informed: N(μ, Σ) and ln η; mode-only: the mode in `mean`
-  double log_weight_increment = 0.0;
+  double log_weight_increment = 0.0;  ///< ln(η·Δx·Δy·Δθ) ≈ ln ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx
   int evaluations = 0;             ///< likelihood evaluations (scan matching + proposal)
 };
 

@@ -35,6 +35,10 @@ struct ScanMatcherOptions {
   double step_xy = 0.05;              ///< m, initial hill-climbing step
   double step_theta = 0.05;           ///< rad, initial hill-climbing step
   int refinements = 6;                ///< number of step halvings
+  /// Coarse-to-fine: the first `coarse_levels` step sizes of the hill climb score every `coarse_beam_step`-th
+  /// matching beam only; the finer levels (and the final score) use all of them. 0 = all beams throughout.
+  int coarse_levels = 0;
+  int coarse_beam_step = 2;
   int max_iterations = 200;           ///< safety cap on hill-climbing moves
   /// Informed / mode-only proposals: search the mode of p(z|m,x)·p(x|x_{t-1},u) (true) or of p(z|m,x) (false).
   bool use_motion_prior = false;
