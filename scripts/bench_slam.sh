@@ -2,15 +2,18 @@
 # Benchmark of gridtopo-slam (issue 3): Intel and ACES accuracy (Freiburg relations, gridtopo-eval), wall time and
 # peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal, and 10 seeds
 # with 8 particles. Writes the tables to doc/slam-bench.md and the map pictures to doc/img/.
-# Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study)
+# Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study and writes
+#                                          doc/slam-bench-quick.md instead)
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${GRIDTOPO_BUILD_DIR:-build}
 BIN=$BUILD/bin
 OUT=${GRIDTOPO_BENCH_OUT:-out/bench-slam}
-DOC=doc/slam-bench.md
 QUICK=${1:-}
+# --quick writes its two rows to a file of its own, so it never replaces the full tables of doc/slam-bench.md.
+DOC=doc/slam-bench.md
+[ "$QUICK" = "--quick" ] && DOC=doc/slam-bench-quick.md
 THREADS=${GRIDTOPO_BENCH_THREADS:-2}
 mkdir -p "$OUT" doc/img
 [ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)"; exit 1; }
