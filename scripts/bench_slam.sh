@@ -9,6 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${GRIDTOPO_BUILD_DIR:-build}
 BIN=$BUILD/bin
+OUT=${GRIDTOPO_BENCH_OUT:-out/bench-slam}
 QUICK=${1:-}
 # --quick writes its two rows to a file of its own, so it never replaces the full tables of doc/slam-bench.md.
 DOC=doc/slam-bench.md
