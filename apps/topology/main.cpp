@@ -44,15 +44,7 @@ int main(int argc, char** argv) {
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
     cmd.parse(argc, argv);
 
-    topology::TopologyOptions opt;
-    if (!ini.getValue().empty()) {
-      if (!fs::is_regular_file(ini.getValue())) throw InputError(ini.getValue(), "INI file not found");
-      try {
-        opt.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
-      } catch (const InputError& e) {
-        throw InputError(ini.getValue(), 0, e.file() + " " + e.field(), e.message());
-      }
-    }
+    topology::TopologyOptions opt = topology::loadTopologyOptions(ini.getValue());
     if (res.isSet()) {
       if (!(res.getValue() > 0)) throw InputError("--resolution", "must be > 0");
       opt.resolution = res.getValue();

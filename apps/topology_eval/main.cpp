@@ -90,34 +90,8 @@ int main(int argc, char** argv) {
     TCLAP::SwitchArg no_seg("", "no-segmentation", "skip the room-segmentation benchmark", cmd);
     cmd.parse(argc, argv);
 
-    topology::TopologyOptions topo;
-    if (!ini.getValue().empty()) {
-      if (!fs::is_regular_file(ini.getValue())) throw InputError(ini.getValue(), "INI file not found");
-      try {
-        topo.loadFromConfigFile(mrpt::config::CConfigFile(ini.getValue()), "topology");
-      } catch (const InputError& e) {
-        throw InputError(ini.getValue(), 0, e.file() + " " + e.field(), e.message());
-      }
-    }
-    places::TrainingOptions train;
-    places::ScanSimulationOptions scan;
-    places::FeatureOptions feat;
-    if (!train_ini.getValue().empty()) {
-      if (!fs::is_regular_file(train_ini.getValue())) throw InputError(train_ini.getValue(), "INI file not found");
-      mrpt::config::CConfigFile f(train_ini.getValue());
-      try {
-        train.loadFromConfigFile(f, "training");
-        scan.loadFromConfigFile(f, "scan_simulation");
-      } catch (const InputError& e) {
-        throw InputError(train_ini.getValue(), 0, e.file() + " " + e.field(), e.message());
-      }
-      feat.beam_cap = f.read_double("features", "beam_cap", feat.beam_cap);
-      feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
-      feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
-      feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
-      if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
-        throw InputError(train_ini.getValue(), 0, "[features] context_radius", "must be in [0, 10] metres");
-    }
+    const topology::TopologyOptions topo = topology::loadTopologyOptions(ini.getValue());
+    auto [train, scan, feat] = places::loadTrainingConfig(train_ini.getValue());
     if (!order_arg.getValue().empty()) train.order = order_arg.getValue();
     scan.threads = topo.threads;
     std::optional<places::PlacesModel> fixed_model;

@@ -37,25 +37,7 @@ int main(int argc, char** argv) {
       return 0;
     }
 
-    places::TrainingOptions train;
-    places::ScanSimulationOptions scan;
-    places::FeatureOptions feat;
-    if (!ini.getValue().empty()) {
-      if (!fs::is_regular_file(ini.getValue())) throw InputError(ini.getValue(), "INI file not found");
-      mrpt::config::CConfigFile f(ini.getValue());
-      try {
-        train.loadFromConfigFile(f, "training");
-        scan.loadFromConfigFile(f, "scan_simulation");
-      } catch (const InputError& e) {
-        throw InputError(ini.getValue(), 0, e.file() + " " + e.field(), e.message());
-      }
-      feat.beam_cap = f.read_double("features", "beam_cap", feat.beam_cap);
-      feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
-      feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
-      feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
-      if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
-        throw InputError(ini.getValue(), 0, "[features] context_radius", "must be in [0, 10] metres");
-    }
+    auto [train, scan, feat] = places::loadTrainingConfig(ini.getValue());
     if (threads.getValue() < 1) throw InputError("--threads", "must be >= 1");
     scan.threads = threads.getValue();
 

@@ -1,6 +1,7 @@
 #include "gridtopo/places/training.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/config/CConfigFile.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +71,27 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
     }
   }
   return s;
+}
+
+TrainingConfig loadTrainingConfig(const std::string& ini_path) {
+  TrainingConfig c;
+  if (ini_path.empty()) return c;
+  if (!std::filesystem::is_regular_file(ini_path)) throw InputError(ini_path, "INI file not found");
+  const mrpt::config::CConfigFile f(ini_path);
+  try {
+    c.training.loadFromConfigFile(f, "training");
+    c.scan.loadFromConfigFile(f, "scan_simulation");
+  } catch (const InputError& e) {
+    throw InputError(ini_path, 0, e.file() + " " + e.field(), e.message());
+  }
+  FeatureOptions& feat = c.features;
+  feat.beam_cap = f.read_double("features", "beam_cap", feat.beam_cap);
+  feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
+  feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
+  feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
+  if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
+    throw InputError(ini_path, 0, "[features] context_radius", "must be in [0, 10] metres");
+  return c;
 }
 
 void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {

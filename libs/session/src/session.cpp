@@ -193,10 +193,7 @@ void Session::openSlamIni(const std::string& path, const std::string& section) {
 }
 
 void Session::openTopologyIni(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
-  topology::TopologyOptions o;
-  o.loadFromConfigFile(mrpt::config::CConfigFile(path), "topology");
-  topology_options_ = o;
+  topology_options_ = topology::loadTopologyOptions(path);
 }
 
 void Session::openLabelImage(const std::string& path) {

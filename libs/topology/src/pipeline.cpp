@@ -1,8 +1,10 @@
 #include "gridtopo/topology/pipeline.h"
 
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/topology/segmentation.h"
@@ -36,6 +38,18 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
+}
+
+TopologyOptions loadTopologyOptions(const std::string& ini_path) {
+  TopologyOptions opt;
+  if (ini_path.empty()) return opt;
+  if (!std::filesystem::is_regular_file(ini_path)) throw InputError(ini_path, "INI file not found");
+  try {
+    opt.loadFromConfigFile(mrpt::config::CConfigFile(ini_path), "topology");
+  } catch (const InputError& e) {
+    throw InputError(ini_path, 0, e.file() + " " + e.field(), e.message());
+  }
+  return opt;
 }
 
 int TopologyOptions::freeThresholdFor(const std::string& map_path) const {

@@ -51,6 +51,16 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   void dumpToTextStream(std::ostream& out) const override;
 };
 
+/// Everything a training INI (config-ini/topology_train.ini) sets: [training], [scan_simulation], [features].
+struct TrainingConfig {
+  TrainingOptions training;
+  ScanSimulationOptions scan;
+  FeatureOptions features;
+};
+/// Reads a training INI; an empty path gives the defaults. Errors (missing file, bad value) are InputErrors that
+/// name the INI file and "[section] key".
+TrainingConfig loadTrainingConfig(const std::string& ini_path);
+
 struct OrderScore {
   std::array<int, kNumLabels> order{};
   double accuracy = 0, balanced_accuracy = 0;

@@ -35,6 +35,10 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int freeThresholdFor(const std::string& map_path) const;
 };
 
+/// Reads a topology INI (config-ini/topology.ini: [topology], [relaxation], [correction]); an empty path gives the
+/// defaults. Errors (missing file, bad value) are InputErrors that name the INI file and the key.
+TopologyOptions loadTopologyOptions(const std::string& ini_path);
+
 struct TopologyResult {
   cv::Mat labels;     ///< CV_8U after correction: 0..2, places::kNoLabel for non-free cells
   CorrectionStats correction;
