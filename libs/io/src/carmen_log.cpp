@@ -279,14 +279,11 @@ class Parser {
     log_.scans.push_back(std::move(rec));
   }
 
-  // ROBOTLASER1 laser_type start_angle fov angular_res max_range accuracy remission_mode n r1..rn m rem1..remm
-  //   laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv forward_safety side_safety turn_axis
-  //   ipc_timestamp ipc_hostname logger_timestamp
-  void parseRobotLaser(bool rear) {
-    const char* msg = rear ? "ROBOTLASER2" : "ROBOTLASER1";
+  // The part ROBOTLASER1/2 and RAWLASER1 share: laser_type start_angle fov angular_res max_range accuracy
+  //   remission_mode n r1..rn m rem1..remm, followed by `trailing` more tokens. Fills the scan's geometry and
+  //   ranges; returns the index of the first trailing token.
+  std::size_t parseLaserConfigAndReadings(const char* msg, std::size_t trailing, LaserScan& s) {
     if (tok_.size() < 9) fail(msg, "expected at least 9 tokens, found " + std::to_string(tok_.size()));
-    ScanRecord rec;
-    LaserScan& s = rec.scan;
     number(tok_[1], msg, " laser_type");
     s.start_angle = number(tok_[2], msg, " start_angle");
     const double fov = number(tok_[3], msg, " fov");
@@ -296,10 +293,9 @@ class Parser {
     number(tok_[7], msg, " remission_mode");
     const std::size_t n = count(tok_[8], msg, " num_readings");
     if (n == 0) fail(std::string(msg) + " num_readings", "a scan needs at least one reading");
-    if (9 + n + 1 > tok_.size()) expectTokens(msg, 9 + n + 1 + 14, " for " + std::to_string(n) + " readings");
+    if (9 + n + 1 > tok_.size()) expectTokens(msg, 9 + n + 1 + trailing, " for " + std::to_string(n) + " readings");
     const std::size_t m = count(tok_[9 + n], msg, " num_remissions");
-    const std::size_t expected = 9 + n + 1 + m + 14;
-    expectTokens(msg, expected,
+    expectTokens(msg, 9 + n + 1 + m + trailing,
                  " for " + std::to_string(n) + " readings and " + std::to_string(m) + " remissions");
     if (s.angle_increment == 0.0 && n > 1) {
       // Some writers leave the resolution empty: derive it from the field of view.
@@ -307,7 +303,16 @@ class Parser {
     }
     readRanges(9, n, msg, s);
     for (std::size_t k = 0; k < m; ++k) number(tok_[10 + n + k], msg, " remission " + std::to_string(k + 1), false);
-    const std::size_t p = 10 + n + m;
+    return 10 + n + m;
+  }
+
+  // ROBOTLASER1 <laser config and readings> laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv
+  //   forward_safety side_safety turn_axis ipc_timestamp ipc_hostname logger_timestamp
+  void parseRobotLaser(bool rear) {
+    const char* msg = rear ? "ROBOTLASER2" : "ROBOTLASER1";
+    ScanRecord rec;
+    LaserScan& s = rec.scan;
+    const std::size_t p = parseLaserConfigAndReadings(msg, 14, s);
     const auto laser = pose(p, msg, " laser_x", " laser_y", " laser_theta");
     rec.odometry = pose(p + 3, msg, " robot_x", " robot_y", " robot_theta");
     rec.has_odometry = true;
@@ -324,29 +329,13 @@ class Parser {
     log_.scans.push_back(std::move(rec));
   }
 
-  // RAWLASER1 laser_type start_angle fov angular_res max_range accuracy remission_mode n r1..rn m rem1..remm
-  //   ipc_timestamp ipc_hostname logger_timestamp        (no pose: used only if the log has no posed scans)
+  // RAWLASER1 <laser config and readings> ipc_timestamp ipc_hostname logger_timestamp
+  //   (no pose: used only if the log has no posed scans)
   void parseRawLaser() {
     const char* msg = "RAWLASER1";
-    if (tok_.size() < 9) fail(msg, "expected at least 9 tokens, found " + std::to_string(tok_.size()));
     ScanRecord rec;
     LaserScan& s = rec.scan;
-    number(tok_[1], msg, " laser_type");
-    s.start_angle = number(tok_[2], msg, " start_angle");
-    const double fov = number(tok_[3], msg, " fov");
-    s.angle_increment = number(tok_[4], msg, " angular_resolution");
-    s.max_range = number(tok_[5], msg, " max_range");
-    number(tok_[6], msg, " accuracy");
-    number(tok_[7], msg, " remission_mode");
-    const std::size_t n = count(tok_[8], msg, " num_readings");
-    if (n == 0) fail(std::string(msg) + " num_readings", "a scan needs at least one reading");
-    if (9 + n + 1 > tok_.size()) expectTokens(msg, 9 + n + 1 + 3, " for " + std::to_string(n) + " readings");
-    const std::size_t m = count(tok_[9 + n], msg, " num_remissions");
-    expectTokens(msg, 9 + n + 1 + m + 3,
-                 " for " + std::to_string(n) + " readings and " + std::to_string(m) + " remissions");
-    if (s.angle_increment == 0.0 && n > 1) s.angle_increment = fov / static_cast<double>(n - 1);
-    readRanges(9, n, msg, s);
-    for (std::size_t k = 0; k < m; ++k) number(tok_[10 + n + k], msg, " remission " + std::to_string(k + 1), false);
+    parseLaserConfigAndReadings(msg, 3, s);
     timestamps(msg, s.timestamp, s.logger_timestamp);
     rec.has_odometry = false;
     rec.source_index = lineno_;
