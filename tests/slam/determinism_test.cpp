@@ -29,7 +29,7 @@ RunResult run(const sim::SimLog& log, int threads, std::uint64_t seed, slam::Pro
     std::vector<float> v;
     for (int y = -20; y < 260; y += 3)
       for (int x = -20; x < 420; x += 3) {
-        const auto* c = p.map.cell(x, y);
+        const auto c = p.map.cell(x, y);
         v.push_back(c ? c->log_odds : -99.0f);
       }
     out.maps.push_back(std::move(v));

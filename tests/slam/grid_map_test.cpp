@@ -9,13 +9,13 @@ TEST(GridMap, BeamMarksFreeCellsAndTheHit) {
   MapUpdateOptions o;
   m.insertScan({0.05, 0.05, 0}, {0, 0, 0}, {{1.0, 0.0, true}}, o);  // from cell (0,0) to cell (10,0)
   for (int x = 0; x < 10; ++x) EXPECT_FLOAT_EQ(m.cell(x, 0)->log_odds, o.log_odds_free) << x;
-  const Cell* hit = m.cell(10, 0);
-  ASSERT_NE(hit, nullptr);
+  const auto hit = m.cell(10, 0);
+  ASSERT_TRUE(hit);
   EXPECT_FLOAT_EQ(hit->log_odds, o.log_odds_hit);
   EXPECT_EQ(hit->hits, 1u);
   EXPECT_FLOAT_EQ(hit->hit_x, 1.05f);
   EXPECT_EQ(m.cell(11, 0) ? m.cell(11, 0)->log_odds : 0.0f, 0.0f);  // nothing beyond the hit
-  EXPECT_EQ(m.cell(500, 500), nullptr);
+  EXPECT_FALSE(m.cell(500, 500));
   // A free-only beam (no return) clears its last cell too and records no hit.
   m.insertScan({0.05, 0.05, 0}, {0, 0, 0}, {{0.0, 1.0, false}}, o);
   EXPECT_FLOAT_EQ(m.cell(0, 10)->log_odds, o.log_odds_free);
@@ -57,7 +57,7 @@ TEST(GridMap, CopiesShareTilesUntilWritten) {
   EXPECT_EQ(shared, tiles);  // nothing copied
   // Writing one cell of b copies exactly one tile; a is unchanged.
   const float before = a.cell(10, 10)->log_odds;
-  b.mutableCell(10, 10).log_odds = 3.0f;
+  b.mutableLogOdds(10, 10) = 3.0f;
   EXPECT_FLOAT_EQ(a.cell(10, 10)->log_odds, before);
   EXPECT_FLOAT_EQ(b.cell(10, 10)->log_odds, 3.0f);
   shared = 0;
@@ -67,7 +67,7 @@ TEST(GridMap, CopiesShareTilesUntilWritten) {
   // A second write to the same tile does not copy again.
   const auto* tile = b.tiles()[0].get();
   (void)tile;
-  b.mutableCell(11, 10).log_odds = 2.0f;
+  b.mutableLogOdds(11, 10) = 2.0f;
   shared = 0;
   for (std::size_t i = 0; i < a.tiles().size(); ++i)
     if (a.tiles()[i]) shared += a.tiles()[i].get() == b.tiles()[i].get();

@@ -52,7 +52,7 @@ MapLayer mapLayerFromSlam(const slam::GridMap& map) {
       for (int cy = ty; cy < std::min(ty + T, y1); ++cy) {
         unsigned char* row = m.grey.ptr<unsigned char>(y1 - 1 - cy);
         for (int cx = tx; cx < std::min(tx + T, x1); ++cx) {
-          const slam::Cell* c = map.cell(cx, cy);
+          const auto c = map.cell(cx, cy);
           if (!c || c->log_odds == 0.0f) continue;
           const int i = std::clamp(static_cast<int>(std::lround(c->log_odds * 32.0f)) + 512, 0, 1023);
           row[cx - x0] = lut[static_cast<std::size_t>(i)];

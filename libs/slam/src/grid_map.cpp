@@ -48,13 +48,13 @@ GridMap::Tile* GridMap::writableTile(int cx, int cy) {
   return slot.get();
 }
 
-Cell& GridMap::mutableCell(int cx, int cy) {
-  return writableTile(cx, cy)->cells[((cy & kTileMask) << kTileBits) | (cx & kTileMask)];
+float& GridMap::mutableLogOdds(int cx, int cy) {
+  return writableTile(cx, cy)->log_odds[static_cast<std::size_t>(cellOffset(cx, cy))];
 }
 
 namespace {
-inline void addLogOdds(Cell& c, float delta, const MapUpdateOptions& o) {
-  c.log_odds = std::clamp(c.log_odds + delta, o.log_odds_min, o.log_odds_max);
+inline void addLogOdds(float& l, float delta, const MapUpdateOptions& o) {
+  l = std::clamp(l + delta, o.log_odds_min, o.log_odds_max);
 }
 }  // namespace
 
@@ -81,14 +81,14 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
   // Cache of the last writable tile (consecutive cells of a beam mostly share a tile).
   int cached_tx = 0x7fffffff, cached_ty = 0x7fffffff;
   Tile* cached = nullptr;
-  auto cellRef = [&](int cx, int cy) -> Cell& {
+  auto tileOf = [&](int cx, int cy) -> Tile* {
     const int tx = cx >> kTileBits, ty = cy >> kTileBits;
     if (tx != cached_tx || ty != cached_ty) {
       cached = writableTile(cx, cy);
       cached_tx = tx;
       cached_ty = ty;
     }
-    return cached->cells[((cy & kTileMask) << kTileBits) | (cx & kTileMask)];
+    return cached;
   };
 
   for (std::size_t k = 0; k < beams.size(); ++k) {
@@ -99,7 +99,7 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
     int err = dx + dy;
     while (x != x1 || y != y1) {
-      addLogOdds(cellRef(x, y), o.log_odds_free, o);
+      addLogOdds(tileOf(x, y)->log_odds[static_cast<std::size_t>(cellOffset(x, y))], o.log_odds_free, o);
       const int e2 = 2 * err;
       if (e2 >= dy) {
         err += dy;
@@ -110,15 +110,17 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
         y += sy;
       }
     }
-    Cell& end = cellRef(x1, y1);
+    Tile* t = tileOf(x1, y1);
+    const auto i = static_cast<std::size_t>(cellOffset(x1, y1));
     if (beams[k].hit) {
-      addLogOdds(end, o.log_odds_hit, o);
-      ++end.hits;
-      const float inv = 1.0f / static_cast<float>(end.hits);
-      end.hit_x += (static_cast<float>(ends[k][0]) - end.hit_x) * inv;
-      end.hit_y += (static_cast<float>(ends[k][1]) - end.hit_y) * inv;
+      addLogOdds(t->log_odds[i], o.log_odds_hit, o);
+      HitMean& h = t->hit[i];
+      ++h.n;
+      const float inv = 1.0f / static_cast<float>(h.n);
+      h.x += (static_cast<float>(ends[k][0]) - h.x) * inv;
+      h.y += (static_cast<float>(ends[k][1]) - h.y) * inv;
     } else {
-      addLogOdds(end, o.log_odds_free, o);
+      addLogOdds(t->log_odds[i], o.log_odds_free, o);
     }
   }
 }
@@ -150,7 +152,7 @@ std::size_t GridMap::tileCount() const {
 }
 
 double GridMap::probability(int cx, int cy) const {
-  const Cell* c = cell(cx, cy);
+  const auto c = cell(cx, cy);
   if (!c) return 0.5;
   return 1.0 / (1.0 + std::exp(-static_cast<double>(c->log_odds)));
 }

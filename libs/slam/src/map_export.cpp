@@ -12,7 +12,7 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map) {
   int ax = x1, ay = y1, bx = x0 - 1, by = y0 - 1;
   for (int cy = y0; cy < y1; ++cy)
     for (int cx = x0; cx < x1; ++cx) {
-      const Cell* c = map.cell(cx, cy);
+      const auto c = map.cell(cx, cy);
       if (c && c->log_odds != 0.0f) {
         ax = std::min(ax, cx);
         ay = std::min(ay, cy);
@@ -32,7 +32,7 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map) {
   for (unsigned iy = 0; iy < g.getSizeY(); ++iy)
     for (unsigned ix = 0; ix < g.getSizeX(); ++ix) {
       const int cx = map.cellIndex(g.idx2x(ix)), cy = map.cellIndex(g.idx2y(iy));
-      const Cell* c = map.cell(cx, cy);
+      const auto c = map.cell(cx, cy);
       if (!c || c->log_odds == 0.0f) continue;
       // MRPT stores the probability of being free.
       const double p_occ = 1.0 / (1.0 + std::exp(-static_cast<double>(c->log_odds)));

@@ -36,7 +36,8 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   MatchPrior prior;
   prior.likelihood_scale = inv_gain;
   prior.log_prior = [&](const Pose2& x) { return motion.logDensity(x, prev, u, has_odometry); };
-  const MatchResult m = matchScan(map, predicted, scan, o.matcher, o.matcher.use_motion_prior ? &prior : nullptr);
+  ScanScorer scorer(map, scan, o.matcher);
+  const MatchResult m = matchScan(scorer, predicted, o.matcher.use_motion_prior ? &prior : nullptr);
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
@@ -55,7 +56,7 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
                       wrapAngle(m.pose.theta + (k - half) * o.proposal.delta_theta)};
         const double ll = (i == n / 2 && j == n / 2 && k == n / 2 && (n % 2) == 1)
                               ? m.score.log_likelihood
-                              : scoreScan(map, x, scan, o.matcher).log_likelihood;
+                              : scorer.score(x).log_likelihood;
         xs.push_back(x);
         const double lm = motion.logDensity(x, prev, u, has_odometry);
         log_tau.push_back(ll * inv_pgain + lm);

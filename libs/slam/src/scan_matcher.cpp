@@ -12,22 +12,22 @@ namespace {
 /// correspondence was found, the squared distance to it and the hit mean (mx, my).
 template <class Fn>
 void associate(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o, Fn&& fn) {
+  using Tile = GridMap::Tile;
   const double c = std::cos(x.theta), s = std::sin(x.theta);
   const int k = o.kernel;
   const float occ = o.occupied_log_odds;
   const bool free_check = o.free_check;
   // One-entry tile cache: consecutive beams and the cells of a window mostly fall in the same tile.
   int ctx = 0x7fffffff, cty = 0x7fffffff;
-  const Cell* tile = nullptr;
-  auto lookup = [&](int cx, int cy) -> const Cell* {
+  const Tile* tile = nullptr;
+  auto lookup = [&](int cx, int cy) -> const Tile* {
     const int tx = cx >> GridMap::kTileBits, ty = cy >> GridMap::kTileBits;
     if (tx != ctx || ty != cty) {
       ctx = tx;
       cty = ty;
-      const Cell* any = map.cell(cx, cy);
-      tile = any ? any - (((cy & GridMap::kTileMask) << GridMap::kTileBits) | (cx & GridMap::kTileMask)) : nullptr;
+      tile = map.tileAt(cx, cy);
     }
-    return tile ? tile + (((cy & GridMap::kTileMask) << GridMap::kTileBits) | (cx & GridMap::kTileMask)) : nullptr;
+    return tile;
   };
   const std::size_t n = scan.size();
   const double* ex = scan.ex.data();
@@ -41,40 +41,42 @@ void associate(const GridMap& map, const Pose2& x, const PreparedScan& scan, con
     const int iqx = free_check ? map.cellIndex(x.x + c * fx[b] - s * fy[b]) : 0;
     const int iqy = free_check ? map.cellIndex(x.y + s * fx[b] + c * fy[b]) : 0;
     double best = std::numeric_limits<double>::infinity();
-    const Cell* best_cell = nullptr;
-    auto consider = [&](const Cell* oc) {
-      if (oc->log_odds <= occ || oc->hits == 0) return;
-      const double ddx = px - oc->hit_x, ddy = py - oc->hit_y;
+    const HitMean* best_hit = nullptr;
+    auto consider = [&](const Tile* t, int i) {
+      if (t->log_odds[static_cast<std::size_t>(i)] <= occ) return;
+      const HitMean& h = t->hit[static_cast<std::size_t>(i)];
+      if (h.n == 0) return;
+      const double ddx = px - h.x, ddy = py - h.y;
       const double d2 = ddx * ddx + ddy * ddy;
       if (d2 < best) {
         best = d2;
-        best_cell = oc;
+        best_hit = &h;
       }
     };
     const int lx = ipx & GridMap::kTileMask, ly = ipy & GridMap::kTileMask;
     if (!free_check && lx >= k && ly >= k && lx < GridMap::kTileSize - k && ly < GridMap::kTileSize - k) {
       // Fast path: the whole window lies in one tile.
-      const Cell* centre = lookup(ipx, ipy);
-      if (centre) {
-        for (int dy = -k; dy <= k; ++dy) {
-          const Cell* row = centre + dy * GridMap::kTileSize;
-          for (int dx = -k; dx <= k; ++dx) consider(row + dx);
-        }
+      if (const Tile* t = lookup(ipx, ipy)) {
+        const int centre = GridMap::cellOffset(ipx, ipy);
+        for (int dy = -k; dy <= k; ++dy)
+          for (int dx = -k; dx <= k; ++dx) consider(t, centre + dy * GridMap::kTileSize + dx);
       }
     } else {
       for (int dy = -k; dy <= k; ++dy) {
         for (int dx = -k; dx <= k; ++dx) {
-          const Cell* oc = lookup(ipx + dx, ipy + dy);
-          if (!oc) continue;
-          if (free_check && oc->log_odds > occ && oc->hits) {
-            const Cell* fc = lookup(iqx + dx, iqy + dy);
-            if (fc && fc->log_odds > occ) continue;
+          const Tile* t = lookup(ipx + dx, ipy + dy);
+          if (!t) continue;
+          const int i = GridMap::cellOffset(ipx + dx, ipy + dy);
+          if (free_check && t->log_odds[static_cast<std::size_t>(i)] > occ && t->hit[static_cast<std::size_t>(i)].n) {
+            const Tile* ft = lookup(iqx + dx, iqy + dy);
+            if (ft && ft->log_odds[static_cast<std::size_t>(GridMap::cellOffset(iqx + dx, iqy + dy))] > occ) continue;
+            t = lookup(ipx + dx, ipy + dy);
           }
-          consider(oc);
+          consider(t, i);
         }
       }
     }
-    if (best_cell) fn(b, px, py, true, best, static_cast<double>(best_cell->hit_x), static_cast<double>(best_cell->hit_y));
+    if (best_hit) fn(b, px, py, true, best, static_cast<double>(best_hit->x), static_cast<double>(best_hit->y));
     else fn(b, px, py, false, best, 0.0, 0.0);
   }
 }
@@ -96,13 +98,118 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
 }
 
 namespace {
+inline std::uint64_t cellKey(int cx, int cy) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) | static_cast<std::uint32_t>(cy);
+}
+}  // namespace
+
+ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o)
+    : map_(map), scan_(scan), o_(o) {
+  table_.assign(1024, Slot{kEmpty, 0, 0});
+  shift_ = 64 - 10;
+  hits_.reserve(4096);
+  last_key_.assign(scan.size(), kEmpty);
+  last_slot_.assign(scan.size(), Slot{kEmpty, 0, 0});
+}
+
+void ScanScorer::grow() {
+  std::vector<Slot> old(table_.size() * 2, Slot{kEmpty, 0, 0});
+  old.swap(table_);
+  --shift_;
+  const std::size_t mask = table_.size() - 1;
+  for (const Slot& s : old) {
+    if (s.key == kEmpty) continue;
+    std::size_t i = static_cast<std::size_t>((s.key * 0x9E3779B97F4A7C15ULL) >> shift_);
+    while (table_[i].key != kEmpty) i = (i + 1) & mask;
+    table_[i] = s;
+  }
+}
+
+const ScanScorer::Slot& ScanScorer::window(int cx, int cy) {
+  const std::uint64_t key = cellKey(cx, cy);
+  const std::size_t mask = table_.size() - 1;
+  std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift_);
+  while (table_[i].key != kEmpty) {
+    if (table_[i].key == key) return table_[i];
+    i = (i + 1) & mask;
+  }
+  // Not seen yet: the occupied cells of the window, in scoreScan's order.
+  const int k = o_.kernel;
+  const float occ = o_.occupied_log_odds;
+  const std::size_t offset = hits_.size() / 2;
+  auto take = [&](const GridMap::Tile* t, int i) {
+    if (t->log_odds[static_cast<std::size_t>(i)] <= occ) return;
+    const HitMean& h = t->hit[static_cast<std::size_t>(i)];
+    if (h.n == 0) return;
+    hits_.push_back(h.x);
+    hits_.push_back(h.y);
+  };
+  const int lx = cx & GridMap::kTileMask, ly = cy & GridMap::kTileMask;
+  if (lx >= k && ly >= k && lx < GridMap::kTileSize - k && ly < GridMap::kTileSize - k) {
+    if (const GridMap::Tile* t = map_.tileAt(cx, cy)) {
+      const int centre = GridMap::cellOffset(cx, cy);
+      for (int dy = -k; dy <= k; ++dy)
+        for (int dx = -k; dx <= k; ++dx) take(t, centre + dy * GridMap::kTileSize + dx);
+    }
+  } else {
+    for (int dy = -k; dy <= k; ++dy)
+      for (int dx = -k; dx <= k; ++dx)
+        if (const GridMap::Tile* t = map_.tileAt(cx + dx, cy + dy)) take(t, GridMap::cellOffset(cx + dx, cy + dy));
+  }
+  table_[i] = Slot{key, static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(hits_.size() / 2 - offset)};
+  const Slot& filled = table_[i];
+  if (++used_ * 2 > table_.size()) {
+    grow();
+    return window(cx, cy);
+  }
+  return filled;
+}
+
+ScanScore ScanScorer::score(const Pose2& x) {
+  if (o_.free_check) return scoreScan(map_, x, scan_, o_);  // the window also depends on the cell in front
+  const double inv2s2 = 1.0 / (2.0 * o_.sigma * o_.sigma);
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  const std::size_t n = scan_.size();
+  const double* ex = scan_.ex.data();
+  const double* ey = scan_.ey.data();
+  ScanScore out;
+  for (std::size_t b = 0; b < n; ++b) {
+    // Same arithmetic as scoreScan, so the result is bit-identical.
+    const double px = x.x + c * ex[b] - s * ey[b];
+    const double py = x.y + s * ex[b] + c * ey[b];
+    const int ipx = map_.cellIndex(px), ipy = map_.cellIndex(py);
+    const std::uint64_t key = cellKey(ipx, ipy);
+    if (key != last_key_[b]) {
+      last_key_[b] = key;
+      last_slot_[b] = window(ipx, ipy);
+    }
+    const Slot& w = last_slot_[b];
+    if (w.count == 0) {
+      out.log_likelihood += o_.null_log_likelihood;
+      continue;
+    }
+    const float* h = hits_.data() + 2 * static_cast<std::size_t>(w.offset);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::uint32_t j = 0; j < w.count; ++j) {
+      const double ddx = px - static_cast<double>(h[2 * j]), ddy = py - static_cast<double>(h[2 * j + 1]);
+      const double d2 = ddx * ddx + ddy * ddy;
+      if (d2 < best) best = d2;
+    }
+    ++out.matched;
+    out.log_likelihood += std::max(-best * inv2s2, o_.null_log_likelihood);
+  }
+  return out;
+}
+
+namespace {
 
 double objective(const ScanScore& s, const Pose2& x, const MatchPrior* prior) {
   return prior ? s.log_likelihood * prior->likelihood_scale + prior->log_prior(x) : s.log_likelihood;
 }
 
-MatchResult hillClimb(const GridMap& map, const MatchResult& from, const PreparedScan& scan,
-                      const ScanMatcherOptions& o, double sxy, double sth, int refinements, const MatchPrior* prior) {
+MatchResult hillClimb(ScanScorer& scorer, const MatchResult& from, double sxy, double sth, int refinements,
+                      const MatchPrior* prior) {
+  const ScanMatcherOptions& o = scorer.options();
   MatchResult r = from;
   double current = objective(r.score, r.pose, prior);
   int refinement = 0, iterations = 0;
@@ -118,7 +225,7 @@ MatchResult hillClimb(const GridMap& map, const MatchResult& from, const Prepare
       if (mi == came_from) continue;
       const Pose2& m = moves[mi];
       const Pose2 cand{r.pose.x + m.x, r.pose.y + m.y, wrapAngle(r.pose.theta + m.theta)};
-      const ScanScore sc = scoreScan(map, cand, scan, o);
+      const ScanScore sc = scorer.score(cand);
       ++r.evaluations;
       const double obj = objective(sc, cand, prior);
       if (obj > best_obj) {
@@ -211,20 +318,28 @@ MatchResult gaussNewton(const GridMap& map, const Pose2& start, const PreparedSc
 
 MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
                       const ScanMatcherOptions& o, const MatchPrior* prior) {
+  ScanScorer scorer(map, scan, o);
+  return matchScan(scorer, start, prior);
+}
+
+MatchResult matchScan(ScanScorer& scorer, const Pose2& start, const MatchPrior* prior) {
+  const GridMap& map = scorer.map();
+  const PreparedScan& scan = scorer.scan();
+  const ScanMatcherOptions& o = scorer.options();
   MatchResult r;
   if (o.method == MatchMethod::GaussNewton) {
     r = gaussNewton(map, start, scan, o);
     // Polish on the true (truncated) objective with small steps; also guards against a bad GN step.
     MatchResult s0;
     s0.pose = start;
-    s0.score = scoreScan(map, start, scan, o);
+    s0.score = scorer.score(start);
     if (objective(s0.score, s0.pose, prior) > objective(r.score, r.pose, prior)) {
       s0.evaluations = r.evaluations + 1;
       r = s0;
     } else {
       ++r.evaluations;
     }
-    r = hillClimb(map, r, scan, o, o.polish_step_xy, o.polish_step_theta, o.polish_refinements, prior);
+    r = hillClimb(scorer, r, o.polish_step_xy, o.polish_step_theta, o.polish_refinements, prior);
   } else {
     r.pose = start;
     double sxy = o.step_xy, sth = o.step_theta;
@@ -239,10 +354,11 @@ MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan
         sub.fx.push_back(scan.fx[b]);
         sub.fy.push_back(scan.fy[b]);
       }
+      ScanScorer sub_scorer(map, sub, o);
       MatchResult c;
       c.pose = start;
-      c.score = scoreScan(map, start, sub, o);
-      c = hillClimb(map, c, sub, o, sxy, sth, coarse - 1, prior);
+      c.score = sub_scorer.score(start);
+      c = hillClimb(sub_scorer, c, sxy, sth, coarse - 1, prior);
       r.pose = c.pose;
       r.evaluations = c.evaluations + 1;  // counted as full evaluations (an upper bound on the work)
       for (int i = 0; i < coarse; ++i) {
@@ -251,9 +367,9 @@ MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan
       }
       refinements -= coarse;
     }
-    r.score = scoreScan(map, r.pose, scan, o);
+    r.score = scorer.score(r.pose);
     r.evaluations += 1;
-    r = hillClimb(map, r, scan, o, sxy, sth, refinements, prior);
+    r = hillClimb(scorer, r, sxy, sth, refinements, prior);
   }
   r.ok = scan.size() > 0 && r.score.matched >= o.min_match_fraction * static_cast<double>(scan.size());
   return r;

@@ -4,7 +4,9 @@
 // small window whose cell in front (towards the robot) is free; ln p = Σ_k max(−d_k²/(2σ²), null_log_likelihood).
 // The mode is found by hill climbing from the predicted pose with step halving, which converges to sub-cell
 // accuracy because the hit means are continuous.
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/pose2.h"
@@ -61,6 +63,41 @@ struct MatchResult {
 /// ln p(z | m, x) over the matching beams.
 ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o);
 
+/// The same likelihood for many poses of one scan in one map (a scan-matching search and the proposal's K
+/// poses). The correspondence search depends only on the cell an end point falls in: the hit means of the
+/// occupied cells of each cell's window are looked up in the map once and kept in a small hash table, and each
+/// beam also remembers its last cell. Most end points of a search fall in cells seen before (the search steps
+/// back and forth by a cell or less), so most evaluations read no map tile. Gives exactly scoreScan's result.
+/// The map must not change while the scorer is used.
+class ScanScorer {
+ public:
+  ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o);
+  ScanScore score(const Pose2& x);
+  const GridMap& map() const { return map_; }
+  const PreparedScan& scan() const { return scan_; }
+  const ScanMatcherOptions& options() const { return o_; }
+
+ private:
+  struct Slot {
+    std::uint64_t key;     // packed cell coordinates; kEmpty when unused
+    std::uint32_t offset;  // into hits_ (pairs of floats)
+    std::uint32_t count;   // occupied cells in the window
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  const Slot& window(int cx, int cy);  // finds or fills the window of a cell
+  void grow();
+
+  const GridMap& map_;
+  const PreparedScan& scan_;
+  const ScanMatcherOptions& o_;
+  std::vector<Slot> table_;          // open addressing, linear probing, power-of-two size
+  std::size_t used_ = 0;
+  int shift_ = 0;                    // 64 - log2(table size)
+  std::vector<float> hits_;          // hit means (x, y) of the windows' occupied cells, in scoreScan's order
+  std::vector<std::uint64_t> last_key_;  // per beam: its last cell ...
+  std::vector<Slot> last_slot_;          // ... and that cell's window
+};
+
 /// Optional prior multiplied into the matched objective: the search then finds the mode of
 /// p(z|m,x)^likelihood_scale · prior(x) — with the motion model as prior, the mode of the informed proposal's
 /// target distribution rather than of the likelihood alone.
@@ -72,5 +109,7 @@ struct MatchPrior {
 /// Searches from `start` for the mode of the likelihood (or of likelihood × prior when `prior` is given).
 MatchResult matchScan(const GridMap& map, const Pose2& start, const PreparedScan& scan,
                       const ScanMatcherOptions& o, const MatchPrior* prior = nullptr);
+/// The same search with the scorer's map, scan and options (its cache is kept for further scoring).
+MatchResult matchScan(ScanScorer& scorer, const Pose2& start, const MatchPrior* prior = nullptr);
 
 }  // namespace gridtopo::slam
