@@ -19,11 +19,12 @@ namespace gridtopo::slam {
 
 namespace {
 Pose2 toPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
-constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2;
+constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2, kPurposeStart = 3;
 }  // namespace
 
 ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
-                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion) {
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                          const Pose2* start) {
   ProposalPlan plan;
   plan.type = o.proposal.type;
   if (o.proposal.type == ProposalType::Odometry) return plan;
@@ -32,7 +33,7 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
     return plan;
   }
   const double inv_gain = 1.0 / o.likelihood_gain;
-  const Pose2 predicted = compose(prev, u);
+  const Pose2 predicted = start ? *start : compose(prev, u);
   MatchPrior prior;
   prior.likelihood_scale = inv_gain;
   prior.log_prior = [&](const Pose2& x) { return motion.logDensity(x, prev, u, has_odometry); };
@@ -176,9 +177,17 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
       const Pose2 d = relative(a.pose, b.pose);
       return {k * d.x, k * d.y, k * d.theta};
     };
-    // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan.
+    // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan, unless
+    // each particle starts its search from its own motion sample.
+    const std::size_t step = stats_.size();
+    const bool own_start = o_.proposal.type == ProposalType::Informed && o_.proposal.start_spread > 0.0;
     std::vector<std::size_t> group_of(n), leaders;
-    {
+    if (own_start) {
+      for (std::size_t i = 0; i < n; ++i) {
+        group_of[i] = i;
+        leaders.push_back(i);
+      }
+    } else {
       std::unordered_map<const TrajectoryNode*, std::size_t> first;
       for (std::size_t i = 0; i < n; ++i) {
         auto it = first.emplace(particles_[i].node.get(), leaders.size());
@@ -189,9 +198,18 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     std::vector<ProposalPlan> plans(leaders.size());
     pool_->parallelFor(leaders.size(), [&](std::size_t g) {
       const Particle& p = particles_[leaders[g]];
-      plans[g] = planProposal(p.map, p.pose, incrementFor(p), has_odo, scan, o_, motion_);
+      const Pose2 u = incrementFor(p);
+      if (own_start) {
+        Rng rng(o_.seed, step, leaders[g], kPurposeStart);
+        const OdometryMotionModel::Sigmas sg = motion_.sigmas(u, has_odo);
+        const double k = o_.proposal.start_spread;
+        const Pose2 start = compose(p.pose, {u.x + k * rng.gaussian(sg.xy), u.y + k * rng.gaussian(sg.xy),
+                                             u.theta + k * rng.gaussian(sg.theta)});
+        plans[g] = planProposal(p.map, p.pose, u, has_odo, scan, o_, motion_, &start);
+      } else {
+        plans[g] = planProposal(p.map, p.pose, u, has_odo, scan, o_, motion_);
+      }
     });
-    const std::size_t step = stats_.size();
     std::vector<int> extra_evals(n, 0);
     pool_->parallelFor(n, [&](std::size_t i) {
       Particle& p = particles_[i];

@@ -105,8 +105,8 @@ inline std::uint64_t cellKey(int cx, int cy) {
 
 ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o)
     : map_(map), scan_(scan), o_(o) {
-  table_.assign(1024, Slot{kEmpty, 0, 0});
-  shift_ = 64 - 10;
+  table_.assign(4096, Slot{kEmpty, 0, 0});
+  shift_ = 64 - 12;
   hits_.reserve(4096);
   last_key_.assign(scan.size(), kEmpty);
   last_slot_.assign(scan.size(), Slot{kEmpty, 0, 0});

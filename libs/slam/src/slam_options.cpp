@@ -85,6 +85,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
   f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
   f("proposal_laplace_weight", o.proposal.laplace_weight);
+  f("proposal_start_spread", o.proposal.start_spread);
 }
 
 template <class T>
@@ -236,6 +237,7 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   positive("proposal_delta_theta", proposal.delta_theta);
   nonNegative("proposal_min_sigma_xy", proposal.min_sigma_xy);
   nonNegative("proposal_min_sigma_theta", proposal.min_sigma_theta);
+  nonNegative("proposal_start_spread", proposal.start_spread);
 }
 
 }  // namespace gridtopo::slam

@@ -27,6 +27,12 @@ struct ProposalOptions {
   /// η times the grid volume), true = the Laplace approximation of a quadratic fit of ln τ over the grid (also
   /// counts the mass outside a narrow grid; see logIntegralOnGrid).
   bool laplace_weight = false;
+  /// Informed proposal: where the mode search starts. 0 = the odometry prediction x_{t-1} ⊕ u (the paper;
+  /// particles duplicated by resampling share one search); k > 0 = x_{t-1} ⊕ (u + k·ε), ε drawn from the motion
+  /// model, one draw per particle (k = 1: a motion sample, as GMapping starts its search). Where the likelihood
+  /// is flat (along a corridor) the mode then keeps that spread, so the particles stay diverse in the directions
+  /// the scan cannot observe.
+  double start_spread = 0.0;
 };
 
 struct GaussianProposal {

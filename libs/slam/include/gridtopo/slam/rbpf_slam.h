@@ -50,9 +50,11 @@ struct ProposalPlan {
   int evaluations = 0;             ///< likelihood evaluations (scan matching + proposal)
 };
 
-/// Plans the proposal for a particle at `prev` with odometry increment `u` (in the frame of `prev`).
+/// Plans the proposal for a particle at `prev` with odometry increment `u` (in the frame of `prev`). The mode
+/// search starts at `start` when given (proposal_start_spread > 0), else at the prediction prev ⊕ u.
 ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
-                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion);
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                          const Pose2* start = nullptr);
 
 /// Draws the particle's new pose from the plan with the particle's own random stream; returns the weight
 /// increment (ln η for the informed proposal, ln p(z|m,x)/gain for mode-only and odometry).
