@@ -108,8 +108,7 @@ ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanM
   table_.assign(4096, Slot{kEmpty, 0, 0});
   shift_ = 64 - 12;
   hits_.reserve(4096);
-  last_key_.assign(scan.size(), kEmpty);
-  last_slot_.assign(scan.size(), Slot{kEmpty, 0, 0});
+  last_.assign(scan.size(), Slot{kEmpty, 0, 0});
 }
 
 void ScanScorer::grow() {
@@ -172,31 +171,35 @@ ScanScore ScanScorer::score(const Pose2& x) {
   const std::size_t n = scan_.size();
   const double* ex = scan_.ex.data();
   const double* ey = scan_.ey.data();
+  const double null_ll = o_.null_log_likelihood;
+  const double inv_res = 1.0 / map_.resolution();
+  auto cellIndex = [inv_res](double w) {  // GridMap::cellIndex with the scale hoisted out of the loop
+    const double v = w * inv_res;
+    const int i = static_cast<int>(v);
+    return i - (v < static_cast<double>(i));
+  };
   ScanScore out;
   for (std::size_t b = 0; b < n; ++b) {
     // Same arithmetic as scoreScan, so the result is bit-identical.
     const double px = x.x + c * ex[b] - s * ey[b];
     const double py = x.y + s * ex[b] + c * ey[b];
-    const int ipx = map_.cellIndex(px), ipy = map_.cellIndex(py);
+    const int ipx = cellIndex(px), ipy = cellIndex(py);
     const std::uint64_t key = cellKey(ipx, ipy);
-    if (key != last_key_[b]) {
-      last_key_[b] = key;
-      last_slot_[b] = window(ipx, ipy);
-    }
-    const Slot& w = last_slot_[b];
+    Slot& w = last_[b];
+    if (key != w.key) w = window(ipx, ipy);
     if (w.count == 0) {
-      out.log_likelihood += o_.null_log_likelihood;
+      out.log_likelihood += null_ll;
       continue;
     }
-    const float* h = hits_.data() + 2 * static_cast<std::size_t>(w.offset);
+    const double* h = hits_.data() + 2 * static_cast<std::size_t>(w.offset);
     double best = std::numeric_limits<double>::infinity();
     for (std::uint32_t j = 0; j < w.count; ++j) {
-      const double ddx = px - static_cast<double>(h[2 * j]), ddy = py - static_cast<double>(h[2 * j + 1]);
+      const double ddx = px - h[2 * j], ddy = py - h[2 * j + 1];
       const double d2 = ddx * ddx + ddy * ddy;
       if (d2 < best) best = d2;
     }
     ++out.matched;
-    out.log_likelihood += std::max(-best * inv2s2, o_.null_log_likelihood);
+    out.log_likelihood += std::max(-best * inv2s2, null_ll);
   }
   return out;
 }

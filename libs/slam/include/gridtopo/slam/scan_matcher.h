@@ -80,7 +80,7 @@ class ScanScorer {
  private:
   struct Slot {
     std::uint64_t key;     // packed cell coordinates; kEmpty when unused
-    std::uint32_t offset;  // into hits_ (pairs of floats)
+    std::uint32_t offset;  // into hits_ (pairs)
     std::uint32_t count;   // occupied cells in the window
   };
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
@@ -93,9 +93,8 @@ class ScanScorer {
   std::vector<Slot> table_;          // open addressing, linear probing, power-of-two size
   std::size_t used_ = 0;
   int shift_ = 0;                    // 64 - log2(table size)
-  std::vector<float> hits_;          // hit means (x, y) of the windows' occupied cells, in scoreScan's order
-  std::vector<std::uint64_t> last_key_;  // per beam: its last cell ...
-  std::vector<Slot> last_slot_;          // ... and that cell's window
+  std::vector<double> hits_;         // hit means (x, y) of the windows' occupied cells, in scoreScan's order
+  std::vector<Slot> last_;           // per beam: its last cell (key) and that cell's window
 };
 
 /// Optional prior multiplied into the matched objective: the search then finds the mode of
