@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Benchmark of gridtopo-slam (issue 3): Intel and ACES accuracy (Freiburg relations, gridtopo-eval), wall time and
-# peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal, and 10 seeds
-# with 8 particles. Writes the tables to doc/slam-bench.md and the map pictures to doc/img/.
+# Benchmark of gridtopo-slam (issue 3): Intel and ACES accuracy (Freiburg relations, gridtopo-eval), wall time,
+# CPU time and peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal,
+# Intel with 30 particles over seeds 1-10, with 8 particles over seeds 1-10, ACES with 30 particles over seeds 1-5.
+# Writes the tables to doc/slam-bench.md and the map pictures to doc/img/.
 # Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study and writes
 #                                          doc/slam-bench-quick.md instead)
 # Run it on an otherwise idle machine: the timings are wall-clock.
@@ -18,7 +19,7 @@ THREADS=${GRIDTOPO_BENCH_THREADS:-2}
 mkdir -p "$OUT" doc/img
 [ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)"; exit 1; }
 
-# run <name> <log> <relations> <extra slam args...>: prints "trans_mean trans_std rot_mean wall_s rss_mb"
+# run <name> <log> <relations> <extra slam args...>: prints "trans_mean trans_std rot_mean rot_std wall_s rss_mb cpu_s"
 run() {
   local name=$1 log=$2 rel=$3
   shift 3
@@ -33,8 +34,9 @@ t = open(sys.argv[2]).read()
 wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
 h = float(wall.group(1) or 0); m = float(wall.group(2)); s = float(wall.group(3))
 rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1)) / 1024
+cpu = float(re.search(r"User time \(seconds\): ([\d.]+)", t).group(1)) + float(re.search(r"System time \(seconds\): ([\d.]+)", t).group(1))
 tr, ro = j["translational_m"], j["rotational_deg"]
-print("%.4f %.4f %.3f %.3f %.1f %.0f" % (tr["mean"], tr["std"], ro["mean"], ro["std"], 3600 * h + 60 * m + s, rss))
+print("%.4f %.4f %.3f %.3f %.1f %.0f %.1f" % (tr["mean"], tr["std"], ro["mean"], ro["std"], 3600 * h + 60 * m + s, rss, cpu))
 PY
 }
 
@@ -48,12 +50,14 @@ ACES_REL=datasets/slam/aces.relations.gz
   echo "Produced by \`scripts/bench_slam.sh $QUICK\` on $(date -u +%Y-%m-%d) ($(nproc) cores, $THREADS threads," \
        "commit $(git rev-parse --short HEAD), load average at start: $(cut -d" " -f1-3 /proc/loadavg)). Errors: Freiburg relations metric (gridtopo-eval), mean ± std."
   echo
-  echo "| log | particles | proposal | translational (m) | rotational (deg) | wall (s) | peak RSS (MB) |"
-  echo "|---|---|---|---|---|---|---|"
-  read -r tm ts rm rs w m < <(run intel-30 "$INTEL" "$INTEL_REL" -p 30)
-  echo "| Intel | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $m |"
-  read -r tm ts rm rs w m < <(run aces-30 "$ACES" "$ACES_REL" -p 30)
-  echo "| ACES | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $m |"
+  echo "| log | particles | proposal | translational (m) | rotational (deg) | wall (s) | CPU (s) | load before | peak RSS (MB) |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  l=$(cut -d" " -f1 /proc/loadavg)
+  read -r tm ts rm rs w m c < <(run intel-30 "$INTEL" "$INTEL_REL" -p 30)
+  echo "| Intel | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $c | $l | $m |"
+  l=$(cut -d" " -f1 /proc/loadavg)
+  read -r tm ts rm rs w m c < <(run aces-30 "$ACES" "$ACES_REL" -p 30)
+  echo "| ACES | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $c | $l | $m |"
 } > "$DOC"
 cp "$OUT/intel-30/map_trajectory.png" doc/img/slam-intel.png
 cp "$OUT/aces-30/map_trajectory.png" doc/img/slam-aces.png
@@ -66,24 +70,49 @@ if [ "$QUICK" != "--quick" ]; then
     echo "| particles | informed: trans (m) | informed: rot (deg) | informed: wall (s) | odometry: trans (m) | odometry: rot (deg) | odometry: wall (s) |"
     echo "|---|---|---|---|---|---|---|"
     for n in 4 8 15 30 60; do
-      read -r tm ts rm rs w m < <(run intel-inf-$n "$INTEL" "$INTEL_REL" -p $n --proposal informed)
-      read -r om os orm ors ow omm < <(run intel-odo-$n "$INTEL" "$INTEL_REL" -p $n --proposal odometry)
+      read -r tm ts rm rs w m c < <(run intel-inf-$n "$INTEL" "$INTEL_REL" -p $n --proposal informed)
+      read -r om os orm ors ow omm oc < <(run intel-odo-$n "$INTEL" "$INTEL_REL" -p $n --proposal odometry)
       echo "| $n | $tm ± $ts | $rm | $w | $om ± $os | $orm | $ow |"
     done
     echo
-    echo "## 10 seeds, 8 particles, informed proposal, Intel"
+    echo "## Intel, 30 particles, seeds 1–10 (default INI)"
+    echo
+    echo "| seed | trans (m) | rot (deg) | ≤ 0.040 m | wall (s) | CPU (s) | load before | peak RSS (MB) |"
+    echo "|---|---|---|---|---|---|---|---|"
+    ok=0
+    for s in 1 2 3 4 5 6 7 8 9 10; do
+      l=$(cut -d" " -f1 /proc/loadavg)
+      read -r tm ts rm rs w m c < <(run intel-30-s$s "$INTEL" "$INTEL_REL" -p 30 -s $s)
+      y=$(python3 -c "print('yes' if $tm <= 0.040 else 'no')")
+      [ "$y" = yes ] && ok=$((ok + 1))
+      echo "| $s | $tm ± $ts | $rm | $y | $w | $c | $l | $m |"
+    done
+    echo
+    echo "Seeds with ≤ 0.040 m: $ok / 10."
+    echo
+    echo "## Intel, 8 particles, seeds 1–10 (default INI)"
     echo
     echo "| seed | trans (m) | rot (deg) | consistent (≤ 0.08 m) |"
     echo "|---|---|---|---|"
     ok=0
     for s in 1 2 3 4 5 6 7 8 9 10; do
-      read -r tm ts rm rs w m < <(run intel-8-s$s "$INTEL" "$INTEL_REL" -p 8 -s $s)
-      c=$(python3 -c "print('yes' if $tm <= 0.08 else 'no')")
-      [ "$c" = yes ] && ok=$((ok + 1))
-      echo "| $s | $tm ± $ts | $rm | $c |"
+      read -r tm ts rm rs w m c < <(run intel-8-s$s "$INTEL" "$INTEL_REL" -p 8 -s $s)
+      y=$(python3 -c "print('yes' if $tm <= 0.08 else 'no')")
+      [ "$y" = yes ] && ok=$((ok + 1))
+      echo "| $s | $tm ± $ts | $rm | $y |"
     done
     echo
     echo "Consistent maps: $ok / 10."
+    echo
+    echo "## ACES, 30 particles, seeds 1–5 (default INI)"
+    echo
+    echo "| seed | trans (m) | rot (deg) | ≤ 0.045 m | wall (s) | CPU (s) |"
+    echo "|---|---|---|---|---|---|"
+    for s in 1 2 3 4 5; do
+      read -r tm ts rm rs w m c < <(run aces-30-s$s "$ACES" "$ACES_REL" -p 30 -s $s)
+      y=$(python3 -c "print('yes' if $tm <= 0.045 else 'no')")
+      echo "| $s | $tm ± $ts | $rm | $y | $w | $c |"
+    done
   } >> "$DOC"
 fi
 echo "bench_slam: wrote $DOC"

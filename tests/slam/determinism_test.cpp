@@ -13,8 +13,10 @@ struct RunResult {
   std::vector<double> neff;
   std::vector<std::vector<float>> maps;  // log-odds of every particle map over a fixed window
 };
-RunResult run(const sim::SimLog& log, int threads, std::uint64_t seed, slam::ProposalType type) {
+RunResult run(const sim::SimLog& log, int threads, std::uint64_t seed, slam::ProposalType type,
+              double start_spread = 0.0) {
   slam::SlamOptions o;
+  o.proposal.start_spread = start_spread;
   o.particles = 12;
   o.threads = threads;
   o.seed = seed;
@@ -45,8 +47,15 @@ TEST(Determinism, BitIdenticalWhateverTheThreadCount) {
   auto wp = sim::officeLoopWaypoints(1);
   wp.resize(4);
   const auto log = sim::simulate(plan, wp, so);
-  for (auto type : {slam::ProposalType::Informed, slam::ProposalType::Odometry}) {
-    const RunResult a = run(log, 1, 5, type), b = run(log, 2, 5, type), c = run(log, 4, 5, type);
+  struct Case {
+    slam::ProposalType type;
+    double start_spread;
+  };
+  for (const Case k : {Case{slam::ProposalType::Informed, 0.0}, Case{slam::ProposalType::Informed, 1.0},
+                       Case{slam::ProposalType::Odometry, 0.0}}) {
+    const auto type = k.type;
+    const RunResult a = run(log, 1, 5, type, k.start_spread), b = run(log, 2, 5, type, k.start_spread),
+                    c = run(log, 4, 5, type, k.start_spread);
     ASSERT_EQ(a.traj.size(), b.traj.size());
     for (std::size_t i = 0; i < a.traj.size(); ++i) {
       for (const RunResult* r : {&b, &c}) {
@@ -60,7 +69,7 @@ TEST(Determinism, BitIdenticalWhateverTheThreadCount) {
     EXPECT_EQ(a.maps, b.maps);
     EXPECT_EQ(a.maps, c.maps);
     // A different seed gives a different result (the seed is really used).
-    const RunResult d = run(log, 2, 6, type);
+    const RunResult d = run(log, 2, 6, type, k.start_spread);
     bool differs = false;
     for (std::size_t i = 0; i < a.traj.size(); ++i) differs |= a.traj[i].pose.x != d.traj[i].pose.x;
     EXPECT_TRUE(differs);

@@ -48,6 +48,39 @@ TEST(ScanMatcher, LikelihoodPeaksAtTheTruePose) {
               at.log_likelihood - 5.0);
 }
 
+TEST(ScanMatcher, CachedScorerEqualsScoreScanBitForBit) {
+  Fixture f;
+  const auto scan = f.scanAt({6.3, 2.8, 0.05});
+  for (int kernel : {1, 2}) {
+    ScanMatcherOptions o;
+    o.kernel = kernel;
+    ScanScorer scorer(f.map, scan, o);
+    // A walk of poses that revisits cells (as a search does), crosses tile borders and leaves the map.
+    std::uint64_t state = 12345;
+    auto uniform = [&] {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    int differing_windows = 0;
+    for (int i = 0; i < 600; ++i) {
+      const double r = i < 500 ? 0.15 : 30.0;  // the last poses far outside the map: no correspondences
+      const Pose2 x{6.3 + r * (uniform() - 0.5), 2.8 + r * (uniform() - 0.5), 0.05 + 0.2 * (uniform() - 0.5)};
+      const ScanScore a = scoreScan(f.map, x, scan, o), b = scorer.score(x);
+      ASSERT_EQ(a.matched, b.matched) << i;
+      ASSERT_EQ(a.log_likelihood, b.log_likelihood) << i;  // exactly, not approximately
+      differing_windows += a.matched != static_cast<int>(scan.size());
+    }
+    EXPECT_GT(differing_windows, 100);  // the walk really changes the correspondences
+    // The search with the cached scorer is the search with scoreScan.
+    const MatchResult m1 = matchScan(f.map, {6.35, 2.75, 0.0}, scan, o);
+    ScanScorer fresh(f.map, scan, o);
+    const MatchResult m2 = matchScan(fresh, {6.35, 2.75, 0.0});
+    EXPECT_EQ(m1.pose.x, m2.pose.x);
+    EXPECT_EQ(m1.pose.theta, m2.pose.theta);
+    EXPECT_EQ(m1.evaluations, m2.evaluations);
+  }
+}
+
 TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
   Fixture f;
   ScanMatcherOptions o;
