@@ -180,7 +180,8 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan, unless
     // each particle starts its search from its own motion sample.
     const std::size_t step = stats_.size();
-    const bool own_start = o_.proposal.type == ProposalType::Informed && o_.proposal.start_spread > 0.0;
+    // (Not without odometry: the wide no-odometry prior is not a noise model around a measured increment.)
+    const bool own_start = o_.proposal.type == ProposalType::Informed && o_.proposal.start_spread > 0.0 && has_odo;
     std::vector<std::size_t> group_of(n), leaders;
     if (own_start) {
       for (std::size_t i = 0; i < n; ++i) {

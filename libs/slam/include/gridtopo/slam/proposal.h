@@ -31,8 +31,8 @@ struct ProposalOptions {
   /// particles duplicated by resampling share one search); k > 0 = x_{t-1} ⊕ (u + k·ε), ε drawn from the motion
   /// model, one draw per particle (k = 1: a motion sample, as GMapping starts its search). Where the likelihood
   /// is flat (along a corridor) the mode then keeps that spread, so the particles stay diverse in the directions
-  /// the scan cannot observe.
-  double start_spread = 0.0;
+  /// the scan cannot observe. Not used for scans without odometry (their prior is no noise model).
+  double start_spread = 1.0;
 };
 
 struct GaussianProposal {
