@@ -32,7 +32,7 @@ struct ProposalOptions {
   /// model, one draw per particle (k = 1: a motion sample, as GMapping starts its search). Where the likelihood
   /// is flat (along a corridor) the mode then keeps that spread, so the particles stay diverse in the directions
   /// the scan cannot observe. Not used for scans without odometry (their prior is no noise model).
-  double start_spread = 1.0;
+  double start_spread = 0.0;
 };
 
 struct GaussianProposal {
