@@ -110,7 +110,7 @@ if [ "$QUICK" != "--quick" ]; then
     echo
     echo "## ACES, 30 particles, seeds 1–5"
     echo
-    echo "| seed | slam.ini: trans (m) | rot (deg) | slam-aces.ini: trans (m) | rot (deg) | ≤ 0.045 m | CPU (s) |"
+    echo "| seed | slam.ini: trans (m) | rot (deg) | slam-aces.ini: trans (m) | rot (deg) | slam-aces.ini ≤ 0.045 m | slam-aces.ini CPU (s) |"
     echo "|---|---|---|---|---|---|---|"
     for s in 1 2 3 4 5; do
       read -r tm ts rm rs w m c < <(run aces-30-s$s "$ACES" "$ACES_REL" -p 30 -s $s)
