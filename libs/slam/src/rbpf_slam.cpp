@@ -178,9 +178,9 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
       return {k * d.x, k * d.y, k * d.theta};
     };
     // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan, unless
-    // each particle starts its search from its own motion sample.
+    // each particle starts its search from its own motion sample (proposal_start_spread; not without odometry:
+    // the wide no-odometry prior is not a noise model around a measured increment).
     const std::size_t step = stats_.size();
-    // (Not without odometry: the wide no-odometry prior is not a noise model around a measured increment.)
     const bool own_start = o_.proposal.type == ProposalType::Informed && o_.proposal.start_spread > 0.0 && has_odo;
     std::vector<std::size_t> group_of(n), leaders;
     if (own_start) {
