@@ -81,6 +81,31 @@ TEST(ScanMatcher, CachedScorerEqualsScoreScanBitForBit) {
   }
 }
 
+TEST(ScanMatcher, CachedScorerAroundTheOrigin) {
+  // End points in the cells around (0, 0), including (-1, -1), whose packed key has all bits set.
+  GridMap map(0.05);
+  std::vector<MapBeam> beams;
+  for (double ex : {-0.075, -0.025, 0.025})
+    for (double ey : {-0.075, -0.025, 0.025}) beams.push_back({ex - 0.6, ey - 0.6, true});
+  for (int i = 0; i < 3; ++i) map.insertScan({0.6, 0.6, 0.0}, {}, beams, MapUpdateOptions{});
+  ASSERT_GT(map.cell(-1, -1)->hits, 0u);
+  PreparedScan scan;
+  for (double e : {-0.03, -0.01, 0.02}) {
+    scan.ex.push_back(e);
+    scan.ey.push_back(-0.02);
+    scan.fx.push_back(e);
+    scan.fy.push_back(-0.02);
+  }
+  ScanMatcherOptions o;
+  ScanScorer scorer(map, scan, o);
+  for (const Pose2 x : {Pose2{0, 0, 0}, Pose2{-0.01, 0.005, 0.01}, Pose2{0, 0, 0}}) {
+    const ScanScore a = scoreScan(map, x, scan, o), b = scorer.score(x);
+    EXPECT_EQ(a.matched, 3);
+    EXPECT_EQ(a.matched, b.matched);
+    EXPECT_EQ(a.log_likelihood, b.log_likelihood);
+  }
+}
+
 TEST(ScanMatcher, RecoversKnownOffsetsWithSubCellAccuracy) {
   Fixture f;
   ScanMatcherOptions o;

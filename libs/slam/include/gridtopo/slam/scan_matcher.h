@@ -83,7 +83,8 @@ class ScanScorer {
     std::uint32_t offset;  // into hits_ (pairs)
     std::uint32_t count;   // occupied cells in the window
   };
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  // The key of cell (INT_MIN, INT_MIN), which no end point reaches (cellKey(-1, -1) is all ones: not usable).
+  static constexpr std::uint64_t kEmpty = 0x8000000080000000ULL;
   const Slot& window(int cx, int cy);  // finds or fills the window of a cell
   void grow();
 
