@@ -89,6 +89,19 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
   feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
   feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
   feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
+  {
+    std::stringstream ss(f.read_string("features", "capped_ranges", ""));
+    feat.capped_ranges.clear();
+    for (std::string tok; std::getline(ss, tok, ',');) {
+      if (tok.find_first_not_of(" \t") == std::string::npos) continue;
+      char* end = nullptr;
+      const double v = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || !std::isfinite(v) || v <= 0 || v > 65 ||
+          (*end && std::string(end).find_first_not_of(" \t") != std::string::npos))
+        throw InputError(ini_path, 0, "[features] capped_ranges", "must be a comma-separated list of ranges in (0, 65] metres, got '" + tok + "'");
+      feat.capped_ranges.push_back(v);
+    }
+  }
   if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
     throw InputError(ini_path, 0, "[features] context_radius", "must be in [0, 10] metres");
   return c;

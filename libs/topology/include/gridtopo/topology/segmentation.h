@@ -17,6 +17,19 @@ cv::Mat roomSegmentation(const RegionMap& regions);
 /// Room / corridor confusions inside a place then cannot split it; a missed doorway merges two places.
 cv::Mat doorwaySegmentation(const RegionMap& regions);
 
+/// Rule S1 (neck split): a segment whose free area falls apart into two or more large parts when every cell
+/// closer than neck_width / 2 to the segment's border is removed (i.e. the parts are joined only through
+/// passages narrower than neck_width, such as a door the classifier missed) is split: every part of at least
+/// `min_part_area` m^2 seeds a new segment and the seeds grow back over the segment's cells (breadth-first,
+/// 8-connected, so the split runs through the middle of the neck). Cells of a segment reached by no seed keep
+/// the segment's id.
+struct NeckSplitOptions {
+  double neck_width = 0.0;     ///< m; 0 = off
+  double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
+};
+/// Returns the split segmentation (new segments get ids after the current maximum).
+cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const NeckSplitOptions& options);
+
 /// Number of segments (max id).
 int segmentCount(const cv::Mat& segmentation);
 
