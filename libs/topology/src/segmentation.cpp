@@ -52,12 +52,30 @@ cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int ne
 }
 }  // namespace
 
-cv::Mat roomSegmentation(const RegionMap& rm) {
+cv::Mat roomSegmentation(const RegionMap& rm) { return roomSegmentation(rm, 0.0, 1.0); }
+
+cv::Mat roomSegmentation(const RegionMap& rm, double merge_contact_m, double resolution) {
   const int door = static_cast<int>(places::PlaceLabel::Doorway);
-  std::vector<int> seg_of(rm.regions.size(), 0);
+  std::vector<int> parent(rm.regions.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  std::function<int(int)> find = [&](int i) { return parent[static_cast<std::size_t>(i)] == i ? i : parent[static_cast<std::size_t>(i)] = find(parent[static_cast<std::size_t>(i)]); };
+  if (merge_contact_m > 0) {
+    const double min_pairs = 3.0 * merge_contact_m / resolution;
+    for (const auto& [k, len] : regionAdjacency(rm.ids)) {
+      const int la = rm.region(k.first).label, lb = rm.region(k.second).label;
+      if (la == door || lb == door || la == lb || len <= min_pairs) continue;
+      const int a = find(k.first - 1), b = find(k.second - 1);
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  }
+  std::vector<int> seg_of(rm.regions.size(), 0), root_seg(rm.regions.size(), 0);
   int next = 0;
-  for (const Region& r : rm.regions)
-    if (r.label != door) seg_of[static_cast<std::size_t>(r.id - 1)] = ++next;
+  for (const Region& r : rm.regions) {
+    if (r.label == door) continue;
+    int& s = root_seg[static_cast<std::size_t>(find(r.id - 1))];
+    if (!s) s = ++next;
+    seg_of[static_cast<std::size_t>(r.id - 1)] = s;
+  }
   return growSegments(rm, seg_of, next);
 }
 
@@ -84,7 +102,7 @@ cv::Mat doorwaySegmentation(const RegionMap& rm) {
   return growSegments(rm, seg_of, next);
 }
 
-cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const NeckSplitOptions& o) {
+cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const SegmentationRules& o) {
   CV_Assert(seg_in.type() == CV_32S);
   cv::Mat seg = seg_in.clone();
   if (o.neck_width <= 0) return seg;

@@ -26,7 +26,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int grid_free_threshold = 204;
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
-  NeckSplitOptions neck_split;           ///< [topology] split_neck_width, split_min_part_area (rule S1)
+  SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -52,6 +52,6 @@ struct TopologyResult {
 /// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
                              const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
-                             const NeckSplitOptions& neck_split = {});
+                             const SegmentationRules& seg_rules = {});
 
 }  // namespace gridtopo::topology

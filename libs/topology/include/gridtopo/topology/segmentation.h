@@ -11,6 +11,8 @@ namespace gridtopo::topology {
 /// CV_32S image, same size as the labels: segment id 1..K for every labelled cell, 0 elsewhere. Ids follow
 /// region order. A doorway region touching no room / corridor becomes its own segment.
 cv::Mat roomSegmentation(const RegionMap& regions);
+/// The same with rule S0: room and corridor regions touching along more than `merge_contact_m` are one segment.
+cv::Mat roomSegmentation(const RegionMap& regions, double merge_contact_m, double resolution);
 
 /// Room segmentation where only doorways separate places: every 8-connected component of non-doorway cells
 /// (room and corridor cells together) is one segment, doorway cells join the nearest segment as above.
@@ -23,12 +25,17 @@ cv::Mat doorwaySegmentation(const RegionMap& regions);
 /// `min_part_area` m^2 seeds a new segment and the seeds grow back over the segment's cells (breadth-first,
 /// 8-connected, so the split runs through the middle of the neck). Cells of a segment reached by no seed keep
 /// the segment's id.
-struct NeckSplitOptions {
-  double neck_width = 0.0;     ///< m; 0 = off
+struct SegmentationRules {
+  /// m; rule S0 (regions mode): a room and a corridor region that touch along more than this (border length
+  /// = 8-neighbour cell pairs / 3 x resolution) without a doorway between them are one place (an open area
+  /// cut by a room / corridor confusion; a room reached through a missed door touches the corridor only along
+  /// the door's width). 0 = off.
+  double merge_contact = 0.0;
+  double neck_width = 0.0;     ///< m; rule S1; 0 = off
   double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
 };
 /// Returns the split segmentation (new segments get ids after the current maximum).
-cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const NeckSplitOptions& options);
+cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const SegmentationRules& options);
 
 /// Number of segments (max id).
 int segmentCount(const cv::Mat& segmentation);
