@@ -97,8 +97,11 @@ PlacesModel PlacesModel::load(const std::string& path) {
   if (!fs.isOpened()) throw InputError(path, "not a readable model file");
   if (static_cast<std::string>(fs["format"]) != kFormat)
     throw InputError(path, 0, "format", std::string("not a gridtopo places model (expected format: ") + kFormat + ")");
-  if (static_cast<int>(fs["version"]) != kVersion)
-    throw InputError(path, 0, "version", "unsupported model version " + std::to_string(static_cast<int>(fs["version"])));
+  const int version = static_cast<int>(fs["version"]);
+  if (version < 1 || version > kVersion)
+    throw InputError(path, 0, "version",
+                     "unsupported model version " + std::to_string(version) + " (this build reads versions 1 to " +
+                         std::to_string(kVersion) + "; retrain with gridtopo-train)");
   PlacesModel m;
   m.scan.num_beams = static_cast<int>(fs["num_beams"]);
   m.scan.max_range = static_cast<double>(fs["max_range"]);
@@ -110,6 +113,8 @@ PlacesModel PlacesModel::load(const std::string& path) {
   m.features.context_radius = fs["context_radius"].empty() ? 0.0 : static_cast<double>(fs["context_radius"]);
   if (!std::isfinite(m.features.context_radius) || m.features.context_radius < 0)
     throw InputError(path, 0, "context_radius", "must be >= 0");
+  if (version >= 2 && !fs["capped_ranges"].isSeq())
+    throw InputError(path, 0, "capped_ranges", "missing (a version-2 model lists its capped ranges, possibly [])");
   for (const auto& n : fs["capped_ranges"]) {
     const double r = static_cast<double>(n);
     if (!std::isfinite(r) || r <= 0) throw InputError(path, 0, "capped_ranges", "ranges must be > 0");
