@@ -101,6 +101,8 @@ TEST(Features, ContextFeaturesAreWindowMeans) {
     }
   FeatureOptions o;
   o.context_radius = 1.0;
+  EXPECT_EQ(featureNames(o).size(), 4 * numFeatures());  // base, _cap10 copies, then the context of both
+  o.capped_ranges.clear();
   EXPECT_EQ(featureNames(o).size(), 2 * numFeatures());
   EXPECT_EQ(featureNames(o).back(), featureNames().back() + "_ctx");
 }

@@ -117,8 +117,9 @@ TEST(Segmentation, S1SplitsTwoRoomsJoinedThroughANarrowOpening) {
   seg(cv::Rect(90, 30, 4, 32)).setTo(0);
   seg(cv::Rect(90, 40, 4, 18)).setTo(1);
   EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 2);
-  // Off by default.
-  EXPECT_EQ(cv::norm(splitAtNecks(seg, 0.05, SegmentationRules()), seg, cv::NORM_INF), 0.0);
+  // Off at neck width 0.
+  o.neck_width = 0;
+  EXPECT_EQ(cv::norm(splitAtNecks(seg, 0.05, o), seg, cv::NORM_INF), 0.0);
 }
 
 TEST(Correction, RulesOnTheFloorPlan) {

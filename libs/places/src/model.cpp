@@ -115,6 +115,7 @@ PlacesModel PlacesModel::load(const std::string& path) {
     throw InputError(path, 0, "context_radius", "must be >= 0");
   if (version >= 2 && !fs["capped_ranges"].isSeq())
     throw InputError(path, 0, "capped_ranges", "missing (a version-2 model lists its capped ranges, possibly [])");
+  m.features.capped_ranges.clear();  // version 1: none
   for (const auto& n : fs["capped_ranges"]) {
     const double r = static_cast<double>(n);
     if (!std::isfinite(r) || r <= 0) throw InputError(path, 0, "capped_ranges", "ranges must be > 0");

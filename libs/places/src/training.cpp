@@ -90,8 +90,10 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
   feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
   feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
   {
-    std::stringstream ss(f.read_string("features", "capped_ranges", ""));
-    feat.capped_ranges.clear();
+    const std::string unset = "\x01";
+    const std::string list = f.read_string("features", "capped_ranges", unset);
+    std::stringstream ss(list == unset ? "" : list);
+    if (list != unset) feat.capped_ranges.clear();
     for (std::string tok; std::getline(ss, tok, ',');) {
       if (tok.find_first_not_of(" \t") == std::string::npos) continue;
       char* end = nullptr;

@@ -24,7 +24,8 @@ struct FeatureOptions {
   /// m; for each range R here, a copy of every base feature computed on the scan with beams capped at R
   /// (b_k <- min(b_k, R)), named "<feature>_cap<R>": the features of the same cell seen by a shorter-range
   /// sensor (Mozos et al. use several maximum ranges), so one long beam through a door matters less. Empty = off.
-  std::vector<double> capped_ranges;
+  /// Default {10}: see doc/topology.md (10 m and 15 m were compared).
+  std::vector<double> capped_ranges{10.0};
 };
 
 /// One line per feature: "name: formula". The order is the column order of extractFeatures().

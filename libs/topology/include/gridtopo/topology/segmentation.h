@@ -30,8 +30,8 @@ struct SegmentationRules {
   /// = 8-neighbour cell pairs / 3 x resolution) without a doorway between them are one place (an open area
   /// cut by a room / corridor confusion; a room reached through a missed door touches the corridor only along
   /// the door's width). 0 = off.
-  double merge_contact = 0.0;
-  double neck_width = 0.0;     ///< m; rule S1; 0 = off
+  double merge_contact = 5.0;
+  double neck_width = 1.3;     ///< m; rule S1; 0 = off
   double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
 };
 /// Returns the split segmentation (new segments get ids after the current maximum).
