@@ -326,9 +326,12 @@ int main(int argc, char** argv) {
     g_opt.inspector_out = insp.getValue();
     g_opt.screenshot = shot.getValue();
     g_opt.export_view = exportv.getValue();
-    if (std::sscanf(size.getValue().c_str(), "%dx%d", &g_opt.width, &g_opt.height) != 2 || g_opt.width < 200 ||
-        g_opt.height < 200)
-      throw InputError("--size", "expected WxH with both >= 200");
+    // "WxH" with both in [lo, hi], or an error naming the option.
+    auto parseWxH = [](const TCLAP::ValueArg<std::string>& a, int lo, int hi, int& w, int& h) {
+      if (std::sscanf(a.getValue().c_str(), "%dx%d", &w, &h) != 2 || w < lo || h < lo || w > hi || h > hi)
+        throw InputError("--" + a.getName(), "expected WxH, both in " + std::to_string(lo) + ".." + std::to_string(hi));
+    };
+    parseWxH(size, 200, 100000, g_opt.width, g_opt.height);
     g_opt.bench_frames = bench.getValue();
     g_opt.bench_out = bench_out.getValue();
     g_opt.particle_paths = paths.getValue();
@@ -336,9 +339,7 @@ int main(int argc, char** argv) {
     g_opt.save_slam = save_slam.getValue();
     g_opt.click_particle = click_particle.getValue();
     g_opt.labels = labels.getValue();
-    if (tile.isSet() && (std::sscanf(tile.getValue().c_str(), "%dx%d", &g_opt.tile_cols, &g_opt.tile_rows) != 2 ||
-                         g_opt.tile_cols < 1 || g_opt.tile_rows < 1 || g_opt.tile_cols > 20000 || g_opt.tile_rows > 20000))
-      throw InputError("--tile-map", "expected WxH, 1..20000");
+    if (tile.isSet()) parseWxH(tile, 1, 20000, g_opt.tile_cols, g_opt.tile_rows);
     g_opt.quit = quit.getValue();
   } catch (const TCLAP::ArgException& e) {
     std::cerr << "gridtopo-gui: " << e.argId() << ": " << e.error() << "\n";

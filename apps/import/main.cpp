@@ -14,7 +14,7 @@
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/rawlog_io.h"
-#include "gridtopo/io/simulated_log.h"
+#include "gridtopo/sim/simulator.h"
 #include "gridtopo/io/trajectory_io.h"
 
 using namespace gridtopo;
@@ -201,18 +201,18 @@ int main(int argc, char** argv) {
     std::string input = in_arg.getValue();
     OutputSet outputs;  // the rawlog and the ground truth appear together or not at all
     if (simulate) {
-      io::SimulationOptions sopt;
-      sopt.scans = sim_arg.getValue();
+      auto sopt = sim::pillarRoomOptions();
       sopt.seed = seed_arg.getValue();
-      auto sim = io::simulateLog(sopt);
-      scans = std::move(sim.scans);
+      const std::size_t n = sim_arg.getValue();
+      auto sim = sim::simulatePillarRoom(n, sopt);
+      const auto truth = sim.timedTruth();
+      scans = std::move(sim.records);
       info.format = io::LogFormat::Simulated;
-      input = "simulated (" + std::to_string(sopt.scans) + " scans, seed " + std::to_string(sopt.seed) + ")";
+      input = "simulated (" + std::to_string(n) + " scans, seed " + std::to_string(sopt.seed) + ")";
       if (gt_arg.isSet()) {
-        const std::string header = "ground truth of gridtopo-import --simulate " + std::to_string(sopt.scans) +
+        const std::string header = "ground truth of gridtopo-import --simulate " + std::to_string(n) +
                                    " --seed " + std::to_string(sopt.seed);
-        outputs.write(gt_arg.getValue(),
-                      [&](const std::string& tmp) { io::writeTrajectory(tmp, sim.ground_truth, {header}); });
+        outputs.write(gt_arg.getValue(), [&](const std::string& tmp) { io::writeTrajectory(tmp, truth, {header}); });
       }
     } else {
       scans = io::readScanLog(input, ropt, info);

@@ -12,16 +12,15 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/rawlog_io.h"
-#include "gridtopo/io/simulated_log.h"
+#include "gridtopo/sim/simulator.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo::io;
 
 TEST(RawlogTruncation, EveryCutGivesAnInputErrorOrTheScansBeforeIt) {
-  SimulationOptions so;
-  so.scans = 6;
+  auto so = gridtopo::sim::pillarRoomOptions();
   so.beams = 30;
-  const auto sim = simulateLog(so);
+  const auto sim = gridtopo::sim::simulatePillarRoom(6, so);
   const fs::path dir = fs::temp_directory_path() / ("gridtopo_rawlog_cut_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::size_t complete = 0, errors = 0;
@@ -30,7 +29,7 @@ TEST(RawlogTruncation, EveryCutGivesAnInputErrorOrTheScansBeforeIt) {
       const fs::path clean = dir / (gz ? "clean.rawlog.gz" : "clean.rawlog");
       RawlogWriteOptions w;
       w.layout = layout;
-      writeRawlog(clean.string(), sim.scans, w);
+      writeRawlog(clean.string(), sim.records, w);
       std::ifstream f(clean, std::ios::binary);
       const std::string bytes{std::istreambuf_iterator<char>(f), {}};
       std::mt19937 rng(12345);
@@ -42,7 +41,7 @@ TEST(RawlogTruncation, EveryCutGivesAnInputErrorOrTheScansBeforeIt) {
           const auto c = readRawlog(p.string());
           // Only possible when the cut falls exactly between objects (or before the first one).
           ++complete;
-          EXPECT_LT(c.scans.size(), sim.scans.size());
+          EXPECT_LT(c.scans.size(), sim.records.size());
         } catch (const gridtopo::InputError& e) {
           ++errors;
           EXPECT_EQ(e.file(), p.string());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 namespace gridtopo::sim {
 
@@ -43,6 +44,16 @@ FloorPlan FloorPlan::officeLoop() {
   return p;
 }
 
+FloorPlan FloorPlan::pillarRoom() {
+  FloorPlan p;
+  p.addRectangle(0, 0, 12, 6);
+  p.walls.push_back({5.0, 6.0, 5.0, 5.4});  // two short wall stubs
+  p.walls.push_back({7.0, 0.0, 7.0, 0.5});
+  p.addRectangle(2.7, 2.7, 3.3, 3.3);  // two 0.6 m square pillars
+  p.addRectangle(8.7, 2.7, 9.3, 3.3);
+  return p;
+}
+
 double FloorPlan::rayCast(double x, double y, double a) const {
   const double dx = std::cos(a), dy = std::sin(a);
   double best = std::numeric_limits<double>::infinity();
@@ -73,77 +84,144 @@ std::vector<mrpt::math::TPose2D> officeLoopWaypoints(int laps) {
   return w;
 }
 
-SimLog simulate(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o) {
-  SimLog log;
-  if (waypoints.empty()) return log;
+namespace {
+
+double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+mrpt::math::TPose2D compose(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi);
+  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, wrap(a.phi + b.phi)};
+}
+
+/// b expressed in the frame of a.
+mrpt::math::TPose2D between(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi);
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  return {c * dx + s * dy, -s * dx + c * dy, wrap(b.phi - a.phi)};
+}
+
+}  // namespace
+
+std::vector<io::TimedPose> SimLog::timedTruth() const {
+  std::vector<io::TimedPose> out;
+  out.reserve(truth.size());
+  for (std::size_t i = 0; i < truth.size() && i < records.size(); ++i)
+    out.push_back({records[i].scan.timestamp, truth[i]});
+  return out;
+}
+
+SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& truth,
+                    const std::vector<double>& times, const SimOptions& o) {
+  if (truth.size() != times.size()) throw std::invalid_argument("simulation: one timestamp per pose is needed");
+  if (o.beams < 2) throw std::invalid_argument("simulation: need at least 2 beams");
+  if (!(o.max_range > 0) || !(o.fov > 0) || !(o.range_sigma >= 0) || !(o.range_quantum >= 0))
+    throw std::invalid_argument("simulation: max range and field of view must be positive, noise not negative");
   std::mt19937_64 gen(o.seed);
   std::normal_distribution<double> n01(0.0, 1.0);
-  mrpt::math::TPose2D truth = waypoints[0];
-  mrpt::math::TPose2D odo = truth;
-  double t = 1000.0;
-  auto wrap = [](double a) { return std::atan2(std::sin(a), std::cos(a)); };
-  auto record = [&] {
+  const double increment = o.fov / (o.beams - 1);
+  const float no_return = static_cast<float>(o.no_return_range > 0 ? o.no_return_range : o.max_range);
+
+  SimLog log;
+  log.records.reserve(truth.size());
+  mrpt::math::TPose2D odo{};
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const auto& gt = truth[i];
+    // Odometry: the true increment with noise proportional to the motion, plus the heading bias.
+    if (i == 0) {
+      odo = gt;
+    } else {
+      const auto inc = between(truth[i - 1], gt);
+      const double d = std::hypot(inc.x, inc.y);
+      const double nx = o.odo_sigma_xy * d * n01(gen);
+      const double ny = o.odo_sigma_xy * d * n01(gen);
+      const double nth = o.odo_drift_theta * d +
+                         (o.odo_sigma_theta * std::abs(inc.phi) + o.odo_sigma_theta_per_m * d) * n01(gen);
+      odo = compose(odo, {inc.x + nx, inc.y + ny, inc.phi + nth});
+    }
+
     io::ScanRecord r;
     r.has_odometry = true;
     r.odometry = odo;
-    r.source_index = log.records.size();
+    r.source_index = i;
     auto& s = r.scan;
-    s.timestamp = t;
-    s.start_angle = -o.fov / 2;
-    s.angle_increment = o.fov / (o.beams - 1);
+    s.timestamp = times[i];
+    s.start_angle = -o.fov / 2 + (o.interleave && (i % 2) ? 0.5 * increment : 0.0);
+    s.angle_increment = increment;
     s.max_range = o.max_range;
     s.sensor_pose = o.sensor_pose;
-    const double c = std::cos(truth.phi), sn = std::sin(truth.phi);
-    const double lx = truth.x + c * o.sensor_pose.x - sn * o.sensor_pose.y;
-    const double ly = truth.y + sn * o.sensor_pose.x + c * o.sensor_pose.y;
+    s.ranges.reserve(o.beams);
+    s.valid.reserve(o.beams);
+    const auto laser = compose(gt, o.sensor_pose);
     for (int k = 0; k < o.beams; ++k) {
-      const double a = truth.phi + o.sensor_pose.phi + s.beamAngle(k);
-      double r0 = plan.rayCast(lx, ly, a);
-      if (r0 < o.max_range) {
-        r0 += o.range_sigma * n01(gen);
-        s.ranges.push_back(static_cast<float>(r0));
-        s.valid.push_back(1);
-      } else {
-        s.ranges.push_back(static_cast<float>(o.max_range));
+      const double noisy = plan.rayCast(laser.x, laser.y, laser.phi + s.beamAngle(k)) + o.range_sigma * n01(gen);
+      if (!(noisy < o.max_range)) {
+        s.ranges.push_back(no_return);
         s.valid.push_back(0);
+        continue;
       }
+      double v = std::max(noisy, 0.01);
+      if (o.range_quantum > 0) v = std::round(v / o.range_quantum) * o.range_quantum;
+      s.ranges.push_back(static_cast<float>(v));
+      s.valid.push_back(1);
     }
     log.records.push_back(std::move(r));
-    log.truth.push_back(truth);
-  };
-  // Applies a true increment (forward d, rotation dth) and the corresponding noisy odometry.
-  auto move = [&](double d, double dth) {
-    truth.x += d * std::cos(truth.phi);
-    truth.y += d * std::sin(truth.phi);
-    truth.phi = wrap(truth.phi + dth);
-    const double nd = d + o.odo_sigma_xy * std::abs(d) * n01(gen);
-    const double ny = o.odo_sigma_xy * std::abs(d) * n01(gen);
-    const double nth = dth + o.odo_drift_theta * std::abs(d) +
-                       o.odo_sigma_theta * (std::abs(d) + std::abs(dth)) * n01(gen);
-    odo.x += nd * std::cos(odo.phi) - ny * std::sin(odo.phi);
-    odo.y += nd * std::sin(odo.phi) + ny * std::cos(odo.phi);
-    odo.phi = wrap(odo.phi + nth);
-    t += (std::abs(d) + 0.5 * std::abs(dth)) / o.speed;
-  };
-  record();
-  for (std::size_t w = 1; w < waypoints.size(); ++w) {
-    const double gx = waypoints[w].x, gy = waypoints[w].y;
-    const double dist = std::hypot(gx - truth.x, gy - truth.y);
-    if (dist < 1e-9) continue;
-    const double heading = std::atan2(gy - truth.y, gx - truth.x);
-    double turn = wrap(heading - truth.phi);
-    const int nturn = static_cast<int>(std::ceil(std::abs(turn) / o.scan_spacing));
-    for (int i = 0; i < nturn; ++i) {
-      move(0.0, turn / nturn);
-      record();
-    }
-    const int nmove = static_cast<int>(std::ceil(dist / o.scan_spacing));
-    for (int i = 0; i < nmove; ++i) {
-      move(dist / nmove, 0.0);
-      record();
-    }
+    log.truth.push_back(gt);
   }
   return log;
+}
+
+SimLog simulate(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o) {
+  if (waypoints.empty()) return {};
+  std::vector<mrpt::math::TPose2D> path{waypoints[0]};
+  std::vector<double> times{o.start_time};
+  // Applies a true increment: forward d, then rotation dth.
+  auto move = [&](double d, double dth) {
+    auto p = path.back();
+    p.x += d * std::cos(p.phi);
+    p.y += d * std::sin(p.phi);
+    p.phi = wrap(p.phi + dth);
+    path.push_back(p);
+    times.push_back(times.back() + (std::abs(d) + 0.5 * std::abs(dth)) / o.speed);
+  };
+  for (std::size_t w = 1; w < waypoints.size(); ++w) {
+    const double gx = waypoints[w].x, gy = waypoints[w].y;
+    const double dist = std::hypot(gx - path.back().x, gy - path.back().y);
+    if (dist < 1e-9) continue;
+    const double turn = wrap(std::atan2(gy - path.back().y, gx - path.back().x) - path.back().phi);
+    const int nturn = static_cast<int>(std::ceil(std::abs(turn) / o.scan_spacing));
+    for (int i = 0; i < nturn; ++i) move(0.0, turn / nturn);
+    const int nmove = static_cast<int>(std::ceil(dist / o.scan_spacing));
+    for (int i = 0; i < nmove; ++i) move(dist / nmove, 0.0);
+  }
+  return simulatePath(plan, path, times, o);
+}
+
+SimOptions pillarRoomOptions() {
+  SimOptions o;
+  o.beams = 180;
+  o.fov = 179.0 * M_PI / 180.0;  // 1° between beams
+  o.max_range = 8.0;
+  o.no_return_range = 9.0;
+  o.range_sigma = 0.01;
+  o.range_quantum = 0.01;
+  o.odo_sigma_xy = 0.05;
+  o.odo_sigma_theta = 0.05;
+  o.odo_sigma_theta_per_m = 0.01;
+  o.odo_drift_theta = 0.0;
+  o.seed = 42;
+  return o;
+}
+
+SimLog simulatePillarRoom(std::size_t scans, const SimOptions& o) {
+  if (scans < 2) throw std::invalid_argument("simulation: need at least 2 scans");
+  std::vector<mrpt::math::TPose2D> path;
+  std::vector<double> times;
+  for (std::size_t i = 0; i < scans; ++i) {
+    const double u = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(scans) - M_PI / 2.0;
+    path.push_back({6.0 + 4.5 * std::cos(u), 3.0 + 2.0 * std::sin(u), std::atan2(2.0 * std::cos(u), -4.5 * std::sin(u))});
+    times.push_back(o.start_time + 0.2 * static_cast<double>(i));
+  }
+  return simulatePath(FloorPlan::pillarRoom(), path, times, o);
 }
 
 }  // namespace gridtopo::sim
