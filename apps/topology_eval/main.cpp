@@ -49,6 +49,26 @@ std::string pct(double v) {
   return o.str();
 }
 
+// Error overlay of one labelled map: the map in grey, correctly labelled cells in a pale colour of their label,
+// wrongly labelled cells in the saturated colour of the predicted label (room blue, corridor green, doorway red),
+// labelled cells without a prediction in black.
+cv::Mat errorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted) {
+  static const cv::Vec3b strong[3] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
+  static const cv::Vec3b pale[3] = {{250, 215, 190}, {200, 240, 200}, {200, 200, 250}};
+  cv::Mat out(occ.cells.size(), CV_8UC3);
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.cols; ++c) {
+      cv::Vec3b& o = out.at<cv::Vec3b>(r, c);
+      o = occ.isFree(r, c) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(90, 90, 90);
+      const int t = places::labelFromCode(truth_codes.at<unsigned char>(r, c));
+      if (t < 0 || !occ.isFree(r, c)) continue;
+      const int p = predicted.at<unsigned char>(r, c);
+      if (p >= places::kNumLabels) o = cv::Vec3b(0, 0, 0);
+      else o = p == t ? pale[t] : strong[p];
+    }
+  return out;
+}
+
 struct SegRun {
   std::string map;
   topology::SegmentationScore score;
@@ -75,7 +95,7 @@ int main(int argc, char** argv) {
                                           "names", cmd);
     TCLAP::ValueArg<std::string> json_arg("j", "json", "write the results as JSON here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> md_arg("", "markdown", "write a Markdown table here", false, "", "file", cmd);
-    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images per map here", false, "",
+    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images and error overlays (pale = right, saturated = wrong, in the colour of the predicted label) per map here", false, "",
                                           "dir", cmd);
     TCLAP::ValueArg<std::string> order_arg("", "fold-order",
                                            "decision-list order for the leave-one-map-out folds: auto (validation "
@@ -160,7 +180,8 @@ int main(int argc, char** argv) {
       }
       const auto lab = places::labelFromFeatures(lmaps[i].occ, samples[i].lattice, samples[i].features, model,
                                                  topo.relaxation, topo.threads);
-      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation);
+      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation,
+                                                    {0, 0}, topo.seg_rules);
       topology::ConfusionMatrix before, after, corrected;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
@@ -171,7 +192,8 @@ int main(int argc, char** argv) {
               << places::orderName(model.order) << "\", \"relaxation_iterations\": " << lab.relaxation.iterations
               << ", \"accuracy_before\": " << before.accuracy() << ", \"accuracy_after\": " << after.accuracy()
               << ", \"accuracy_corrected\": " << corrected.accuracy() << ", \"doorway_recall_before\": "
-              << before.recall(2) << ", \"doorway_recall_after\": " << after.recall(2) << "}";
+              << before.recall(2) << ", \"doorway_recall_after\": " << after.recall(2)
+              << ", \"after_relaxation\": " << after.toJson(6) << "}";
       std::cerr << files[i].name << ": order " << places::orderName(model.order) << " acc before "
                 << pct(before.accuracy()) << " after " << pct(after.accuracy()) << " corrected "
                 << pct(corrected.accuracy()) << " door recall " << pct(before.recall(2)) << "/"
@@ -179,6 +201,12 @@ int main(int argc, char** argv) {
       if (!dump_arg.getValue().empty()) {
         fs::create_directories(dump_arg.getValue());
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_labels.png", places::labelsToCodes(topo_res.labels));
+        cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_before_relaxation.png",
+                    errorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels_initial));
+        cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_relaxation.png",
+                    errorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels));
+        cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_correction.png",
+                    errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
       }
       if (!no_seg.getValue()) {
         const cv::Mat gt_img = cv::imread(files[i].groundtruth, cv::IMREAD_UNCHANGED);
@@ -191,7 +219,8 @@ int main(int argc, char** argv) {
           if (occ.cells.size() != gt.size()) throw InputError(path, "map and ground truth differ in size");
           const auto t0 = std::chrono::steady_clock::now();
           const auto l = places::labelPlaces(occ, model, topo.relaxation, topo.threads, path);
-          const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation);
+          const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation, {0, 0},
+                                                  topo.seg_rules);
           const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           SegRun run{fs::path(path).stem().string(), topology::scoreSegmentation(t.segmentation, gt), secs};
           std::cerr << "  " << run.map << ": segments " << run.score.segments << " rooms " << run.score.rooms

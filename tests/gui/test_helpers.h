@@ -46,7 +46,7 @@ inline places::PlacesModel handMadeModel() {
   m.scan.num_beams = 360;
   m.scan.max_range = 20.0;
   m.scan.lattice_spacing = 0.1;
-  m.feature_names = places::featureNames();
+  m.feature_names = places::featureNames(m.features);
   int f = -1;
   for (std::size_t i = 0; i < m.feature_names.size(); ++i)
     if (m.feature_names[i] == "min_chord") f = static_cast<int>(i);

@@ -97,6 +97,36 @@ TEST(PlacesModel, SaveLoadRoundTripAndMismatch) {
   } catch (const gridtopo::InputError& e) {
     EXPECT_EQ(e.field(), "feature_names");
   }
+  // Capped feature copies round-trip; a version-1 file (base features, no capped_ranges key) still loads, a
+  // newer version is refused naming the field.
+  PlacesModel mc = m;
+  mc.features.capped_ranges = {10.0};
+  mc.feature_names = featureNames(mc.features);
+  mc.save(path);
+  const PlacesModel rc = PlacesModel::load(path);
+  ASSERT_EQ(rc.features.capped_ranges.size(), 1u);
+  EXPECT_DOUBLE_EQ(rc.features.capped_ranges[0], 10.0);
+  EXPECT_EQ(rc.feature_names.size(), 2 * numFeatures());
+  m.features.capped_ranges.clear();
+  m.feature_names = featureNames(m.features);
+  m.save(path);
+  std::ifstream in2(path);
+  std::string v1((std::istreambuf_iterator<char>(in2)), {});
+  v1.replace(v1.find("version: 2"), 10, "version: 1");
+  const std::string no_caps = "capped_ranges:\n   []\n";
+  ASSERT_NE(v1.find(no_caps), std::string::npos);
+  v1.replace(v1.find(no_caps), no_caps.size(), "");
+  std::ofstream((dir / "v1.yml").string()) << v1;
+  EXPECT_EQ(PlacesModel::load((dir / "v1.yml").string()).feature_names, featureNames());
+  std::string v3 = v1;
+  v3.replace(v3.find("version: 1"), 10, "version: 3");
+  std::ofstream((dir / "v3.yml").string()) << v3;
+  try {
+    PlacesModel::load((dir / "v3.yml").string());
+    FAIL() << "unknown model version accepted";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_EQ(e.field(), "version");
+  }
   std::ofstream(dir / "not_a_model.yml") << "%YAML:1.0\nfoo: 1\n";
   EXPECT_THROW(PlacesModel::load((dir / "not_a_model.yml").string()), gridtopo::InputError);
   EXPECT_THROW(PlacesModel::load((dir / "missing.yml").string()), gridtopo::InputError);

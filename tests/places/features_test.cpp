@@ -101,6 +101,37 @@ TEST(Features, ContextFeaturesAreWindowMeans) {
     }
   FeatureOptions o;
   o.context_radius = 1.0;
+  EXPECT_EQ(featureNames(o).size(), 4 * numFeatures());  // base, _cap10 copies, then the context of both
+  o.capped_ranges.clear();
   EXPECT_EQ(featureNames(o).size(), 2 * numFeatures());
   EXPECT_EQ(featureNames(o).back(), featureNames().back() + "_ctx");
+}
+
+TEST(Features, CappedRangeCopies) {
+  // In the middle of a 20 x 2 m corridor the beams along it reach 10 m: capped at 4 m, the scan is that of a
+  // 8 x 2 m box (area 16 m^2 instead of 40), while a 3 x 3 m room has no beam longer than 2.2 m and keeps its
+  // features unchanged.
+  FeatureOptions o;
+  o.capped_ranges = {4.0, 8.0};
+  const auto names = featureNames(o);
+  ASSERT_EQ(names.size(), 3 * numFeatures());
+  EXPECT_EQ(names[numFeatures()], featureNames()[0] + "_cap4");
+  EXPECT_EQ(names.back(), featureNames().back() + "_cap8");
+  const ScanSimulationOptions so;
+  const auto corridor = simulateScans(test::rectangleRoom(20.0, 2.0, 0.05), {{205, 25}}, so);
+  const cv::Mat f = extractFeatures(corridor, o, 1);
+  ASSERT_EQ(static_cast<std::size_t>(f.cols), names.size());
+  const int F = static_cast<int>(numFeatures());
+  EXPECT_NEAR(f.at<float>(0, idx("area")), 40.0, 1.5);
+  EXPECT_NEAR(f.at<float>(0, F + idx("max_beam")), 4.0, 1e-5);
+  EXPECT_NEAR(f.at<float>(0, F + idx("perp_chord")), 8.0, 1e-4);
+  EXPECT_LT(f.at<float>(0, F + idx("area")), 18.0);
+  EXPECT_GT(f.at<float>(0, F + idx("area")), 14.0);
+  EXPECT_NEAR(f.at<float>(0, 2 * F + idx("perp_chord")), 16.0, 1e-4);
+  const auto room = simulateScans(test::rectangleRoom(3.0, 3.0, 0.05), {{35, 35}}, so);
+  const cv::Mat g = extractFeatures(room, o, 1);
+  for (int k = 0; k < F; ++k) {
+    EXPECT_EQ(g.at<float>(0, k), g.at<float>(0, F + k)) << names[static_cast<std::size_t>(k)];
+    EXPECT_EQ(g.at<float>(0, k), g.at<float>(0, 2 * F + k)) << names[static_cast<std::size_t>(k)];
+  }
 }

@@ -69,3 +69,29 @@ TEST(Labelling, BadInputs) {
     EXPECT_NE(std::string(e.what()).find("no free cell"), std::string::npos);
   }
 }
+
+TEST(Relaxation, NeighbourhoodRadius) {
+  // A 3 x 3 block of "corridor" (0.4, 0.6) in a room (0.6, 0.4). One iteration at the block's centre: its 8
+  // neighbours are all corridor, q = (-0.1, +0.1), P(corridor) = 0.66 / 1.02; in the 5 x 5 window 16 of its 24
+  // neighbours are room, q = (+1/30, -1/30), P(corridor) = 0.58 / (0.4 (31/30) + 0.58).
+  cv::Mat p(15, 15, CV_32FC3, cv::Scalar(0.6, 0.4, 0.0));
+  p(cv::Rect(6, 6, 3, 3)).setTo(cv::Scalar(0.4, 0.6, 0.0));
+  cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
+  const Compatibility r{{{0.5, -0.5, 0.0}, {-0.5, 0.5, 0.0}, {0.0, 0.0, 0.5}}};
+  RelaxationOptions o;
+  o.max_iterations = 1;
+  cv::Mat a = p.clone(), a2 = p.clone(), b = p.clone(), c = p.clone();
+  relaxLabels(a, valid, r, o, 1);
+  EXPECT_NEAR(a.at<cv::Vec3f>(7, 7)[1], 0.66 / 1.02, 1e-5);
+  o.neighbourhood_radius = 2;
+  relaxLabels(a2, valid, r, o, 1);
+  EXPECT_NEAR(a2.at<cv::Vec3f>(7, 7)[1], 0.58 / (0.4 * 31.0 / 30.0 + 0.58), 1e-5);
+  o.max_iterations = 50;
+  relaxLabels(b, valid, r, o, 1);
+  for (int y = 6; y < 9; ++y)
+    for (int x = 6; x < 9; ++x) EXPECT_GT(b.at<cv::Vec3f>(y, x)[0], 0.9f) << y << "," << x;
+  relaxLabels(c, valid, r, o, 3);
+  EXPECT_EQ(cv::norm(b, c, cv::NORM_INF), 0.0);
+  o.neighbourhood_radius = 0;
+  EXPECT_THROW(relaxLabels(c, valid, r, o, 1), gridtopo::InputError);
+}

@@ -73,6 +73,55 @@ TEST(Segmentation, DoorsSplitRoomsAndJoinTheirNeighbours) {
   EXPECT_DOUBLE_EQ(s.recall, 1.0);
 }
 
+TEST(Segmentation, S0MergesAnOpenRoomCorridorContactButNotADoorWidth) {
+  // A room label wrongly covering the end of the corridor: the "room" touches the corridor along its 2 m
+  // width, without a doorway. A second room hangs off the corridor through a missed door (1 m opening).
+  cv::Mat l(140, 420, CV_8U, cv::Scalar(N));
+  l(cv::Rect(10, 100, 400, 40)).setTo(C);
+  l(cv::Rect(330, 100, 80, 40)).setTo(R);   // the corridor's last 4 m labelled room: contact 2 m
+  l(cv::Rect(20, 10, 80, 80)).setTo(R);     // a 4 x 4 m room ...
+  l(cv::Rect(50, 90, 20, 10)).setTo(R);     // ... joined to the corridor by a 1 m opening labelled room
+  const RegionMap rm = extractRegions(l, 0.05);
+  EXPECT_EQ(segmentCount(roomSegmentation(rm)), 3);
+  const cv::Mat seg = roomSegmentation(rm, 1.5, 0.05);
+  EXPECT_EQ(segmentCount(seg), 2);
+  EXPECT_EQ(seg.at<int>(120, 370), seg.at<int>(120, 100));  // merged: one place
+  EXPECT_NE(seg.at<int>(50, 60), seg.at<int>(120, 100));    // the room behind the 1 m opening stays apart
+  EXPECT_EQ(segmentCount(roomSegmentation(rm, 2.5, 0.05)), 3);  // contact 2 m < 2.5 m: no merge
+}
+
+TEST(Segmentation, S1SplitsTwoRoomsJoinedThroughANarrowOpening) {
+  // Two 4 x 4 m rooms side by side, joined by a 0.9 m opening in a 0.2 m wall, labelled one room segment.
+  cv::Mat seg(100, 200, CV_32S, cv::Scalar(0));
+  seg(cv::Rect(10, 10, 80, 80)).setTo(1);
+  seg(cv::Rect(94, 10, 80, 80)).setTo(1);
+  seg(cv::Rect(90, 40, 4, 18)).setTo(1);  // the opening: 0.9 m wide, 0.2 m deep
+  seg(cv::Rect(180, 10, 10, 10)).setTo(2);
+  SegmentationRules o;
+  o.neck_width = 1.2;
+  o.min_part_area = 4.0;
+  const cv::Mat out = splitAtNecks(seg, 0.05, o);
+  EXPECT_EQ(segmentCount(out), 3);
+  EXPECT_NE(out.at<int>(50, 30), out.at<int>(50, 150));
+  EXPECT_EQ(out.at<int>(50, 30), 1);
+  EXPECT_EQ(out.at<int>(15, 185), 2);                               // the small segment is untouched
+  EXPECT_EQ(cv::countNonZero(out), cv::countNonZero(seg));          // no cell lost
+  // The split runs through the opening: its left half goes left, its right half right.
+  EXPECT_EQ(out.at<int>(50, 90), out.at<int>(50, 30));
+  EXPECT_EQ(out.at<int>(50, 93), out.at<int>(50, 150));
+  // A wider opening (1.6 m) is a passage, not a door: no split at neck width 1.2 m.
+  seg(cv::Rect(90, 30, 4, 32)).setTo(1);
+  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 2);
+  // Parts smaller than min_part_area do not split.
+  o.neck_width = 1.2, o.min_part_area = 20.0;
+  seg(cv::Rect(90, 30, 4, 32)).setTo(0);
+  seg(cv::Rect(90, 40, 4, 18)).setTo(1);
+  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 2);
+  // Off at neck width 0.
+  o.neck_width = 0;
+  EXPECT_EQ(cv::norm(splitAtNecks(seg, 0.05, o), seg, cv::NORM_INF), 0.0);
+}
+
 TEST(Correction, RulesOnTheFloorPlan) {
   cv::Mat l = floorPlan();
   l(cv::Rect(30, 20, 6, 6)).setTo(C);        // R1: a 0.09 m^2 corridor speck inside room 1

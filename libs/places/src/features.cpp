@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <thread>
 
 namespace gridtopo::places {
@@ -59,8 +60,17 @@ std::vector<std::string> featureNames() {
 
 std::size_t numFeatures() { return featureDescriptions().size(); }
 
+std::string cappedSuffix(double range) {
+  std::ostringstream o;
+  o << "_cap" << range;
+  return o.str();
+}
+
 std::vector<std::string> featureNames(const FeatureOptions& o) {
   std::vector<std::string> n = featureNames();
+  const std::size_t base = n.size();
+  for (double r : o.capped_ranges)
+    for (std::size_t i = 0; i < base; ++i) n.push_back(n[i] + cappedSuffix(r));
   if (o.context_radius > 0) {
     const std::size_t b = n.size();
     for (std::size_t i = 0; i < b; ++i) n.push_back(n[i] + "_ctx");
@@ -241,13 +251,20 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads) {
   const std::size_t n = scans.size(), F = numFeatures();
   const int M = scans.num_beams;
-  cv::Mat out(static_cast<int>(n), static_cast<int>(F), CV_32F, cv::Scalar(0));
+  const std::size_t copies = 1 + options.capped_ranges.size();
+  cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F, cv::Scalar(0));
   auto work = [&](std::size_t begin, std::size_t end) {
-    std::vector<float> beams(static_cast<std::size_t>(M));
+    std::vector<float> beams(static_cast<std::size_t>(M)), capped(static_cast<std::size_t>(M));
     for (std::size_t i = begin; i < end; ++i) {
       const std::uint16_t* s = scans.scan(i);
       for (int k = 0; k < M; ++k) beams[static_cast<std::size_t>(k)] = s[k] * 0.001f;
-      extractFeatures(beams.data(), M, options, out.ptr<float>(static_cast<int>(i)));
+      float* row = out.ptr<float>(static_cast<int>(i));
+      extractFeatures(beams.data(), M, options, row);
+      for (std::size_t c = 0; c < options.capped_ranges.size(); ++c) {
+        const float cap = static_cast<float>(options.capped_ranges[c]);
+        for (int k = 0; k < M; ++k) capped[static_cast<std::size_t>(k)] = std::min(beams[static_cast<std::size_t>(k)], cap);
+        extractFeatures(capped.data(), M, options, row + F * (c + 1));
+      }
     }
   };
   const std::size_t nt = static_cast<std::size_t>(std::max(1, threads));

@@ -68,6 +68,9 @@ void PlacesModel::save(const std::string& path) const {
     fs << "num_beams" << scan.num_beams << "max_range" << scan.max_range << "lattice_spacing" << scan.lattice_spacing;
     fs << "beam_cap" << features.beam_cap << "gap_small" << features.gap_small << "gap_large" << features.gap_large
        << "context_radius" << features.context_radius;
+    fs << "capped_ranges" << "[";
+    for (double r : features.capped_ranges) fs << r;
+    fs << "]";
     fs << "feature_names" << "[";
     for (const auto& n : feature_names) fs << n;
     fs << "]";
@@ -94,8 +97,11 @@ PlacesModel PlacesModel::load(const std::string& path) {
   if (!fs.isOpened()) throw InputError(path, "not a readable model file");
   if (static_cast<std::string>(fs["format"]) != kFormat)
     throw InputError(path, 0, "format", std::string("not a gridtopo places model (expected format: ") + kFormat + ")");
-  if (static_cast<int>(fs["version"]) != kVersion)
-    throw InputError(path, 0, "version", "unsupported model version " + std::to_string(static_cast<int>(fs["version"])));
+  const int version = static_cast<int>(fs["version"]);
+  if (version < 1 || version > kVersion)
+    throw InputError(path, 0, "version",
+                     "unsupported model version " + std::to_string(version) + " (this build reads versions 1 to " +
+                         std::to_string(kVersion) + "; retrain with gridtopo-train)");
   PlacesModel m;
   m.scan.num_beams = static_cast<int>(fs["num_beams"]);
   m.scan.max_range = static_cast<double>(fs["max_range"]);
@@ -107,6 +113,14 @@ PlacesModel PlacesModel::load(const std::string& path) {
   m.features.context_radius = fs["context_radius"].empty() ? 0.0 : static_cast<double>(fs["context_radius"]);
   if (!std::isfinite(m.features.context_radius) || m.features.context_radius < 0)
     throw InputError(path, 0, "context_radius", "must be >= 0");
+  if (version >= 2 && !fs["capped_ranges"].isSeq())
+    throw InputError(path, 0, "capped_ranges", "missing (a version-2 model lists its capped ranges, possibly [])");
+  m.features.capped_ranges.clear();  // version 1: none
+  for (const auto& n : fs["capped_ranges"]) {
+    const double r = static_cast<double>(n);
+    if (!std::isfinite(r) || r <= 0) throw InputError(path, 0, "capped_ranges", "ranges must be > 0");
+    m.features.capped_ranges.push_back(r);
+  }
   for (const auto& n : fs["feature_names"]) m.feature_names.push_back(static_cast<std::string>(n));
   if (m.feature_names != featureNames(m.features))
     throw InputError(path, 0, "feature_names",

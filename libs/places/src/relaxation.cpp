@@ -13,18 +13,22 @@ namespace gridtopo::places {
 void RelaxationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
   max_iterations = s.read_int(sec, "max_iterations", max_iterations);
   tolerance = s.read_double(sec, "tolerance", tolerance);
+  neighbourhood_radius = s.read_int(sec, "neighbourhood_radius", neighbourhood_radius);
   validate("[" + sec + "]");
 }
 
 void RelaxationOptions::dumpToTextStream(std::ostream& out) const {
   out << "max_iterations = " << max_iterations << "\n"
-      << "tolerance      = " << tolerance << "\n";
+      << "tolerance      = " << tolerance << "\n"
+      << "neighbourhood_radius = " << neighbourhood_radius << "\n";
 }
 
 void RelaxationOptions::validate(const std::string& where) const {
   if (max_iterations < 0 || max_iterations > 10000)
     throw InputError(where, 0, "max_iterations", "must be in [0, 10000]");
   if (!std::isfinite(tolerance) || tolerance <= 0) throw InputError(where, 0, "tolerance", "must be > 0");
+  if (neighbourhood_radius < 1 || neighbourhood_radius > 50)
+    throw InputError(where, 0, "neighbourhood_radius", "must be in [1, 50] lattice cells");
 }
 
 void accumulateNeighbourCounts(const cv::Mat& labels, std::array<std::array<double, kNumLabels>, kNumLabels>& counts) {
@@ -70,26 +74,37 @@ RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compati
   cv::Mat next = probs.clone();
   const int rows = probs.rows, cols = probs.cols;
   std::vector<double> change(static_cast<std::size_t>(std::max(1, threads)), 0.0);
+  const int R = options.neighbourhood_radius;
+  // Sums over the (2R+1)^2 window from integral images (rows+1 x cols+1): per-cell cost independent of R.
+  std::vector<double> integ(static_cast<std::size_t>((rows + 1) * (cols + 1) * (kNumLabels + 1)), 0.0);
+  const auto at = [&](int y, int x) { return integ.data() + (static_cast<std::size_t>(y) * (cols + 1) + x) * (kNumLabels + 1); };
   for (int it = 0; it < options.max_iterations; ++it) {
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) {
+        double v[kNumLabels + 1] = {0, 0, 0, 0};
+        if (valid.at<unsigned char>(y, x)) {
+          const cv::Vec3f& pj = probs.at<cv::Vec3f>(y, x);
+          for (int l = 0; l < kNumLabels; ++l) v[l] = pj[l];
+          v[kNumLabels] = 1;
+        }
+        double* o = at(y + 1, x + 1);
+        const double *a = at(y, x + 1), *b = at(y + 1, x), *c = at(y, x);
+        for (int l = 0; l <= kNumLabels; ++l) o[l] = v[l] + a[l] + b[l] - c[l];
+      }
     auto work = [&](int t, int r0, int r1) {
       double mx = 0;
       for (int y = r0; y < r1; ++y)
         for (int x = 0; x < cols; ++x) {
           if (!valid.at<unsigned char>(y, x)) continue;
-          double s[kNumLabels] = {0, 0, 0};
-          int n = 0;
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (!dy && !dx) continue;
-              const int yy = y + dy, xx = x + dx;
-              if (yy < 0 || xx < 0 || yy >= rows || xx >= cols || !valid.at<unsigned char>(yy, xx)) continue;
-              const cv::Vec3f& pj = probs.at<cv::Vec3f>(yy, xx);
-              for (int l = 0; l < kNumLabels; ++l) s[l] += pj[l];
-              ++n;
-            }
+          const int y0 = std::max(0, y - R), y1 = std::min(rows, y + R + 1);
+          const int x0 = std::max(0, x - R), x1 = std::min(cols, x + R + 1);
+          const double *a = at(y1, x1), *b = at(y0, x1), *c = at(y1, x0), *d = at(y0, x0);
           const cv::Vec3f& pi = probs.at<cv::Vec3f>(y, x);
+          double s[kNumLabels];
+          for (int l = 0; l < kNumLabels; ++l) s[l] = a[l] - b[l] - c[l] + d[l] - pi[l];  // without the cell itself
+          const double n = std::round(a[kNumLabels] - b[kNumLabels] - c[kNumLabels] + d[kNumLabels]) - 1;
           cv::Vec3f& out = next.at<cv::Vec3f>(y, x);
-          if (n == 0) { out = pi; continue; }
+          if (n < 0.5) { out = pi; continue; }
           double u[kNumLabels], z = 0;
           for (int l = 0; l < kNumLabels; ++l) {
             double q = 0;

@@ -89,6 +89,21 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
   feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
   feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
   feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
+  {
+    const std::string unset = "\x01";
+    const std::string list = f.read_string("features", "capped_ranges", unset);
+    std::stringstream ss(list == unset ? "" : list);
+    if (list != unset) feat.capped_ranges.clear();
+    for (std::string tok; std::getline(ss, tok, ',');) {
+      if (tok.find_first_not_of(" \t") == std::string::npos) continue;
+      char* end = nullptr;
+      const double v = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || !std::isfinite(v) || v <= 0 || v > 65 ||
+          (*end && std::string(end).find_first_not_of(" \t") != std::string::npos))
+        throw InputError(ini_path, 0, "[features] capped_ranges", "must be a comma-separated list of ranges in (0, 65] metres, got '" + tok + "'");
+      feat.capped_ranges.push_back(v);
+    }
+  }
   if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
     throw InputError(ini_path, 0, "[features] context_radius", "must be in [0, 10] metres");
   return c;
@@ -98,13 +113,20 @@ void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   boost.loadFromConfigFile(s, sec);
   order = s.read_string(sec, "order", order);
   prior_weight = s.read_double(sec, "prior_weight", prior_weight);
+  order_folds = s.read_int(sec, "order_folds", order_folds);
+  order_samples_per_class = s.read_int(sec, "order_samples_per_class", order_samples_per_class);
+  if (order_folds < 1 || order_folds > 20) throw InputError("[" + sec + "]", 0, "order_folds", "must be in [1, 20]");
+  if (order_samples_per_class < 10)
+    throw InputError("[" + sec + "]", 0, "order_samples_per_class", "must be >= 10");
   if (!(prior_weight >= 0 && prior_weight <= 2)) throw InputError("[" + sec + "]", 0, "prior_weight", "must be in [0, 2]");
 }
 
 void TrainingOptions::dumpToTextStream(std::ostream& out) const {
   boost.dumpToTextStream(out);
   out << "order                 = " << order << "\n"
-      << "prior_weight          = " << prior_weight << "\n";
+      << "prior_weight          = " << prior_weight << "\n"
+      << "order_folds           = " << order_folds << "\n"
+      << "order_samples_per_class = " << order_samples_per_class << "\n";
 }
 
 std::string orderName(const std::array<int, kNumLabels>& o) {
@@ -200,53 +222,66 @@ PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSim
 
   std::array<int, kNumLabels> order{1, 0, 2};
   if (options.order == "auto") {
-    std::vector<const MapSamples*> train, val;
-    for (std::size_t i = 0; i < maps.size(); ++i) ((maps.size() >= 3 && i % 3 == 2) ? val : train).push_back(maps[i]);
-    if (val.empty()) val = train;
-    const Pool tp = pool(train, options.boost.max_samples_per_class, options.boost.seed);
-    BoostedClassifier one_vs_rest[kNumLabels], pair[kNumLabels][kNumLabels];
-    for (int a = 0; a < kNumLabels; ++a) {
-      if (log) log("validation: training " + labelName(a) + " vs rest");
-      one_vs_rest[a] = trainBinary(tp, a, -1, options.boost);
-    }
-    for (int a = 0; a < kNumLabels; ++a)
-      for (int b = a + 1; b < kNumLabels; ++b) {
-        if (log) log("validation: training " + labelName(a) + " vs " + labelName(b));
-        pair[a][b] = trainBinary(tp, a, b, options.boost);
-        pair[b][a] = pair[a][b];
-        for (auto& s : pair[b][a].stumps) s.left = -s.left, s.right = -s.right;
+    // Validation splits: fold f holds out the maps with index % k == f (k = order_folds; k = 1: the single split
+    // of index % 3 == 2). Confusions of the three orders are summed over all held-out maps.
+    const int k = std::max(1, std::min<int>(options.order_folds, static_cast<int>(maps.size())));
+    double conf[kNumLabels][kNumLabels][kNumLabels] = {};  // [order a][truth][predicted]
+    for (int f = 0; f < k; ++f) {
+      std::vector<const MapSamples*> train, val;
+      for (std::size_t i = 0; i < maps.size(); ++i) {
+        const bool held = k == 1 ? (maps.size() >= 3 && i % 3 == 2) : static_cast<int>(i % static_cast<std::size_t>(k)) == f;
+        (held ? val : train).push_back(maps[i]);
       }
+      if (val.empty()) val = train;
+      if (train.empty()) train = val;
+      BoostOptions bo = options.boost;
+      bo.max_samples_per_class = std::min(options.boost.max_samples_per_class, options.order_samples_per_class);
+      const Pool tp = pool(train, bo.max_samples_per_class, bo.seed);
+      BoostedClassifier one_vs_rest[kNumLabels], pair[kNumLabels][kNumLabels];
+      for (int a = 0; a < kNumLabels; ++a) {
+        if (log) log("validation " + std::to_string(f + 1) + "/" + std::to_string(k) + ": training " + labelName(a) + " vs rest");
+        one_vs_rest[a] = trainBinary(tp, a, -1, bo);
+      }
+      for (int a = 0; a < kNumLabels; ++a)
+        for (int b = a + 1; b < kNumLabels; ++b) {
+          if (log) log("validation " + std::to_string(f + 1) + "/" + std::to_string(k) + ": training " + labelName(a) + " vs " + labelName(b));
+          pair[a][b] = trainBinary(tp, a, b, bo);
+          pair[b][a] = pair[a][b];
+          for (auto& st : pair[b][a].stumps) st.left = -st.left, st.right = -st.right;
+        }
+      for (int a = 0; a < kNumLabels; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        // For the second stage the order of b and c does not matter (same classifier up to sign).
+        PlacesModel trial = model;
+        trial.order = {a, b, c};
+        trial.first = one_vs_rest[a];
+        trial.second = pair[b][c];
+        trial.first.bias = priorBias(train, a, -1, options.prior_weight);
+        trial.second.bias = priorBias(train, b, c, options.prior_weight);
+        for (const MapSamples* m : val)
+          for (std::size_t i = 0; i < m->labels.size(); ++i) {
+            if (m->labels[i] < 0) continue;
+            float p[3];
+            trial.probabilities(m->features.ptr<float>(static_cast<int>(i)), p);
+            const int pred = static_cast<int>(std::max_element(p, p + 3) - p);
+            conf[a][m->labels[i]][pred] += 1;
+          }
+      }
+    }
     double best = -1;
     for (int a = 0; a < kNumLabels; ++a) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      // For the second stage the order of b and c does not matter (same classifier up to sign).
-      PlacesModel trial = model;
-      trial.order = {a, b, c};
-      trial.first = one_vs_rest[a];
-      trial.second = pair[b][c];
-      trial.first.bias = priorBias(train, a, -1, options.prior_weight);
-      trial.second.bias = priorBias(train, b, c, options.prior_weight);
-      double conf[kNumLabels][kNumLabels] = {};
-      for (const MapSamples* m : val)
-        for (std::size_t i = 0; i < m->labels.size(); ++i) {
-          if (m->labels[i] < 0) continue;
-          float p[3];
-          trial.probabilities(m->features.ptr<float>(static_cast<int>(i)), p);
-          const int pred = static_cast<int>(std::max_element(p, p + 3) - p);
-          conf[m->labels[i]][pred] += 1;
-        }
       double correct = 0, total = 0, bal = 0;
       for (int t = 0; t < kNumLabels; ++t) {
         double row = 0;
-        for (int q = 0; q < kNumLabels; ++q) row += conf[t][q];
-        correct += conf[t][t], total += row;
-        bal += row > 0 ? conf[t][t] / row : 0;
+        for (int q = 0; q < kNumLabels; ++q) row += conf[a][t][q];
+        correct += conf[a][t][t], total += row;
+        bal += row > 0 ? conf[a][t][t] / row : 0;
       }
-      OrderScore sc{trial.order, total > 0 ? correct / total : 0, bal / kNumLabels};
+      OrderScore sc{{a, (a + 1) % 3, (a + 2) % 3}, total > 0 ? correct / total : 0, bal / kNumLabels};
       if (validation) validation->push_back(sc);
       if (log) log("order " + orderName(sc.order) + ": validation accuracy " + std::to_string(sc.accuracy) +
                    ", balanced " + std::to_string(sc.balanced_accuracy));
-      if (sc.balanced_accuracy > best) best = sc.balanced_accuracy, order = trial.order;
+      if (sc.balanced_accuracy > best) best = sc.balanced_accuracy, order = sc.order;
     }
   } else {
     order = parseOrder(options.order);

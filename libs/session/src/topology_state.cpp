@@ -54,11 +54,14 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   });
   if (progress) progress("features", 0, 1);
   t.features = places::extractFeatures(t.scans, model->features, options.threads);
+  if (model->features.context_radius > 0)  // as places::labelPlaces does
+    t.features = places::addContextFeatures(lattice, t.features, model->features.context_radius, t.occ.resolution);
   if (progress) progress("classify", 0, 1);
   t.labelling = places::labelFromFeatures(t.occ, lattice, t.features, *model, options.relaxation, options.threads);
   t.has_labelling = true;
   if (progress) progress("regions", 0, 1);
-  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options.correction);
+  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options.correction, options.segmentation,
+                                   {0, 0}, options.seg_rules);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("done", 1, 1);
   return t;
@@ -212,7 +215,8 @@ CellInspection inspectCell(const TopologyData& t, int row, int col) {
   ci.feature_descriptions = places::featureDescriptions();
   ci.feature_names = places::featureNames();
   const float* f = t.features.ptr<float>(ci.sample);
-  ci.features.assign(f, f + t.features.cols);
+  // The base features (the capped-range and context copies of a model are not listed).
+  ci.features.assign(f, f + std::min(static_cast<std::size_t>(t.features.cols), places::numFeatures()));
   const int M = t.scans.num_beams;
   const std::uint16_t* r = t.scans.scan(static_cast<std::size_t>(ci.sample));
   const cv::Point2d o = t.map.cellCentre(ci.sample_cell.y, ci.sample_cell.x);

@@ -18,6 +18,9 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   grid_free_threshold = s.read_int(sec, "grid_free_threshold", grid_free_threshold);
   overlay_scale = s.read_int(sec, "overlay_scale", overlay_scale);
   segmentation = s.read_string(sec, "segmentation", segmentation);
+  seg_rules.merge_contact = s.read_double(sec, "merge_contact", seg_rules.merge_contact);
+  seg_rules.neck_width = s.read_double(sec, "split_neck_width", seg_rules.neck_width);
+  seg_rules.min_part_area = s.read_double(sec, "split_min_part_area", seg_rules.min_part_area);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
@@ -26,6 +29,12 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "grid_free_threshold", "must be in [129, 255] (p_free > 0.5)");
   if (segmentation != "regions" && segmentation != "doorways")
     throw InputError(where, 0, "segmentation", "must be regions or doorways");
+  if (!(seg_rules.merge_contact >= 0 && seg_rules.merge_contact <= 100))
+    throw InputError(where, 0, "merge_contact", "must be in [0, 100] metres (0 = off)");
+  if (!(seg_rules.neck_width >= 0 && seg_rules.neck_width <= 10))
+    throw InputError(where, 0, "split_neck_width", "must be in [0, 10] metres (0 = off)");
+  if (!(seg_rules.min_part_area > 0 && seg_rules.min_part_area <= 1000))
+    throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -34,7 +43,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
       << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
-      << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\n[relaxation]\n";
+      << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
+      << "\nsplit_min_part_area = " << seg_rules.min_part_area << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -61,12 +71,14 @@ int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation, cv::Point2d origin) {
+                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules) {
   TopologyResult r;
   r.labels = correctRegions(labels, resolution, correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
   r.graph = buildGraph(r.regions, resolution, origin);
-  r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions) : roomSegmentation(r.regions);
+  r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)
+                                              : roomSegmentation(r.regions, seg_rules.merge_contact, resolution);
+  if (seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, seg_rules);
   return r;
 }
 

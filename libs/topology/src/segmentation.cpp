@@ -1,6 +1,8 @@
 #include "gridtopo/topology/segmentation.h"
 
 #include <deque>
+#include <opencv2/imgproc.hpp>
+#include <vector>
 #include <functional>
 
 #include "gridtopo/places/place_label.h"
@@ -50,12 +52,30 @@ cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int ne
 }
 }  // namespace
 
-cv::Mat roomSegmentation(const RegionMap& rm) {
+cv::Mat roomSegmentation(const RegionMap& rm) { return roomSegmentation(rm, 0.0, 1.0); }
+
+cv::Mat roomSegmentation(const RegionMap& rm, double merge_contact_m, double resolution) {
   const int door = static_cast<int>(places::PlaceLabel::Doorway);
-  std::vector<int> seg_of(rm.regions.size(), 0);
+  std::vector<int> parent(rm.regions.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  std::function<int(int)> find = [&](int i) { return parent[static_cast<std::size_t>(i)] == i ? i : parent[static_cast<std::size_t>(i)] = find(parent[static_cast<std::size_t>(i)]); };
+  if (merge_contact_m > 0) {
+    const double min_pairs = 3.0 * merge_contact_m / resolution;
+    for (const auto& [k, len] : regionAdjacency(rm.ids)) {
+      const int la = rm.region(k.first).label, lb = rm.region(k.second).label;
+      if (la == door || lb == door || la == lb || len <= min_pairs) continue;
+      const int a = find(k.first - 1), b = find(k.second - 1);
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  }
+  std::vector<int> seg_of(rm.regions.size(), 0), root_seg(rm.regions.size(), 0);
   int next = 0;
-  for (const Region& r : rm.regions)
-    if (r.label != door) seg_of[static_cast<std::size_t>(r.id - 1)] = ++next;
+  for (const Region& r : rm.regions) {
+    if (r.label == door) continue;
+    int& s = root_seg[static_cast<std::size_t>(find(r.id - 1))];
+    if (!s) s = ++next;
+    seg_of[static_cast<std::size_t>(r.id - 1)] = s;
+  }
   return growSegments(rm, seg_of, next);
 }
 
@@ -80,6 +100,70 @@ cv::Mat doorwaySegmentation(const RegionMap& rm) {
     seg_of[static_cast<std::size_t>(r.id - 1)] = s;
   }
   return growSegments(rm, seg_of, next);
+}
+
+cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const SegmentationRules& o) {
+  CV_Assert(seg_in.type() == CV_32S);
+  cv::Mat seg = seg_in.clone();
+  if (o.neck_width <= 0) return seg;
+  const int K = segmentCount(seg);
+  // Bounding boxes of the segments.
+  std::vector<cv::Rect> box(static_cast<std::size_t>(K) + 1);
+  std::vector<int> x0(box.size(), seg.cols), y0(box.size(), seg.rows), x1(box.size(), -1), y1(box.size(), -1);
+  for (int y = 0; y < seg.rows; ++y)
+    for (int x = 0; x < seg.cols; ++x) {
+      const int s = seg.at<int>(y, x);
+      if (s <= 0) continue;
+      const auto i = static_cast<std::size_t>(s);
+      x0[i] = std::min(x0[i], x), y0[i] = std::min(y0[i], y), x1[i] = std::max(x1[i], x), y1[i] = std::max(y1[i], y);
+    }
+  const double half_px = 0.5 * o.neck_width / resolution;
+  const double min_part_px = o.min_part_area / (resolution * resolution);
+  int next = K;
+  for (int s = 1; s <= K; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (x1[i] < 0) continue;
+    const cv::Rect r(x0[i], y0[i], x1[i] - x0[i] + 1, y1[i] - y0[i] + 1);
+    // Mask of the segment with a one-cell empty frame, so the border of the crop counts as outside.
+    cv::Mat mask(r.height + 2, r.width + 2, CV_8U, cv::Scalar(0));
+    cv::Mat inner = mask(cv::Rect(1, 1, r.width, r.height));
+    cv::compare(seg(r), s, inner, cv::CMP_EQ);
+    if (cv::countNonZero(inner) < 2 * min_part_px) continue;
+    cv::Mat dist, core, cc, stats, cent;
+    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::compare(dist, half_px, core, cv::CMP_GT);
+    const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
+    std::vector<int> part_id(static_cast<std::size_t>(n), 0);
+    int parts = 0;
+    for (int c = 1; c < n; ++c)
+      if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_part_px) part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
+    if (parts < 2) continue;
+    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet).
+    cv::Mat own(mask.size(), CV_32S, cv::Scalar(0));
+    std::deque<cv::Point> q;
+    for (int y = 0; y < cc.rows; ++y)
+      for (int x = 0; x < cc.cols; ++x) {
+        const int id = part_id[static_cast<std::size_t>(cc.at<int>(y, x))];
+        if (id) own.at<int>(y, x) = id, q.emplace_back(x, y);
+      }
+    while (!q.empty()) {
+      const cv::Point p = q.front();
+      q.pop_front();
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int yy = p.y + dy, xx = p.x + dx;  // the empty frame keeps these inside the crop
+          if (!mask.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
+          own.at<int>(yy, xx) = own.at<int>(p);
+          q.emplace_back(xx, yy);
+        }
+    }
+    for (int y = 0; y < r.height; ++y)
+      for (int x = 0; x < r.width; ++x) {
+        const int id = own.at<int>(y + 1, x + 1);
+        if (id) seg.at<int>(r.y + y, r.x + x) = id;
+      }
+  }
+  return seg;
 }
 
 int segmentCount(const cv::Mat& seg) {

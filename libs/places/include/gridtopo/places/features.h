@@ -21,6 +21,11 @@ struct FeatureOptions {
   /// m; > 0 appends a context copy of every feature: its mean over the lattice samples within this distance
   /// (square window), named "<feature>_ctx". 0 = off.
   double context_radius = 0.0;
+  /// m; for each range R here, a copy of every base feature computed on the scan with beams capped at R
+  /// (b_k <- min(b_k, R)), named "<feature>_cap<R>": the features of the same cell seen by a shorter-range
+  /// sensor (Mozos et al. use several maximum ranges), so one long beam through a door matters less. Empty = off.
+  /// Default {10}: see doc/topology.md (10 m and 15 m were compared).
+  std::vector<double> capped_ranges{10.0};
 };
 
 /// One line per feature: "name: formula". The order is the column order of extractFeatures().
@@ -37,7 +42,8 @@ cv::Moments polygonMoments(const std::vector<cv::Point2d>& polygon);
 /// Features of one scan of M beams given in metres.
 void extractFeatures(const float* beams_m, int M, const FeatureOptions& options, float* out);
 
-/// Features of every simulated scan: CV_32F, samples x numFeatures(). Parallel over samples.
+/// Features of every simulated scan: CV_32F, samples x (numFeatures() x (1 + capped_ranges.size())), without the
+/// context copies. Parallel over samples.
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads = 2);
 
 /// Appends the context features (see FeatureOptions::context_radius) to `features` (rows = lattice samples):

@@ -15,7 +15,9 @@ namespace gridtopo::places {
 
 struct PlacesModel {
   static constexpr const char* kFormat = "gridtopo-places-model";
-  static constexpr int kVersion = 1;
+  /// 2: features.capped_ranges (the "_cap<R>" feature copies) is stored.
+  /// Version-1 files (no capped copies) still load: their feature set is the base set, which this build computes.
+  static constexpr int kVersion = 2;
 
   ScanSimulationOptions scan;         ///< scans must be simulated as in training (beams, range, lattice)
   FeatureOptions features;

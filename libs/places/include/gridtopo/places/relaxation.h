@@ -2,7 +2,7 @@
 // Probabilistic relaxation labelling (Rosenfeld, Hummel, Zucker 1976), as used by Mozos et al. to smooth the
 // per-cell classification:  q_i(l) = sum_j d_ij sum_l' r(l, l') P_j(l'),
 //                           P_i(l) <- P_i(l) (1 + q_i(l)) / sum_m P_i(m) (1 + q_i(m)),
-// on the 8-neighbourhood of the classification lattice, d_ij = 1 / |N(i)|.
+// on a (2R+1)^2 neighbourhood of the classification lattice (R = 1: the 8-neighbourhood), d_ij = 1 / |N(i)|.
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <array>
@@ -18,6 +18,8 @@ using Compatibility = std::array<std::array<double, kNumLabels>, kNumLabels>;
 struct RelaxationOptions : public mrpt::config::CLoadableOptions {
   int max_iterations = 30;   ///< upper bound on iterations (0 = no relaxation)
   double tolerance = 1e-3;   ///< stop when no probability changes by more than this in an iteration
+  /// N(i) = the lattice cells within this Chebyshev distance (1 = the 8-neighbourhood), d_ij = 1 / |N(i)|
+  int neighbourhood_radius = 1;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;

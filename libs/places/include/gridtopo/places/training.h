@@ -46,6 +46,13 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   std::string order = "auto";  ///< "auto" (validation) or e.g. "corridor,room,doorway"
   /// Prior correction: 0 = classifiers stay class-balanced, 1 = shifted fully to the maps' class frequencies.
   double prior_weight = 0.5;
+  /// Order choice ("auto"): the training maps are split into this many groups (map index modulo k); each group
+  /// in turn is the validation set of the six binary classifiers trained on the others, and the order with the
+  /// best balanced accuracy over all held-out maps wins. 1 = a single split (maps with index % 3 == 2 held out).
+  int order_folds = 3;
+  /// At most this many samples per class for the validation classifiers (the final two use
+  /// max_samples_per_class); smaller = faster order choice.
+  int order_samples_per_class = 5000;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
@@ -66,8 +73,9 @@ struct OrderScore {
   double accuracy = 0, balanced_accuracy = 0;
 };
 
-/// Trains on all samples of `maps`. With order "auto", maps with index % 3 == 2 are held out for choosing the
-/// order (balanced accuracy = mean per-class recall), then the chosen classifiers are retrained on all maps.
+/// Trains on all samples of `maps`. With order "auto", the order is chosen by validation on held-out maps
+/// (TrainingOptions::order_folds; balanced accuracy = mean per-class recall), then the chosen classifiers are
+/// retrained on all maps.
 PlacesModel trainModel(const std::vector<const MapSamples*>& maps, const ScanSimulationOptions& scan,
                        const FeatureOptions& features, const TrainingOptions& options,
                        std::vector<OrderScore>* validation = nullptr,

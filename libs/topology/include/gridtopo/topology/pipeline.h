@@ -10,6 +10,7 @@
 #include "gridtopo/topology/correction.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
+#include "gridtopo/topology/segmentation.h"
 
 namespace gridtopo::topology {
 
@@ -25,6 +26,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int grid_free_threshold = 204;
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
+  SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -49,6 +51,7 @@ struct TopologyResult {
 
 /// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation = "regions", cv::Point2d origin = {0, 0});
+                             const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
+                             const SegmentationRules& seg_rules = {});
 
 }  // namespace gridtopo::topology

@@ -11,11 +11,31 @@ namespace gridtopo::topology {
 /// CV_32S image, same size as the labels: segment id 1..K for every labelled cell, 0 elsewhere. Ids follow
 /// region order. A doorway region touching no room / corridor becomes its own segment.
 cv::Mat roomSegmentation(const RegionMap& regions);
+/// The same with rule S0: room and corridor regions touching along more than `merge_contact_m` are one segment.
+cv::Mat roomSegmentation(const RegionMap& regions, double merge_contact_m, double resolution);
 
 /// Room segmentation where only doorways separate places: every 8-connected component of non-doorway cells
 /// (room and corridor cells together) is one segment, doorway cells join the nearest segment as above.
 /// Room / corridor confusions inside a place then cannot split it; a missed doorway merges two places.
 cv::Mat doorwaySegmentation(const RegionMap& regions);
+
+/// Rule S1 (neck split): a segment whose free area falls apart into two or more large parts when every cell
+/// closer than neck_width / 2 to the segment's border is removed (i.e. the parts are joined only through
+/// passages narrower than neck_width, such as a door the classifier missed) is split: every part of at least
+/// `min_part_area` m^2 seeds a new segment and the seeds grow back over the segment's cells (breadth-first,
+/// 8-connected, so the split runs through the middle of the neck). Cells of a segment reached by no seed keep
+/// the segment's id.
+struct SegmentationRules {
+  /// m; rule S0 (regions mode): a room and a corridor region that touch along more than this (border length
+  /// = 8-neighbour cell pairs / 3 x resolution) without a doorway between them are one place (an open area
+  /// cut by a room / corridor confusion; a room reached through a missed door touches the corridor only along
+  /// the door's width). 0 = off.
+  double merge_contact = 5.0;
+  double neck_width = 1.3;     ///< m; rule S1; 0 = off
+  double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
+};
+/// Returns the split segmentation (new segments get ids after the current maximum).
+cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const SegmentationRules& options);
 
 /// Number of segments (max id).
 int segmentCount(const cv::Mat& segmentation);
