@@ -14,9 +14,11 @@ struct RunResult {
   std::vector<std::vector<float>> maps;  // log-odds of every particle map over a fixed window
 };
 RunResult run(const sim::SimLog& log, int threads, std::uint64_t seed, slam::ProposalType type,
-              double start_spread = 0.0) {
+              double start_spread = 0.0, double scale_sigma = 0.0) {
   slam::SlamOptions o;
   o.proposal.start_spread = start_spread;
+  o.motion.scale_sigma = scale_sigma;
+  o.motion.scale_walk_sigma = 0.5 * scale_sigma;
   o.particles = 12;
   o.threads = threads;
   o.seed = seed;
@@ -50,12 +52,15 @@ TEST(Determinism, BitIdenticalWhateverTheThreadCount) {
   struct Case {
     slam::ProposalType type;
     double start_spread;
+    double scale_sigma;
   };
-  for (const Case k : {Case{slam::ProposalType::Informed, 0.0}, Case{slam::ProposalType::Informed, 1.0},
-                       Case{slam::ProposalType::Odometry, 0.0}}) {
+  for (const Case k : {Case{slam::ProposalType::Informed, 0.0, 0.0}, Case{slam::ProposalType::Informed, 1.0, 0.0},
+                       Case{slam::ProposalType::Informed, 0.0, 0.02},
+                       Case{slam::ProposalType::Odometry, 0.0, 0.0}}) {
     const auto type = k.type;
-    const RunResult a = run(log, 1, 5, type, k.start_spread), b = run(log, 2, 5, type, k.start_spread),
-                    c = run(log, 4, 5, type, k.start_spread);
+    const RunResult a = run(log, 1, 5, type, k.start_spread, k.scale_sigma),
+                    b = run(log, 2, 5, type, k.start_spread, k.scale_sigma),
+                    c = run(log, 4, 5, type, k.start_spread, k.scale_sigma);
     ASSERT_EQ(a.traj.size(), b.traj.size());
     for (std::size_t i = 0; i < a.traj.size(); ++i) {
       for (const RunResult* r : {&b, &c}) {
@@ -69,7 +74,7 @@ TEST(Determinism, BitIdenticalWhateverTheThreadCount) {
     EXPECT_EQ(a.maps, b.maps);
     EXPECT_EQ(a.maps, c.maps);
     // A different seed gives a different result (the seed is really used).
-    const RunResult d = run(log, 2, 6, type, k.start_spread);
+    const RunResult d = run(log, 2, 6, type, k.start_spread, k.scale_sigma);
     bool differs = false;
     for (std::size_t i = 0; i < a.traj.size(); ++i) differs |= a.traj[i].pose.x != d.traj[i].pose.x;
     EXPECT_TRUE(differs);

@@ -46,6 +46,8 @@ TEST(SlamOptions, BadValuesNameFileSectionAndKey) {
   EXPECT_NE(loadError("clear_no_return = maybe").find("clear_no_return"), std::string::npos);
   EXPECT_NE(loadError("seed = -3").find("[slam] seed"), std::string::npos);
   EXPECT_NE(loadError("match_kernel = 9").find("match_kernel"), std::string::npos);
+  EXPECT_NE(loadError("motion_scale_sigma = -0.01").find("[slam] motion_scale_sigma"), std::string::npos);
+  EXPECT_NE(loadError("motion_scale_walk_sigma = 0.5").find("[slam] motion_scale_walk_sigma"), std::string::npos);
   EXPECT_EQ(loadError("particles = 7\nresolution = 0.1"), "");
 }
 

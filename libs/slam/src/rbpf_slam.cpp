@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "gridtopo/slam/prepared_scan.h"
@@ -19,7 +19,7 @@ namespace gridtopo::slam {
 
 namespace {
 Pose2 toPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
-constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2, kPurposeStart = 3;
+constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2, kPurposeStart = 3, kPurposeScale = 4;
 }  // namespace
 
 ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
@@ -159,6 +159,13 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     map.insertScan(start, scan.sensor, scan.map_beams, o_.map);
     auto node = std::make_shared<const TrajectoryNode>(start, index, nullptr);
     particles_.assign(n, Particle{start, 0.0, 0.0, node, map});
+    // Odometry calibration in the state: every particle draws its own scale of the odometry translation.
+    if (o_.motion.scale_sigma > 0.0) {
+      for (std::size_t i = 0; i < n; ++i) {
+        Rng rng(o_.seed, 0, i, kPurposeScale);
+        particles_[i].odometry_scale = 1.0 + rng.gaussian(o_.motion.scale_sigma);
+      }
+    }
     initialized_ = true;
     st.neff = static_cast<double>(n);
   } else {
@@ -166,8 +173,18 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
     const bool has_odo = record.has_odometry && last.has_odometry;
     const Pose2 u_odo = has_odo ? relative(last.odometry, toPose(record.odometry)) : Pose2{};
     // Without odometry: a constant-velocity prediction from each particle's last two poses, scaled by time.
+    const std::size_t step = stats_.size();
+    if (has_odo && o_.motion.scale_walk_sigma > 0.0) {
+      // The scale's random walk: variance scale_walk_sigma² per metre of odometry translation.
+      const double sd = o_.motion.scale_walk_sigma * std::sqrt(std::hypot(u_odo.x, u_odo.y));
+      for (std::size_t i = 0; i < n; ++i) {
+        Rng rng(o_.seed, step, i, kPurposeScale);
+        particles_[i].odometry_scale += rng.gaussian(sd);
+      }
+    }
     auto incrementFor = [&](const Particle& p) -> Pose2 {
-      if (has_odo || !p.node || !p.node->parent) return u_odo;
+      if (has_odo) return {p.odometry_scale * u_odo.x, p.odometry_scale * u_odo.y, u_odo.theta};
+      if (!p.node || !p.node->parent) return u_odo;
       const TrajectoryNode& a = *p.node->parent;
       const TrajectoryNode& b = *p.node;
       const double dt_prev = scans_[b.scan_index].timestamp - scans_[a.scan_index].timestamp;
@@ -177,10 +194,10 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
       const Pose2 d = relative(a.pose, b.pose);
       return {k * d.x, k * d.y, k * d.theta};
     };
-    // Particles duplicated by resampling (same trajectory node, hence same map and pose) share one plan, unless
-    // each particle starts its search from its own motion sample (proposal_start_spread; not without odometry:
-    // the wide no-odometry prior is not a noise model around a measured increment).
-    const std::size_t step = stats_.size();
+    // Particles duplicated by resampling (same trajectory node, hence same map and pose, and same odometry
+    // scale) share one plan, unless each particle starts its search from its own motion sample
+    // (proposal_start_spread; not without odometry: the wide no-odometry prior is not a noise model around a
+    // measured increment).
     const bool own_start = o_.proposal.type == ProposalType::Informed && o_.proposal.start_spread > 0.0 && has_odo;
     std::vector<std::size_t> group_of(n), leaders;
     if (own_start) {
@@ -189,9 +206,9 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
         leaders.push_back(i);
       }
     } else {
-      std::unordered_map<const TrajectoryNode*, std::size_t> first;
+      std::map<std::pair<const TrajectoryNode*, double>, std::size_t> first;
       for (std::size_t i = 0; i < n; ++i) {
-        auto it = first.emplace(particles_[i].node.get(), leaders.size());
+        auto it = first.emplace(std::make_pair(particles_[i].node.get(), particles_[i].odometry_scale), leaders.size());
         if (it.second) leaders.push_back(i);
         group_of[i] = it.first->second;
       }
@@ -288,13 +305,18 @@ std::vector<io::TimedPose> RbpfSlam::trajectory() const {
   std::vector<io::TimedPose> out(scans_.size());
   if (scans_.empty() || particles_.empty()) return out;
   const auto path = pathOf(bestParticle().node);
+  // The odometry between processed scans, scaled by the best particle's (current) odometry scale.
+  const double scale = bestParticle().odometry_scale;
   // processed scan index -> pose
   std::vector<long> proc_at(scans_.size(), -1);
   for (std::size_t k = 0; k < path.size(); ++k) proc_at[path[k]->scan_index] = static_cast<long>(k);
   auto fromAnchor = [&](std::size_t k, std::size_t i) {
     const ScanInfo& a = scans_[path[k]->scan_index];
     const ScanInfo& b = scans_[i];
-    if (a.has_odometry && b.has_odometry) return compose(path[k]->pose, relative(a.odometry, b.odometry));
+    if (a.has_odometry && b.has_odometry) {
+      const Pose2 d = relative(a.odometry, b.odometry);
+      return compose(path[k]->pose, {scale * d.x, scale * d.y, d.theta});
+    }
     return path[k]->pose;
   };
   std::size_t prev = 0;  // index into path

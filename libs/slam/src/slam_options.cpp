@@ -52,6 +52,8 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("motion_min_sigma_theta", o.motion.min_sigma_theta);
   f("no_odometry_sigma_xy", o.motion.no_odometry_sigma_xy);
   f("no_odometry_sigma_theta", o.motion.no_odometry_sigma_theta);
+  f("motion_scale_sigma", o.motion.scale_sigma);
+  f("motion_scale_walk_sigma", o.motion.scale_walk_sigma);
   f("map_log_odds_hit", o.map.log_odds_hit);
   f("map_log_odds_free", o.map.log_odds_free);
   f("map_log_odds_min", o.map.log_odds_min);
@@ -204,6 +206,10 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   positive("motion_min_sigma_theta", motion.min_sigma_theta);
   positive("no_odometry_sigma_xy", motion.no_odometry_sigma_xy);
   positive("no_odometry_sigma_theta", motion.no_odometry_sigma_theta);
+  if (!(motion.scale_sigma >= 0.0 && motion.scale_sigma <= 0.2))
+    fail("motion_scale_sigma", "must be in [0, 0.2], got " + str(motion.scale_sigma));
+  if (!(motion.scale_walk_sigma >= 0.0 && motion.scale_walk_sigma <= 0.2))
+    fail("motion_scale_walk_sigma", "must be in [0, 0.2], got " + str(motion.scale_walk_sigma));
   if (!(map.log_odds_hit > 0.0f)) fail("map_log_odds_hit", "must be > 0, got " + str(map.log_odds_hit));
   if (!(map.log_odds_free < 0.0f)) fail("map_log_odds_free", "must be < 0, got " + str(map.log_odds_free));
   if (!(map.log_odds_min < 0.0f)) fail("map_log_odds_min", "must be < 0, got " + str(map.log_odds_min));

@@ -22,6 +22,14 @@ struct MotionModelOptions {
   /// Motion prior for scans without odometry: zero motion with these standard deviations.
   double no_odometry_sigma_xy = 0.3;     ///< m
   double no_odometry_sigma_theta = 0.3;  ///< rad
+  /// Odometry calibration in the particle state: each particle scales the translation of every odometry
+  /// increment by its own factor s (u = (s·dx, s·dy, dθ)), drawn once at the start as 1 + N(0, scale_sigma²) and
+  /// then walking by N(0, scale_walk_sigma²·d) per processed step (d = |(dx, dy)| in m). A systematic scale error
+  /// of the odometry then spreads the particles along a corridor in proportion to its length while each step
+  /// stays as precise as the noise terms above; resampling keeps the particles whose scale agrees with the scans
+  /// wherever they can observe it. 0 = off (s = 1).
+  double scale_sigma = 0.0;
+  double scale_walk_sigma = 0.0;  ///< 1/sqrt(m)
 };
 
 class OdometryMotionModel {

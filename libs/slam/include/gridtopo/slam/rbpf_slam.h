@@ -23,6 +23,9 @@ struct Particle {
   double log_weight_total = 0.0;  ///< accumulated over the whole run, inherited at resampling (best-particle choice)
   TrajectoryNodePtr node;
   GridMap map;
+  /// Factor on the translation of the odometry increments (motion_scale_sigma; 1 when off). Inherited at
+  /// resampling like the map.
+  double odometry_scale = 1.0;
 };
 
 /// What happened at one processed scan (one line of the stats file).
