@@ -3,7 +3,8 @@
 # CPU time and peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal,
 # Intel with 30 particles over seeds 1-10, with 8 particles over seeds 1-10, ACES with 30 particles over seeds 1-5
 # (config-ini/slam.ini and config-ini/slam-aces.ini).
-# Writes the tables to doc/slam-bench.md and the map pictures to doc/img/.
+# Writes the tables to doc/slam-bench.md and the map pictures to doc/img/. Everything in doc/slam-bench.md from the
+# line "<!-- hand-written below -->" on (the analyses and experiment rounds) is kept; the part above it is replaced.
 # Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study and writes
 #                                          doc/slam-bench-quick.md instead)
 # Run it on an otherwise idle machine: the timings are wall-clock.
@@ -18,6 +19,10 @@ DOC=doc/slam-bench.md
 [ "$QUICK" = "--quick" ] && DOC=doc/slam-bench-quick.md
 THREADS=${GRIDTOPO_BENCH_THREADS:-2}
 mkdir -p "$OUT" doc/img
+MARK='<!-- hand-written below -->'
+FINAL=$DOC
+DOC=$(mktemp)
+trap 'rm -f "$DOC"' EXIT
 [ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)"; exit 1; }
 
 # run <name> <log> <relations> <extra slam args...>: prints "trans_mean trans_std rot_mean rot_std wall_s rss_mb cpu_s"
@@ -120,5 +125,10 @@ if [ "$QUICK" != "--quick" ]; then
     done
   } >> "$DOC"
 fi
-echo "bench_slam: wrote $DOC"
-cat "$DOC"
+# Keep the hand-written part of the existing document.
+if [ -f "$FINAL" ] && grep -qxF "$MARK" "$FINAL"; then
+  { echo; sed -n "/^$MARK\$/,\$p" "$FINAL"; } >> "$DOC"
+fi
+cp "$DOC" "$FINAL"
+echo "bench_slam: wrote $FINAL"
+cat "$FINAL"
