@@ -136,6 +136,7 @@ TEST(Segmentation, S1FillsFurnitureEnclosedByTheSegment) {
   SegmentationRules o;
   o.neck_width = 1.2;
   o.min_part_area = 4.0;
+  o.fill_obstacle_area = 0;  // round 2: no filling
   const cv::Mat plain = splitAtNecks(seg, 0.05, o);
   EXPECT_EQ(segmentCount(plain), 2);
   EXPECT_EQ(plain.at<int>(50, 30), plain.at<int>(30, 150));

@@ -32,12 +32,14 @@ struct SegmentationRules {
   /// the door's width). 0 = off.
   double merge_contact = 5.0;
   double neck_width = 1.3;     ///< m; rule S1; 0 = off
-  double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
+  double min_part_area = 2.0;  ///< m^2, minimum area of each part (after removing the border band)
   /// m^2; rule S1: obstacles enclosed by a segment (4-connected blobs of non-free cells surrounded by the
   /// segment's cells, touching no other segment) up to this area count as part of the segment when the necks are
   /// measured: furniture standing in a room (chairs, tables, pillars) is not a wall, and the band around every
-  /// chair would otherwise cut a furnished room into pieces too small to split at its door. 0 = off.
-  double fill_obstacle_area = 0.0;
+  /// chair would otherwise cut a furnished room into pieces too small to split at its door. Kept small: wall
+  /// stubs between two doors of one wall are enclosed obstacles too (lab_ipa), and filling them joins rooms.
+  /// 0 = off.
+  double fill_obstacle_area = 0.25;
   /// Segment vote (a label correction after the segmentation, not part of relaxation): inside every segment, the
   /// room and corridor cells all take the one of the two labels that has more cells in the segment (doorway
   /// cells keep theirs). A room is one place, so one label; used by buildTopology when true.
