@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
                                           "names", cmd);
     TCLAP::ValueArg<std::string> json_arg("j", "json", "write the results as JSON here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> md_arg("", "markdown", "write a Markdown table here", false, "", "file", cmd);
-    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images and error overlays (pale = right, saturated = wrong, in the colour of the predicted label) per map here", false, "",
+    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images and error overlays (pale = right, saturated = wrong, in the colour of the predicted label) per map here, and for every benchmark map MAP_segmentation_view.png (segments in colours, ground-truth room borders red) and MAP_labels_view.png", false, "",
                                           "dir", cmd);
     TCLAP::ValueArg<std::string> order_arg("", "fold-order",
                                            "decision-list order for the leave-one-map-out folds: auto (validation "
