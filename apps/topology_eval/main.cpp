@@ -20,6 +20,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/training.h"
 #include "gridtopo/topology/evaluation.h"
+#include "gridtopo/topology/export.h"
 #include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;
@@ -69,6 +70,45 @@ cv::Mat errorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_cod
   return out;
 }
 
+// Segmentation of a benchmark map for viewing: segments in colours, segment borders black, non-free cells grey,
+// and the ground-truth room borders (free cells next to a ground-truth door line) red.
+cv::Mat segmentationView(const places::OccupancyImage& occ, const cv::Mat& seg, const cv::Mat& gt) {
+  cv::Mat out = topology::colourSegmentation(seg);
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.cols; ++c) {
+      cv::Vec3b& o = out.at<cv::Vec3b>(r, c);
+      if (!occ.isFree(r, c)) {
+        o = cv::Vec3b(110, 110, 110);
+        continue;
+      }
+      const int s = seg.at<int>(r, c), g = gt.at<int>(r, c);
+      bool seg_border = false, gt_border = g <= 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int rr = r + dy, cc = c + dx;
+          if (rr < 0 || cc < 0 || rr >= out.rows || cc >= out.cols || !occ.isFree(rr, cc)) continue;
+          if (seg.at<int>(rr, cc) != s) seg_border = true;
+          if (g > 0 && gt.at<int>(rr, cc) != g) gt_border = true;
+        }
+      if (gt_border) o = cv::Vec3b(0, 0, 255);
+      else if (seg_border) o = cv::Vec3b(0, 0, 0);
+    }
+  return out;
+}
+
+// Labels of a map for viewing: room blue, corridor green, doorway red, non-free grey, free unlabelled white.
+cv::Mat labelsView(const places::OccupancyImage& occ, const cv::Mat& labels) {
+  static const cv::Vec3b col[3] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
+  cv::Mat out(labels.size(), CV_8UC3);
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.cols; ++c) {
+      const int l = labels.at<unsigned char>(r, c);
+      out.at<cv::Vec3b>(r, c) = !occ.isFree(r, c) ? cv::Vec3b(110, 110, 110)
+                                : l < places::kNumLabels ? col[l] : cv::Vec3b(255, 255, 255);
+    }
+  return out;
+}
+
 struct SegRun {
   std::string map;
   topology::SegmentationScore score;
@@ -95,7 +135,7 @@ int main(int argc, char** argv) {
                                           "names", cmd);
     TCLAP::ValueArg<std::string> json_arg("j", "json", "write the results as JSON here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> md_arg("", "markdown", "write a Markdown table here", false, "", "file", cmd);
-    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images and error overlays (pale = right, saturated = wrong, in the colour of the predicted label) per map here", false, "",
+    TCLAP::ValueArg<std::string> dump_arg("", "dump-dir", "write label/segmentation images and error overlays (pale = right, saturated = wrong, in the colour of the predicted label) per map here, and for every benchmark map MAP_segmentation_view.png (segments in colours, ground-truth room borders red) and MAP_labels_view.png", false, "",
                                           "dir", cmd);
     TCLAP::ValueArg<std::string> order_arg("", "fold-order",
                                            "decision-list order for the leave-one-map-out folds: auto (validation "
@@ -146,7 +186,8 @@ int main(int argc, char** argv) {
       }
       bar.finish();
     }
-    topology::ConfusionMatrix total_before, total_after, total_corrected;
+    topology::ConfusionMatrix total_before, total_after, total_corrected, total_voted;
+    const bool vote = topo.seg_rules.segment_vote;
     std::ostringstream per_map;
     std::vector<SegRun> seg_plain, seg_furn;
     MeanStd loo_after;
@@ -182,21 +223,24 @@ int main(int argc, char** argv) {
                                                  topo.relaxation, topo.threads);
       const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation,
                                                     {0, 0}, topo.seg_rules);
-      topology::ConfusionMatrix before, after, corrected;
+      topology::ConfusionMatrix before, after, corrected, voted;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
-      corrected.add(lmaps[i].codes, topo_res.labels);
-      total_before.add(before), total_after.add(after), total_corrected.add(corrected);
+      corrected.add(lmaps[i].codes, topo_res.labels_corrected);
+      voted.add(lmaps[i].codes, topo_res.labels);
+      total_before.add(before), total_after.add(after), total_corrected.add(corrected), total_voted.add(voted);
       loo_after.v.push_back(after.accuracy());
       per_map << (i ? ",\n" : "") << "    {\"map\": \"" << files[i].name << "\", \"order\": \""
               << places::orderName(model.order) << "\", \"relaxation_iterations\": " << lab.relaxation.iterations
               << ", \"accuracy_before\": " << before.accuracy() << ", \"accuracy_after\": " << after.accuracy()
-              << ", \"accuracy_corrected\": " << corrected.accuracy() << ", \"doorway_recall_before\": "
+              << ", \"accuracy_corrected\": " << corrected.accuracy()
+              << (vote ? ", \"accuracy_segment_vote\": " + std::to_string(voted.accuracy()) : std::string())
+              << ", \"doorway_recall_before\": "
               << before.recall(2) << ", \"doorway_recall_after\": " << after.recall(2)
               << ", \"after_relaxation\": " << after.toJson(6) << "}";
       std::cerr << files[i].name << ": order " << places::orderName(model.order) << " acc before "
                 << pct(before.accuracy()) << " after " << pct(after.accuracy()) << " corrected "
-                << pct(corrected.accuracy()) << " door recall " << pct(before.recall(2)) << "/"
+                << pct(corrected.accuracy()) << (vote ? " vote " + pct(voted.accuracy()) : std::string()) << " door recall " << pct(before.recall(2)) << "/"
                 << pct(after.recall(2)) << "\n";
       if (!dump_arg.getValue().empty()) {
         fs::create_directories(dump_arg.getValue());
@@ -232,6 +276,9 @@ int main(int argc, char** argv) {
             cv::Mat seg16;
             t.segmentation.convertTo(seg16, CV_16U);
             cv::imwrite(dump_arg.getValue() + "/" + run.map + "_segmentation.png", seg16);
+            cv::imwrite(dump_arg.getValue() + "/" + run.map + "_segmentation_view.png",
+                        segmentationView(occ, t.segmentation, gt));
+            cv::imwrite(dump_arg.getValue() + "/" + run.map + "_labels_view.png", labelsView(occ, t.labels));
           }
         }
       }
@@ -254,7 +301,8 @@ int main(int argc, char** argv) {
     js << "{\n  \"mode\": \"" << (fixed_model ? "fixed model " + model_arg.getValue() : "leave-one-map-out") << "\",\n"
        << "  \"labels\": {\n    \"before_relaxation\": " << total_before.toJson(4)
        << ",\n    \"after_relaxation\": " << total_after.toJson(4) << ",\n    \"after_correction\": "
-       << total_corrected.toJson(4) << ",\n    \"per_map\": [\n" << per_map.str() << "\n    ]\n  }";
+       << total_corrected.toJson(4)
+       << (vote ? ",\n    \"after_segment_vote\": " + total_voted.toJson(4) : std::string()) << ",\n    \"per_map\": [\n" << per_map.str() << "\n    ]\n  }";
     auto segJson = [&](const char* name, const std::vector<SegRun>& runs, const MeanStd& p, const MeanStd& r,
                        const MeanStd& t) {
       js << ",\n  \"" << name << "\": {\"precision_mean\": " << p.mean() << ", \"precision_std\": " << p.std()
@@ -278,6 +326,9 @@ int main(int argc, char** argv) {
        << "| cell accuracy before relaxation (pooled over maps) | " << pct(total_before.accuracy()) << " % |\n"
        << "| cell accuracy after relaxation (pooled) | " << pct(total_after.accuracy()) << " % |\n"
        << "| cell accuracy after region correction (pooled) | " << pct(total_corrected.accuracy()) << " % |\n"
+       << (vote ? "| cell accuracy after region correction and segment vote (pooled) | " + pct(total_voted.accuracy()) +
+                      " % |\n"
+                : std::string())
        << "| cell accuracy after relaxation, mean ± std over maps | " << pct(loo_after.mean()) << " ± "
        << pct(loo_after.std()) << " % |\n"
        << "| recall room / corridor / doorway (after relaxation) | " << pct(total_after.recall(0)) << " / "

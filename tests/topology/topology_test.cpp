@@ -122,6 +122,66 @@ TEST(Segmentation, S1SplitsTwoRoomsJoinedThroughANarrowOpening) {
   EXPECT_EQ(cv::norm(splitAtNecks(seg, 0.05, o), seg, cv::NORM_INF), 0.0);
 }
 
+TEST(Segmentation, S1FillsFurnitureEnclosedByTheSegment) {
+  // The two rooms of the test above, furnished: a 0.2 x 0.2 m chair every metre. The 0.6 m band around every
+  // chair eats each room's core, so without filling no part is large enough and the missed door is not split.
+  cv::Mat seg(100, 200, CV_32S, cv::Scalar(0));
+  seg(cv::Rect(10, 10, 80, 80)).setTo(1);
+  seg(cv::Rect(94, 10, 80, 80)).setTo(1);
+  seg(cv::Rect(90, 40, 4, 18)).setTo(1);  // the opening: 0.9 m wide
+  for (int y = 18; y < 90; y += 20)
+    for (int x = 18; x < 174; x += 20)
+      if (x < 84 || x > 100) seg(cv::Rect(x, y, 4, 4)).setTo(0);
+  seg(cv::Rect(140, 50, 6, 6)).setTo(2);  // a small segment inside the right room: not an obstacle
+  SegmentationRules o;
+  o.neck_width = 1.2;
+  o.min_part_area = 4.0;
+  o.fill_obstacle_area = 0;  // round 2: no filling
+  const cv::Mat plain = splitAtNecks(seg, 0.05, o);
+  EXPECT_EQ(segmentCount(plain), 2);
+  EXPECT_EQ(plain.at<int>(50, 30), plain.at<int>(30, 150));
+  o.fill_obstacle_area = 0.1;  // chairs are 0.04 m^2
+  const cv::Mat out = splitAtNecks(seg, 0.05, o);
+  EXPECT_EQ(segmentCount(out), 3);
+  EXPECT_NE(out.at<int>(50, 30), out.at<int>(30, 150));
+  EXPECT_EQ(out.at<int>(50, 90), out.at<int>(50, 30));   // split through the opening
+  EXPECT_EQ(out.at<int>(50, 93), out.at<int>(30, 150));
+  EXPECT_EQ(out.at<int>(52, 142), 2);                    // the small segment keeps its id
+  EXPECT_EQ(cv::countNonZero(out), cv::countNonZero(seg));  // chairs stay non-segment cells
+  EXPECT_EQ(out.at<int>(19, 19), 0);
+  // Obstacles larger than the fill area are walls: no split again.
+  o.fill_obstacle_area = 0.03;
+  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 2);
+}
+
+TEST(Segmentation, SegmentVoteGivesEachSegmentOneLabel) {
+  // The floor plan's left room is 60 % room, 40 % corridor (a confusion inside the room); a doorway keeps its label.
+  cv::Mat l = floorPlan();
+  l(cv::Rect(20, 10, 80, 32)).setTo(C);
+  TopologyResult plain = buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{});
+  SegmentationRules o;
+  o.segment_vote = true;
+  o.merge_contact = 1.0;  // the corridor-labelled strip touches the room along 4 m: one segment
+  const TopologyResult voted = buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, o);
+  EXPECT_EQ(voted.labels.at<unsigned char>(20, 60), R);  // the strip became room
+  EXPECT_EQ(voted.labels_corrected.at<unsigned char>(20, 60), C);
+  EXPECT_EQ(voted.labels.at<unsigned char>(95, 60), D);  // the door stays a door
+  EXPECT_EQ(voted.labels.at<unsigned char>(120, 200), C);  // the corridor stays a corridor
+  EXPECT_EQ(plain.labels.at<unsigned char>(20, 60), C);
+  // Regions and graph follow the voted labels: three rooms, three doors, one corridor.
+  EXPECT_EQ(voted.regions.regions.size(), 7u);
+  EXPECT_EQ(voted.graph.nodes.size(), 7u);
+  // Directly: a segment with more corridor than room cells becomes corridor.
+  cv::Mat lab(l.size(), CV_8U, cv::Scalar(N));
+  lab(cv::Rect(0, 0, 10, 10)).setTo(R);
+  lab(cv::Rect(10, 0, 11, 10)).setTo(C);
+  cv::Mat seg(l.size(), CV_32S, cv::Scalar(0));
+  seg(cv::Rect(0, 0, 21, 10)).setTo(4);
+  const cv::Mat v = voteLabelsInSegments(lab, seg);
+  EXPECT_EQ(cv::countNonZero(v == C), 210);
+  EXPECT_EQ(cv::countNonZero(v == R), 0);
+}
+
 TEST(Correction, RulesOnTheFloorPlan) {
   cv::Mat l = floorPlan();
   l(cv::Rect(30, 20, 6, 6)).setTo(C);        // R1: a 0.09 m^2 corridor speck inside room 1

@@ -21,6 +21,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   seg_rules.merge_contact = s.read_double(sec, "merge_contact", seg_rules.merge_contact);
   seg_rules.neck_width = s.read_double(sec, "split_neck_width", seg_rules.neck_width);
   seg_rules.min_part_area = s.read_double(sec, "split_min_part_area", seg_rules.min_part_area);
+  seg_rules.fill_obstacle_area = s.read_double(sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
+  seg_rules.segment_vote = s.read_bool(sec, "segment_vote", seg_rules.segment_vote);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
@@ -35,6 +37,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "split_neck_width", "must be in [0, 10] metres (0 = off)");
   if (!(seg_rules.min_part_area > 0 && seg_rules.min_part_area <= 1000))
     throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
+  if (!(seg_rules.fill_obstacle_area >= 0 && seg_rules.fill_obstacle_area <= 1000))
+    throw InputError(where, 0, "split_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -44,7 +48,9 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
       << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
-      << "\nsplit_min_part_area = " << seg_rules.min_part_area << "\n[relaxation]\n";
+      << "\nsplit_min_part_area = " << seg_rules.min_part_area
+      << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
+      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false") << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -79,6 +85,12 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Cor
   r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)
                                               : roomSegmentation(r.regions, seg_rules.merge_contact, resolution);
   if (seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, seg_rules);
+  r.labels_corrected = r.labels;
+  if (seg_rules.segment_vote) {
+    r.labels = voteLabelsInSegments(r.labels, r.segmentation);
+    r.regions = extractRegions(r.labels, resolution);
+    r.graph = buildGraph(r.regions, resolution, origin);
+  }
   return r;
 }
 

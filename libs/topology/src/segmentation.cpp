@@ -50,6 +50,29 @@ cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int ne
     }
   return seg;
 }
+
+// `mask`: a segment's cells in a crop with a one-cell empty frame; `seg_crop`: the segmentation in the crop
+// (without the frame). Returns the mask plus every 4-connected component of non-segment cells that does not
+// reach the frame, holds no cell of another segment (only non-free or unlabelled cells) and is at most
+// `max_px` cells: obstacles enclosed by the segment.
+cv::Mat withEnclosedObstacles(const cv::Mat& mask, const cv::Mat& seg_crop, double max_px) {
+  cv::Mat outside = mask == 0, cc, stats, cent;
+  const int n = cv::connectedComponentsWithStats(outside, cc, stats, cent, 4, CV_32S);
+  std::vector<unsigned char> fill(static_cast<std::size_t>(n), 0);
+  for (int c = 1; c < n; ++c) fill[static_cast<std::size_t>(c)] = stats.at<int>(c, cv::CC_STAT_AREA) <= max_px;
+  for (int y = 0; y < cc.rows; ++y)
+    for (int x = 0; x < cc.cols; ++x) {
+      const int c = cc.at<int>(y, x);
+      if (!c) continue;
+      const bool frame = y == 0 || x == 0 || y == cc.rows - 1 || x == cc.cols - 1;
+      if (frame || seg_crop.at<int>(y - 1, x - 1) != 0) fill[static_cast<std::size_t>(c)] = 0;
+    }
+  cv::Mat out = mask.clone();
+  for (int y = 0; y < cc.rows; ++y)
+    for (int x = 0; x < cc.cols; ++x)
+      if (fill[static_cast<std::size_t>(cc.at<int>(y, x))]) out.at<unsigned char>(y, x) = 255;
+  return out;
+}
 }  // namespace
 
 cv::Mat roomSegmentation(const RegionMap& rm) { return roomSegmentation(rm, 0.0, 1.0); }
@@ -119,6 +142,7 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     }
   const double half_px = 0.5 * o.neck_width / resolution;
   const double min_part_px = o.min_part_area / (resolution * resolution);
+  const double fill_px = o.fill_obstacle_area / (resolution * resolution);
   int next = K;
   for (int s = 1; s <= K; ++s) {
     const auto i = static_cast<std::size_t>(s);
@@ -129,8 +153,11 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     cv::Mat inner = mask(cv::Rect(1, 1, r.width, r.height));
     cv::compare(seg(r), s, inner, cv::CMP_EQ);
     if (cv::countNonZero(inner) < 2 * min_part_px) continue;
+    // `area`: the segment plus the obstacles it encloses (furniture standing in the room), so that the distance
+    // transform measures the room's walls, not the gaps between chairs.
+    const cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
     cv::Mat dist, core, cc, stats, cent;
-    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     cv::compare(dist, half_px, core, cv::CMP_GT);
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);
@@ -152,7 +179,7 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int yy = p.y + dy, xx = p.x + dx;  // the empty frame keeps these inside the crop
-          if (!mask.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
+          if (!area.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
           own.at<int>(yy, xx) = own.at<int>(p);
           q.emplace_back(xx, yy);
         }
@@ -160,10 +187,33 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
         const int id = own.at<int>(y + 1, x + 1);
-        if (id) seg.at<int>(r.y + y, r.x + x) = id;
+        if (id && inner.at<unsigned char>(y, x)) seg.at<int>(r.y + y, r.x + x) = id;
       }
   }
   return seg;
+}
+
+cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& seg) {
+  CV_Assert(labels.type() == CV_8U && seg.type() == CV_32S && labels.size() == seg.size());
+  const int room = static_cast<int>(places::PlaceLabel::Room), corr = static_cast<int>(places::PlaceLabel::Corridor);
+  std::vector<long long> n_room(static_cast<std::size_t>(segmentCount(seg)) + 1, 0), n_corr(n_room.size(), 0);
+  for (int y = 0; y < seg.rows; ++y)
+    for (int x = 0; x < seg.cols; ++x) {
+      const int s = seg.at<int>(y, x), l = labels.at<unsigned char>(y, x);
+      if (s <= 0) continue;
+      if (l == room) ++n_room[static_cast<std::size_t>(s)];
+      else if (l == corr) ++n_corr[static_cast<std::size_t>(s)];
+    }
+  cv::Mat out = labels.clone();
+  for (int y = 0; y < seg.rows; ++y)
+    for (int x = 0; x < seg.cols; ++x) {
+      const int s = seg.at<int>(y, x);
+      unsigned char& l = out.at<unsigned char>(y, x);
+      if (s <= 0 || (l != room && l != corr)) continue;
+      const auto i = static_cast<std::size_t>(s);
+      l = static_cast<unsigned char>(n_corr[i] > n_room[i] ? corr : room);
+    }
+  return out;
 }
 
 int segmentCount(const cv::Mat& seg) {

@@ -42,7 +42,8 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
 TopologyOptions loadTopologyOptions(const std::string& ini_path);
 
 struct TopologyResult {
-  cv::Mat labels;     ///< CV_8U after correction: 0..2, places::kNoLabel for non-free cells
+  cv::Mat labels;     ///< CV_8U after correction (and the segment vote if on): 0..2, places::kNoLabel for non-free cells
+  cv::Mat labels_corrected;  ///< CV_8U after the region-correction rules only (= labels without segment vote)
   CorrectionStats correction;
   RegionMap regions;
   TopologicalGraph graph;

@@ -32,10 +32,25 @@ struct SegmentationRules {
   /// the door's width). 0 = off.
   double merge_contact = 5.0;
   double neck_width = 1.3;     ///< m; rule S1; 0 = off
-  double min_part_area = 4.0;  ///< m^2, minimum area of each part (after removing the border band)
+  double min_part_area = 2.0;  ///< m^2, minimum area of each part (after removing the border band)
+  /// m^2; rule S1: obstacles enclosed by a segment (4-connected blobs of non-free cells surrounded by the
+  /// segment's cells, touching no other segment) up to this area count as part of the segment when the necks are
+  /// measured: furniture standing in a room (chairs, tables, pillars) is not a wall, and the band around every
+  /// chair would otherwise cut a furnished room into pieces too small to split at its door. Kept small: wall
+  /// stubs between two doors of one wall are enclosed obstacles too (lab_ipa), and filling them joins rooms.
+  /// 0 = off.
+  double fill_obstacle_area = 0.25;
+  /// Segment vote (a label correction after the segmentation, not part of relaxation): inside every segment, the
+  /// room and corridor cells all take the one of the two labels that has more cells in the segment (doorway
+  /// cells keep theirs). A room is one place, so one label; used by buildTopology when true.
+  bool segment_vote = false;
 };
 /// Returns the split segmentation (new segments get ids after the current maximum).
 cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const SegmentationRules& options);
+
+/// Segment vote (see SegmentationRules::segment_vote): copy of `labels` (CV_8U place labels) where, in every
+/// segment of `segmentation` (CV_32S), the room and corridor cells take the majority label of the two.
+cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& segmentation);
 
 /// Number of segments (max id).
 int segmentCount(const cv::Mat& segmentation);
