@@ -135,3 +135,35 @@ TEST(Features, CappedRangeCopies) {
     EXPECT_EQ(g.at<float>(0, k), g.at<float>(0, 2 * F + k)) << names[static_cast<std::size_t>(k)];
   }
 }
+
+TEST(Features, CappedCopiesEqualFeaturesOfTheCappedScan) {
+  // The whole-map extraction copies the base features into a capped column when no beam exceeds the cap and
+  // computes them otherwise; either way each capped column must equal the features of the capped scan itself.
+  // Scans: a room (all beams short), a corridor (long beams) and one whose longest beam equals the cap exactly.
+  FeatureOptions o;
+  o.capped_ranges = {2.0, 10.0};
+  const ScanSimulationOptions so;
+  SimulatedScans scans = simulateScans(test::rectangleRoom(20.0, 2.0, 0.05), {{205, 25}, {30, 20}}, so);
+  const auto room = simulateScans(test::rectangleRoom(3.0, 3.0, 0.05), {{35, 35}}, so);
+  scans.ranges_mm.insert(scans.ranges_mm.end(), room.ranges_mm.begin(), room.ranges_mm.end());
+  std::vector<std::uint16_t> at_cap(room.ranges_mm.begin(), room.ranges_mm.end());
+  at_cap[7] = 2000;  // longest beam exactly 2 m = the first cap
+  for (auto& r : at_cap) r = std::min<std::uint16_t>(r, 2000);
+  scans.ranges_mm.insert(scans.ranges_mm.end(), at_cap.begin(), at_cap.end());
+  ASSERT_EQ(scans.size(), 4u);
+  const cv::Mat f = extractFeatures(scans, o, 2);
+  const int F = static_cast<int>(numFeatures()), M = scans.num_beams;
+  std::vector<float> capped(static_cast<std::size_t>(M)), expected(numFeatures());
+  for (std::size_t i = 0; i < scans.size(); ++i)
+    for (std::size_t c = 0; c < o.capped_ranges.size(); ++c) {
+      for (int k = 0; k < M; ++k)
+        capped[static_cast<std::size_t>(k)] =
+            std::min(scans.scan(i)[k] * 0.001f, static_cast<float>(o.capped_ranges[c]));
+      extractFeatures(capped.data(), M, o, expected.data());
+      for (int k = 0; k < F; ++k)
+        EXPECT_EQ(f.at<float>(static_cast<int>(i), F * static_cast<int>(c + 1) + k), expected[static_cast<std::size_t>(k)])
+            << "scan " << i << " cap " << o.capped_ranges[c] << " feature " << featureNames()[static_cast<std::size_t>(k)];
+    }
+  // The corridor's capped copy at 2 m differs from its base features (the cap is in effect there).
+  EXPECT_NE(f.at<float>(0, idx("max_beam")), f.at<float>(0, F + idx("max_beam")));
+}

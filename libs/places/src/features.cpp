@@ -260,10 +260,16 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
       for (int k = 0; k < M; ++k) beams[static_cast<std::size_t>(k)] = s[k] * 0.001f;
       float* row = out.ptr<float>(static_cast<int>(i));
       extractFeatures(beams.data(), M, options, row);
+      const float longest = *std::max_element(beams.begin(), beams.end());
       for (std::size_t c = 0; c < options.capped_ranges.size(); ++c) {
         const float cap = static_cast<float>(options.capped_ranges[c]);
+        float* copy = row + F * (c + 1);
+        if (longest <= cap) {  // no beam reaches the cap: the capped scan is the scan, so are its features
+          std::copy(row, row + F, copy);
+          continue;
+        }
         for (int k = 0; k < M; ++k) capped[static_cast<std::size_t>(k)] = std::min(beams[static_cast<std::size_t>(k)], cap);
-        extractFeatures(capped.data(), M, options, row + F * (c + 1));
+        extractFeatures(capped.data(), M, options, copy);
       }
     }
   };
