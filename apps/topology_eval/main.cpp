@@ -250,7 +250,10 @@ int main(int argc, char** argv) {
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_relaxation.png",
                     errorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels));
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_correction.png",
-                    errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
+                    errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_corrected));
+        if (vote)
+          cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_segment_vote.png",
+                      errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
       }
       if (!no_seg.getValue()) {
         const cv::Mat gt_img = cv::imread(files[i].groundtruth, cv::IMREAD_UNCHANGED);
