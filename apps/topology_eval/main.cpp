@@ -53,8 +53,10 @@ std::string pct(double v) {
 // Error overlay of one labelled map: the map in grey, correctly labelled cells in a pale colour of their label,
 // wrongly labelled cells in the saturated colour of the predicted label (room blue, corridor green, doorway red),
 // labelled cells without a prediction in black.
+// Saturated label colours (BGR) of the dumped views: room blue, corridor green, doorway red.
+const cv::Vec3b kLabelColour[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
+
 cv::Mat errorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted) {
-  static const cv::Vec3b strong[3] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
   static const cv::Vec3b pale[3] = {{250, 215, 190}, {200, 240, 200}, {200, 200, 250}};
   cv::Mat out(occ.cells.size(), CV_8UC3);
   for (int r = 0; r < out.rows; ++r)
@@ -65,7 +67,7 @@ cv::Mat errorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_cod
       if (t < 0 || !occ.isFree(r, c)) continue;
       const int p = predicted.at<unsigned char>(r, c);
       if (p >= places::kNumLabels) o = cv::Vec3b(0, 0, 0);
-      else o = p == t ? pale[t] : strong[p];
+      else o = p == t ? pale[t] : kLabelColour[p];
     }
   return out;
 }
@@ -98,13 +100,12 @@ cv::Mat segmentationView(const places::OccupancyImage& occ, const cv::Mat& seg, 
 
 // Labels of a map for viewing: room blue, corridor green, doorway red, non-free grey, free unlabelled white.
 cv::Mat labelsView(const places::OccupancyImage& occ, const cv::Mat& labels) {
-  static const cv::Vec3b col[3] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
   cv::Mat out(labels.size(), CV_8UC3);
   for (int r = 0; r < out.rows; ++r)
     for (int c = 0; c < out.cols; ++c) {
       const int l = labels.at<unsigned char>(r, c);
       out.at<cv::Vec3b>(r, c) = !occ.isFree(r, c) ? cv::Vec3b(110, 110, 110)
-                                : l < places::kNumLabels ? col[l] : cv::Vec3b(255, 255, 255);
+                                : l < places::kNumLabels ? kLabelColour[l] : cv::Vec3b(255, 255, 255);
     }
   return out;
 }
