@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -79,6 +80,39 @@ TEST(ScanMatcher, CachedScorerEqualsScoreScanBitForBit) {
     EXPECT_EQ(m1.pose.theta, m2.pose.theta);
     EXPECT_EQ(m1.evaluations, m2.evaluations);
   }
+}
+
+TEST(ScanMatcher, ScoreAboveGivesUpOnlyBelowItsBound) {
+  // scoreAbove (the hill climb's early exit) returns nothing exactly when the full score is <= the bound, and
+  // otherwise exactly score(x): the climb's decisions are those of the full evaluation.
+  Fixture f;
+  const auto scan = f.scanAt({6.3, 2.8, 0.05});
+  ScanMatcherOptions o;
+  ScanScorer scorer(f.map, scan, o), reference(f.map, scan, o);
+  std::uint64_t state = 99;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  int stopped = 0, kept = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Pose2 x{6.3 + 0.2 * (uniform() - 0.5), 2.8 + 0.2 * (uniform() - 0.5), 0.05 + 0.1 * (uniform() - 0.5)};
+    const ScanScore full = reference.score(x);
+    // Bounds below, at and above the full score (at: a tie cannot win the climb's strict comparison).
+    const double bound = i % 3 == 0 ? full.log_likelihood : full.log_likelihood + 4.0 * (uniform() - 0.5);
+    const std::optional<ScanScore> s = scorer.scoreAbove(x, bound);
+    if (full.log_likelihood <= bound) {
+      EXPECT_FALSE(s.has_value()) << i;
+      ++stopped;
+    } else {
+      ASSERT_TRUE(s.has_value()) << i;
+      EXPECT_EQ(s->log_likelihood, full.log_likelihood) << i;  // exactly
+      EXPECT_EQ(s->matched, full.matched) << i;
+      ++kept;
+    }
+  }
+  EXPECT_GT(stopped, 100);
+  EXPECT_GT(kept, 100);
 }
 
 TEST(ScanMatcher, CachedScorerAroundTheOrigin) {

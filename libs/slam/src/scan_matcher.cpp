@@ -108,7 +108,7 @@ ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanM
   table_.assign(4096, Slot{kEmpty, 0, 0});
   shift_ = 64 - 12;
   hits_.reserve(4096);
-  last_.assign(scan.size(), Slot{kEmpty, 0, 0});
+  near_.assign(scan.size() * kNearSlots, Slot{kEmpty, 0, 0});
 }
 
 void ScanScorer::grow() {
@@ -166,6 +166,24 @@ const ScanScorer::Slot& ScanScorer::window(int cx, int cy) {
 
 ScanScore ScanScorer::score(const Pose2& x) {
   if (o_.free_check) return scoreScan(map_, x, scan_, o_);  // the window also depends on the cell in front
+  ScanScore out;
+  scoreImpl<false>(x, 0.0, out);
+  return out;
+}
+
+std::optional<ScanScore> ScanScorer::scoreAbove(const Pose2& x, double stop_at) {
+  ScanScore out;
+  if (o_.free_check) {
+    out = scoreScan(map_, x, scan_, o_);
+  } else if (!scoreImpl<true>(x, stop_at, out)) {
+    return std::nullopt;
+  }
+  if (out.log_likelihood <= stop_at) return std::nullopt;
+  return out;
+}
+
+template <bool kStop>
+bool ScanScorer::scoreImpl(const Pose2& x, double stop_at, ScanScore& out) {
   const double inv2s2 = 1.0 / (2.0 * o_.sigma * o_.sigma);
   const double c = std::cos(x.theta), s = std::sin(x.theta);
   const std::size_t n = scan_.size();
@@ -178,17 +196,17 @@ ScanScore ScanScorer::score(const Pose2& x) {
     const int i = static_cast<int>(v);
     return i - (v < static_cast<double>(i));
   };
-  ScanScore out;
   for (std::size_t b = 0; b < n; ++b) {
     // Same arithmetic as scoreScan, so the result is bit-identical.
     const double px = x.x + c * ex[b] - s * ey[b];
     const double py = x.y + s * ex[b] + c * ey[b];
     const int ipx = cellIndex(px), ipy = cellIndex(py);
     const std::uint64_t key = cellKey(ipx, ipy);
-    Slot& w = last_[b];
+    Slot& w = near_[b * kNearSlots + static_cast<std::size_t>(((ipy & kNearMask) << kNearBits) | (ipx & kNearMask))];
     if (key != w.key) w = window(ipx, ipy);
     if (w.count == 0) {
       out.log_likelihood += null_ll;
+      if (kStop && out.log_likelihood <= stop_at) return false;
       continue;
     }
     const double* h = hits_.data() + 2 * static_cast<std::size_t>(w.offset);
@@ -200,14 +218,26 @@ ScanScore ScanScorer::score(const Pose2& x) {
     }
     ++out.matched;
     out.log_likelihood += std::max(-best * inv2s2, null_ll);
+    if (kStop && out.log_likelihood <= stop_at) return false;
   }
-  return out;
+  return true;
 }
 
 namespace {
 
 double objective(const ScanScore& s, const Pose2& x, const MatchPrior* prior) {
   return prior ? s.log_likelihood * prior->likelihood_scale + prior->log_prior(x) : s.log_likelihood;
+}
+
+/// A log-likelihood at or below which a candidate's objective cannot exceed best_obj. The objective is
+/// increasing in the log-likelihood (rounding included), so the bound is moved down until it provably holds.
+double stopBelow(double best_obj, const Pose2& x, const MatchPrior* prior) {
+  if (!prior) return best_obj;
+  const double lp = prior->log_prior(x);
+  double bound = (best_obj - lp) / prior->likelihood_scale;
+  if (!std::isfinite(bound)) return -std::numeric_limits<double>::infinity();
+  while (bound * prior->likelihood_scale + lp > best_obj) bound = std::nextafter(bound, -std::numeric_limits<double>::infinity());
+  return bound;
 }
 
 MatchResult hillClimb(ScanScorer& scorer, const MatchResult& from, double sxy, double sth, int refinements,
@@ -228,11 +258,12 @@ MatchResult hillClimb(ScanScorer& scorer, const MatchResult& from, double sxy, d
       if (mi == came_from) continue;
       const Pose2& m = moves[mi];
       const Pose2 cand{r.pose.x + m.x, r.pose.y + m.y, wrapAngle(r.pose.theta + m.theta)};
-      const ScanScore sc = scorer.score(cand);
       ++r.evaluations;
-      const double obj = objective(sc, cand, prior);
+      const std::optional<ScanScore> sc = scorer.scoreAbove(cand, stopBelow(best_obj, cand, prior));
+      if (!sc) continue;  // cannot beat best_obj
+      const double obj = objective(*sc, cand, prior);
       if (obj > best_obj) {
-        best = sc;
+        best = *sc;
         best_pose = cand;
         best_obj = obj;
         best_move = mi;

@@ -6,6 +6,7 @@
 // accuracy because the hit means are continuous.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "gridtopo/slam/grid_map.h"
@@ -66,13 +67,18 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
 /// The same likelihood for many poses of one scan in one map (a scan-matching search and the proposal's K
 /// poses). The correspondence search depends only on the cell an end point falls in: the hit means of the
 /// occupied cells of each cell's window are looked up in the map once and kept in a small hash table, and each
-/// beam also remembers its last cell. Most end points of a search fall in cells seen before (the search steps
-/// back and forth by a cell or less), so most evaluations read no map tile. Gives exactly scoreScan's result.
+/// beam also keeps the windows of the last cells it fell in (a direct-mapped cache of 16 per beam). Most end
+/// points of a search fall in cells seen before (the search steps back and forth by a cell or less), so most
+/// evaluations read no map tile and most skip the hash table. Gives exactly scoreScan's result.
 /// The map must not change while the scorer is used.
 class ScanScorer {
  public:
   ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o);
   ScanScore score(const Pose2& x);
+  /// The same, but gives up (returns nothing) as soon as the partial sum is <= stop_at: every beam's term is
+  /// <= 0, so the full sum could only be lower. The hill climb uses it to drop candidate poses that cannot beat
+  /// the best one so far; a pose whose score it returns has exactly score(x).
+  std::optional<ScanScore> scoreAbove(const Pose2& x, double stop_at);
   const GridMap& map() const { return map_; }
   const PreparedScan& scan() const { return scan_; }
   const ScanMatcherOptions& options() const { return o_; }
@@ -87,6 +93,8 @@ class ScanScorer {
   static constexpr std::uint64_t kEmpty = 0x8000000080000000ULL;
   const Slot& window(int cx, int cy);  // finds or fills the window of a cell
   void grow();
+  template <bool kStop>
+  bool scoreImpl(const Pose2& x, double stop_at, ScanScore& out);
 
   const GridMap& map_;
   const PreparedScan& scan_;
@@ -95,7 +103,13 @@ class ScanScorer {
   std::size_t used_ = 0;
   int shift_ = 0;                    // 64 - log2(table size)
   std::vector<double> hits_;         // hit means (x, y) of the windows' occupied cells, in scoreScan's order
-  std::vector<Slot> last_;           // per beam: its last cell (key) and that cell's window
+  // Per beam, a direct-mapped cache of the windows of the cells its end point visited, indexed by the low bits
+  // of the cell coordinates: the end point of one beam stays within a few cells during a search, so a 4 × 4
+  // block of cells has no collisions and most look-ups skip the hash table.
+  static constexpr int kNearBits = 2;
+  static constexpr int kNearMask = (1 << kNearBits) - 1;
+  static constexpr std::size_t kNearSlots = std::size_t{1} << (2 * kNearBits);
+  std::vector<Slot> near_;
 };
 
 /// Optional prior multiplied into the matched objective: the search then finds the mode of
