@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
@@ -11,7 +12,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
+#include <random>
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -253,6 +256,38 @@ TEST(MapIo, GridmapGzRoundTripAndMrptCanLoadIt) {
   EXPECT_THROW(readGridMap(other.string()), gridtopo::InputError);
   std::ofstream(tmpDir() / "junk.gridmap") << "junk";
   EXPECT_THROW(readGridMap((tmpDir() / "junk.gridmap").string()), gridtopo::InputError);
+}
+
+TEST(MapIo, CorruptedGridmapGivesAnInputErrorOrAMapNeverACrash) {
+  // Byte flips in an uncompressed .gridmap (MRPT's serialised COccupancyGridMap2D): MRPT's deserialiser runs in a
+  // child process first (isolated_parse.h), so a flip in a size field cannot crash or exhaust the memory.
+  const auto g = sampleGrid(-3.0f, 2.5f);
+  const fs::path clean = tmpDir() / "flip_clean.gridmap";
+  {
+    mrpt::io::CFileOutputStream out(clean.string());  // plain: the flips reach MRPT's data
+    mrpt::serialization::archiveFrom(out) << *g;
+  }
+  std::ifstream f(clean, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(f), {}};
+  ASSERT_GT(bytes.size(), 100u);
+  std::mt19937 rng(4242);
+  int parsed = 0, errors = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::string mutated = bytes;
+    // Flips within the first 120 bytes: MRPT's object header, class name, version, sizes and limits.
+    for (int k = 0; k < 2; ++k) mutated[rng() % 120] ^= static_cast<char>(1 + rng() % 255);
+    const fs::path p = tmpDir() / "flipped.gridmap";
+    std::ofstream(p, std::ios::binary) << mutated;
+    try {
+      readGridMap(p.string());
+      ++parsed;
+    } catch (const gridtopo::InputError& e) {
+      ++errors;
+      EXPECT_EQ(e.file(), p.string());
+    }
+  }
+  EXPECT_EQ(parsed + errors, 60);
+  EXPECT_GT(errors, 20);
 }
 
 TEST(MapIo, SimplemapIsWrittenAsMrptReadsIt) {

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "isolated_parse.h"
 #include "gridtopo/core/output_set.h"
 
 namespace fs = std::filesystem;
@@ -221,16 +222,15 @@ void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
   }
 }
 
-COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
+COccupancyGridMap2D::Ptr parseGridmapFile(const std::string& path) {
   mrpt::io::CFileGZInputStream in;
   if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
   mrpt::serialization::CSerializable::Ptr obj;
   try {
     obj = mrpt::serialization::archiveFrom(in).ReadObject();
   } catch (const std::exception& e) {
-    std::string msg = e.what();
-    if (const auto nl = msg.find('\n'); nl != std::string::npos && nl > 0) msg = msg.substr(0, nl);
-    throw InputError(path, 0, "", "cannot read an MRPT serialized object (corrupt or truncated?): " + msg);
+    throw InputError(path, 0, "",
+                     "cannot read an MRPT serialized object (corrupt or truncated?): " + innermostMrptMessage(e.what()));
   }
   auto g = std::dynamic_pointer_cast<COccupancyGridMap2D>(obj);
   if (!g)
@@ -239,6 +239,13 @@ COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
                          ", not an mrpt::maps::COccupancyGridMap2D");
   restoreExactLimits(path, *g);
   return g;
+}
+
+COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "cannot open gridmap file");
+  // MRPT's deserialiser may crash or allocate gigabytes on corrupted data: parse in a child process first.
+  checkParsesInChild(path, [&](volatile std::uint64_t*) { parseGridmapFile(path); });
+  return parseGridmapFile(path);
 }
 
 void writeGz(const std::string& tmp, const mrpt::serialization::CSerializable& obj) {

@@ -10,18 +10,9 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/serialization/CArchive.h>
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <csignal>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -30,6 +21,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
+#include "isolated_parse.h"
 
 namespace gridtopo::io {
 namespace {
@@ -163,31 +155,6 @@ RawlogWriteStats writeRawlog(const std::string& path, const std::vector<ScanReco
 
 namespace {
 
-/// The useful line of an MRPT exception text: MRPT nests "==== MRPT exception ====" blocks, each with a
-/// "Message: ..." line, a location and a call stack; the innermost message says what went wrong (e.g. "Stored
-/// object has class '...' which is not registered!"). Bytes that are not printable ASCII (corrupted class
-/// names) are shown as '?'.
-std::string innermostMrptMessage(const std::string& text) {
-  std::string line;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string l = text.substr(pos, end - pos);
-    if (l.rfind("Message:", 0) == 0) {
-      line = l.substr(8);
-    } else if (line.empty() && !l.empty() && l.rfind("====", 0) != 0 && text.find("Message:") == std::string::npos) {
-      line = l;  // not an MRPT-formatted text: its first line
-    }
-    pos = end + 1;
-  }
-  const std::size_t first = line.find_first_not_of(' ');
-  line = first == std::string::npos ? std::string() : line.substr(first);
-  for (char& c : line)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return line.empty() ? "unknown error" : line;
-}
-
 /// Parses the rawlog in this process. `entry_reached`, when given, is set to the index of each top-level entry
 /// before it is read (so that a crash can be located).
 RawlogContents parseRawlog(const std::string& path, volatile std::uint64_t* entry_reached) {
@@ -301,111 +268,15 @@ RawlogContents parseRawlog(const std::string& path, volatile std::uint64_t* entr
   return out;
 }
 
-/// What the checking child leaves for its parent (in shared memory).
-struct ChildReport {
-  volatile std::uint64_t entry;  ///< the top-level entry being read
-  volatile int status;           ///< 0 running / parsed, 1 InputError or other exception, 2 out of memory
-  char field[128];
-  char message[1024];
-};
-
-void copyText(char* dst, std::size_t cap, const std::string& src) {
-  const std::size_t n = std::min(cap - 1, src.size());
-  std::memcpy(dst, src.data(), n);
-  dst[n] = '\0';
-}
-
-/// MRPT 2.5.8's deserialiser can crash (segmentation fault) on corrupted -- not truncated -- data, e.g. inside
-/// CActionRobotMovement2D::serializeFrom, or try to allocate tens of gigabytes for a corrupted size field. So
-/// the file is first parsed in a child process with a bounded address space: a crash, an allocation beyond the
-/// bound or an error there is reported as an InputError naming the entry, and only a file that parsed cleanly
-/// in the child is parsed again in this process (same data, same allocations). Costs one extra parse.
-void checkRawlogParsesSafely(const std::string& path) {
-  void* shared = ::mmap(nullptr, sizeof(ChildReport), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-  if (shared == MAP_FAILED) return;  // no isolation possible: parse in process as before
-  auto* report = static_cast<ChildReport*>(shared);
-  report->entry = 0;
-  report->status = 0;
-  report->field[0] = report->message[0] = '\0';
-  const std::uintmax_t file_size = std::filesystem::file_size(path);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::munmap(shared, sizeof(ChildReport));
-    return;
-  }
-  if (pid == 0) {
-    // Child: no core file, no output, an address space of what it has now + 4 GiB + 32 x the file size.
-    const rlimit no_core{0, 0};
-    ::setrlimit(RLIMIT_CORE, &no_core);
-    long pages = 0;
-    if (FILE* statm = std::fopen("/proc/self/statm", "r")) {
-      if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
-      std::fclose(statm);
-    }
-    if (pages > 0) {
-      const std::uintmax_t limit = static_cast<std::uintmax_t>(pages) * static_cast<std::uintmax_t>(::sysconf(_SC_PAGESIZE)) +
-                                   (std::uintmax_t{4} << 30) + 32 * file_size;
-      rlimit as{};
-      if (::getrlimit(RLIMIT_AS, &as) == 0 && (as.rlim_max == RLIM_INFINITY || limit < as.rlim_max)) {
-        as.rlim_cur = static_cast<rlim_t>(limit);
-        ::setrlimit(RLIMIT_AS, &as);
-      }
-    }
-    const int devnull = ::open("/dev/null", O_WRONLY);
-    if (devnull >= 0) {
-      ::dup2(devnull, STDOUT_FILENO);
-      ::dup2(devnull, STDERR_FILENO);
-    }
-    try {
-      parseRawlog(path, &report->entry);
-    } catch (const InputError& e) {
-      copyText(report->field, sizeof report->field, e.field());
-      copyText(report->message, sizeof report->message, e.message());
-      report->status = 1;
-    } catch (const std::bad_alloc&) {
-      report->status = 2;
-    } catch (const std::exception& e) {
-      copyText(report->field, sizeof report->field, "entry " + std::to_string(report->entry));
-      copyText(report->message, sizeof report->message, e.what());
-      report->status = 1;
-    } catch (...) {
-      report->status = 2;  // MRPT rethrows allocation failures as its own exceptions, not always std::
-    }
-    ::_exit(0);
-  }
-  int status = 0;
-  pid_t r;
-  do {
-    r = ::waitpid(pid, &status, 0);
-  } while (r < 0 && errno == EINTR);
-  const ChildReport rep = [&] {
-    ChildReport c;
-    c.entry = report->entry;
-    c.status = report->status;
-    std::memcpy(c.field, report->field, sizeof c.field);
-    std::memcpy(c.message, report->message, sizeof c.message);
-    return c;
-  }();
-  ::munmap(shared, sizeof(ChildReport));
-  const std::string where = "entry " + std::to_string(rep.entry);
-  if (r == pid && WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    const char* name = ::strsignal(sig);
-    throw InputError(path, 0, where,
-                     std::string("MRPT's deserialiser crashed (") + (name ? name : "signal") + ", signal " +
-                         std::to_string(sig) + ") reading this object: the file is corrupted");
-  }
-  if (rep.status == 2)
-    throw InputError(path, 0, where, "reading this object needs more memory than the file can justify: the file is corrupted");
-  if (rep.status == 1) throw InputError(path, 0, rep.field, rep.message);
-}
-
 }  // namespace
 
 RawlogContents readRawlog(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(path, "no such rawlog file");
   checkGzipIntegrity(path);
-  checkRawlogParsesSafely(path);
+  // MRPT 2.5.8's deserialiser can crash (segmentation fault) on corrupted -- not truncated -- data, e.g. inside
+  // CActionRobotMovement2D::serializeFrom, or allocate gigabytes for a corrupted size field: parse in a child
+  // process first (isolated_parse.h).
+  checkParsesInChild(path, [&](volatile std::uint64_t* entry) { parseRawlog(path, entry); });
   return parseRawlog(path, nullptr);
 }
 
