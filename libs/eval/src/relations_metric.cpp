@@ -1,4 +1,5 @@
 #include "gridtopo/eval/relations_metric.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/math/wrap2pi.h>
 
@@ -14,12 +15,12 @@ namespace gridtopo::eval {
 void RelationsMetricOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                 const std::string& section) {
   const std::string file = "[" + section + "]";
-  const double gap = cfg.read_double(section, "max_time_gap", max_time_gap);
+  const double gap = readIni(cfg, section, "max_time_gap", max_time_gap);
   if (!(gap >= 0.0) || !std::isfinite(gap)) throw InputError(file, 0, "max_time_gap", "must be a finite number >= 0");
   max_time_gap = gap;
-  interpolate_odometry = cfg.read_bool(section, "interpolate_odometry", interpolate_odometry);
-  interpolate_estimate = cfg.read_bool(section, "interpolate_estimate", interpolate_estimate);
-  const std::string src = cfg.read_string(section, "odometry", toString(odometry));
+  readIniValue(cfg, section, "interpolate_odometry", interpolate_odometry);
+  readIniValue(cfg, section, "interpolate_estimate", interpolate_estimate);
+  const std::string src = readIni(cfg, section, "odometry", std::string(toString(odometry)));
   try {
     odometry = odometrySourceFromString(src);
   } catch (const std::invalid_argument& e) {

@@ -1,4 +1,5 @@
 #include "gridtopo/places/boost_classifier.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -15,11 +16,11 @@ double BoostedClassifier::probability(const float* f) const {
 }
 
 void BoostOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  weak_count = s.read_int(sec, "weak_count", weak_count);
-  boost_type = s.read_string(sec, "boost_type", boost_type);
-  max_samples_per_class = s.read_int(sec, "max_samples_per_class", max_samples_per_class);
-  seed = static_cast<unsigned>(s.read_int(sec, "seed", static_cast<int>(seed)));
-  weight_trim_rate = s.read_double(sec, "weight_trim_rate", weight_trim_rate);
+  readIniValue(s, sec, "weak_count", weak_count);
+  readIniValue(s, sec, "boost_type", boost_type);
+  readIniValue(s, sec, "max_samples_per_class", max_samples_per_class);
+  readIniValue(s, sec, "seed", seed);
+  readIniValue(s, sec, "weight_trim_rate", weight_trim_rate);
   validate("[" + sec + "]");
 }
 

@@ -1,4 +1,5 @@
 #include "gridtopo/places/relaxation.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -11,9 +12,9 @@
 namespace gridtopo::places {
 
 void RelaxationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  max_iterations = s.read_int(sec, "max_iterations", max_iterations);
-  tolerance = s.read_double(sec, "tolerance", tolerance);
-  neighbourhood_radius = s.read_int(sec, "neighbourhood_radius", neighbourhood_radius);
+  readIniValue(s, sec, "max_iterations", max_iterations);
+  readIniValue(s, sec, "tolerance", tolerance);
+  readIniValue(s, sec, "neighbourhood_radius", neighbourhood_radius);
   validate("[" + sec + "]");
 }
 

@@ -1,4 +1,5 @@
 #include "gridtopo/places/scan_simulation.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -12,10 +13,10 @@
 namespace gridtopo::places {
 
 void ScanSimulationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  num_beams = s.read_int(sec, "num_beams", num_beams);
-  max_range = s.read_double(sec, "max_range", max_range);
-  lattice_spacing = s.read_double(sec, "lattice_spacing", lattice_spacing);
-  threads = s.read_int(sec, "threads", threads);
+  readIniValue(s, sec, "num_beams", num_beams);
+  readIniValue(s, sec, "max_range", max_range);
+  readIniValue(s, sec, "lattice_spacing", lattice_spacing);
+  readIniValue(s, sec, "threads", threads);
   validate("[" + sec + "]");
 }
 

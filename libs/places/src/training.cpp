@@ -1,4 +1,5 @@
 #include "gridtopo/places/training.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFile.h>
@@ -85,13 +86,13 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
     throw InputError(ini_path, 0, e.file() + " " + e.field(), e.message());
   }
   FeatureOptions& feat = c.features;
-  feat.beam_cap = f.read_double("features", "beam_cap", feat.beam_cap);
-  feat.gap_small = f.read_double("features", "gap_small", feat.gap_small);
-  feat.gap_large = f.read_double("features", "gap_large", feat.gap_large);
-  feat.context_radius = f.read_double("features", "context_radius", feat.context_radius);
+  readIniValue(f, "features", "beam_cap", feat.beam_cap);
+  readIniValue(f, "features", "gap_small", feat.gap_small);
+  readIniValue(f, "features", "gap_large", feat.gap_large);
+  readIniValue(f, "features", "context_radius", feat.context_radius);
   {
     const std::string unset = "\x01";
-    const std::string list = f.read_string("features", "capped_ranges", unset);
+    const std::string list = readIni(f, "features", "capped_ranges", unset);
     std::stringstream ss(list == unset ? "" : list);
     if (list != unset) feat.capped_ranges.clear();
     for (std::string tok; std::getline(ss, tok, ',');) {
@@ -111,10 +112,10 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
 
 void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
   boost.loadFromConfigFile(s, sec);
-  order = s.read_string(sec, "order", order);
-  prior_weight = s.read_double(sec, "prior_weight", prior_weight);
-  order_folds = s.read_int(sec, "order_folds", order_folds);
-  order_samples_per_class = s.read_int(sec, "order_samples_per_class", order_samples_per_class);
+  readIniValue(s, sec, "order", order);
+  readIniValue(s, sec, "prior_weight", prior_weight);
+  readIniValue(s, sec, "order_folds", order_folds);
+  readIniValue(s, sec, "order_samples_per_class", order_samples_per_class);
   if (order_folds < 1 || order_folds > 20) throw InputError("[" + sec + "]", 0, "order_folds", "must be in [1, 20]");
   if (order_samples_per_class < 10)
     throw InputError("[" + sec + "]", 0, "order_samples_per_class", "must be >= 10");

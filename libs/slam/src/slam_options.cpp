@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_value.h"
 
 namespace gridtopo::slam {
 
@@ -110,36 +111,20 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
   forEachKey(*this, [&](const char* key, auto& value) {
     using T = std::decay_t<decltype(value)>;
     if (!source.keyExists(section, key)) return;
-    const std::string text = source.read_string(section, key, "", false);
-    std::istringstream in(text);
-    if constexpr (std::is_same_v<T, bool>) {
-      if (text == "true" || text == "1" || text == "yes") value = true;
-      else if (text == "false" || text == "0" || text == "no") value = false;
-      else throw parseError(key, text, "a boolean (true/false)");
-    } else {
-      T v{};
-      in >> v;
-      std::string rest;
-      in >> rest;
-      if (in.bad() || text.empty() || !rest.empty() || (!in.eof() && in.fail()))
-        throw parseError(key, text, std::is_integral_v<T> ? "an integer" : "a number");
-      if constexpr (std::is_integral_v<T>) {
-        if (text.find_first_of(".eE") != std::string::npos) throw parseError(key, text, "an integer");
-        if (std::is_unsigned_v<T> && text.find('-') != std::string::npos)
-          throw parseError(key, text, "a non-negative integer");
-      }
-      value = v;
-    }
+    const std::string text = iniValueText(source.read_string(section, key, "", false));
+    T v{};
+    if (const auto expected = parseIniValue(text, v)) throw parseError(key, text, *expected);
+    value = v;
   });
   if (source.keyExists(section, "match_method")) {
-    const std::string m = source.read_string(section, "match_method", "", false);
+    const std::string m = iniValueText(source.read_string(section, "match_method", "", false));
     if (m == "gauss-newton") matcher.method = MatchMethod::GaussNewton;
     else if (m == "hill-climb") matcher.method = MatchMethod::HillClimb;
     else throw InputError(file, 0, "[" + section + "] match_method",
                           "unknown method '" + m + "' (expected gauss-newton or hill-climb)");
   }
   if (source.keyExists(section, "proposal")) {
-    const std::string p = source.read_string(section, "proposal", "", false);
+    const std::string p = iniValueText(source.read_string(section, "proposal", "", false));
     try {
       proposal.type = proposalFromString(p);
     } catch (const std::invalid_argument& e) {

@@ -1,4 +1,5 @@
 #include "gridtopo/topology/correction.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -13,14 +14,14 @@
 namespace gridtopo::topology {
 
 void CorrectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  enabled = s.read_bool(sec, "enabled", enabled);
-  min_place_area = s.read_double(sec, "min_place_area", min_place_area);
-  min_room_area = s.read_double(sec, "min_room_area", min_room_area);
-  min_corridor_area = s.read_double(sec, "min_corridor_area", min_corridor_area);
-  min_doorway_area = s.read_double(sec, "min_doorway_area", min_doorway_area);
-  doorways_must_separate = s.read_bool(sec, "doorways_must_separate", doorways_must_separate);
-  max_doorway_area = s.read_double(sec, "max_doorway_area", max_doorway_area);
-  max_passes = s.read_int(sec, "max_passes", max_passes);
+  readIniValue(s, sec, "enabled", enabled);
+  readIniValue(s, sec, "min_place_area", min_place_area);
+  readIniValue(s, sec, "min_room_area", min_room_area);
+  readIniValue(s, sec, "min_corridor_area", min_corridor_area);
+  readIniValue(s, sec, "min_doorway_area", min_doorway_area);
+  readIniValue(s, sec, "doorways_must_separate", doorways_must_separate);
+  readIniValue(s, sec, "max_doorway_area", max_doorway_area);
+  readIniValue(s, sec, "max_passes", max_passes);
   validate("[" + sec + "]");
 }
 

@@ -1,4 +1,5 @@
 #include "gridtopo/topology/pipeline.h"
+#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
@@ -12,17 +13,17 @@
 namespace gridtopo::topology {
 
 void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  threads = s.read_int(sec, "threads", threads);
-  resolution = s.read_double(sec, "resolution", resolution);
-  free_threshold = s.read_int(sec, "free_threshold", free_threshold);
-  grid_free_threshold = s.read_int(sec, "grid_free_threshold", grid_free_threshold);
-  overlay_scale = s.read_int(sec, "overlay_scale", overlay_scale);
-  segmentation = s.read_string(sec, "segmentation", segmentation);
-  seg_rules.merge_contact = s.read_double(sec, "merge_contact", seg_rules.merge_contact);
-  seg_rules.neck_width = s.read_double(sec, "split_neck_width", seg_rules.neck_width);
-  seg_rules.min_part_area = s.read_double(sec, "split_min_part_area", seg_rules.min_part_area);
-  seg_rules.fill_obstacle_area = s.read_double(sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
-  seg_rules.segment_vote = s.read_bool(sec, "segment_vote", seg_rules.segment_vote);
+  readIniValue(s, sec, "threads", threads);
+  readIniValue(s, sec, "resolution", resolution);
+  readIniValue(s, sec, "free_threshold", free_threshold);
+  readIniValue(s, sec, "grid_free_threshold", grid_free_threshold);
+  readIniValue(s, sec, "overlay_scale", overlay_scale);
+  readIniValue(s, sec, "segmentation", segmentation);
+  readIniValue(s, sec, "merge_contact", seg_rules.merge_contact);
+  readIniValue(s, sec, "split_neck_width", seg_rules.neck_width);
+  readIniValue(s, sec, "split_min_part_area", seg_rules.min_part_area);
+  readIniValue(s, sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
+  readIniValue(s, sec, "segment_vote", seg_rules.segment_vote);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
