@@ -18,12 +18,26 @@
 namespace fs = std::filesystem;
 using namespace gridtopo::io;
 
+namespace {
+// A short simulated log (6 scans of 30 beams) and a fresh scratch folder for the mutated files.
+struct Scratch {
+  gridtopo::sim::SimLog sim;
+  fs::path dir;
+  explicit Scratch(const std::string& name) {
+    auto so = gridtopo::sim::pillarRoomOptions();
+    so.beams = 30;
+    sim = gridtopo::sim::simulatePillarRoom(6, so);
+    dir = fs::temp_directory_path() / ("gridtopo_rawlog_" + name + "_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+};
+}  // namespace
+
 TEST(RawlogTruncation, EveryCutGivesAnInputErrorOrTheScansBeforeIt) {
-  auto so = gridtopo::sim::pillarRoomOptions();
-  so.beams = 30;
-  const auto sim = gridtopo::sim::simulatePillarRoom(6, so);
-  const fs::path dir = fs::temp_directory_path() / ("gridtopo_rawlog_cut_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const Scratch scratch("cut");
+  const auto& sim = scratch.sim;
+  const fs::path& dir = scratch.dir;
   std::size_t complete = 0, errors = 0;
   for (const auto layout : {RawlogLayout::ActionSensoryFrame, RawlogLayout::ObservationOnly}) {
     for (const bool gz : {false, true}) {
@@ -50,17 +64,14 @@ TEST(RawlogTruncation, EveryCutGivesAnInputErrorOrTheScansBeforeIt) {
       }
     }
   }
-  fs::remove_all(dir);
   EXPECT_EQ(complete + errors, 400u);
   EXPECT_GT(errors, 300u);
 }
 
 TEST(RawlogCorruption, EveryByteFlipGivesAnInputErrorOrAResultNeverACrash) {
-  auto so = gridtopo::sim::pillarRoomOptions();
-  so.beams = 30;
-  const auto sim = gridtopo::sim::simulatePillarRoom(6, so);
-  const fs::path dir = fs::temp_directory_path() / ("gridtopo_rawlog_flip_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const Scratch scratch("flip");
+  const auto& sim = scratch.sim;
+  const fs::path& dir = scratch.dir;
   std::size_t complete = 0, errors = 0, crashes = 0;
   for (const auto layout : {RawlogLayout::ActionSensoryFrame, RawlogLayout::ObservationOnly}) {
     const fs::path clean = dir / "clean.rawlog";
@@ -86,7 +97,6 @@ TEST(RawlogCorruption, EveryByteFlipGivesAnInputErrorOrAResultNeverACrash) {
       }
     }
   }
-  fs::remove_all(dir);
   EXPECT_EQ(complete + errors, 300u);
   EXPECT_GT(errors, 50u);
   // The isolation is exercised: some flips make MRPT's deserialiser crash (a segfault before the guard).
