@@ -46,6 +46,10 @@ void extractFeatures(const float* beams_m, int M, const FeatureOptions& options,
 /// context copies. Parallel over samples.
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads = 2);
 
+/// Scans per SIMD batch of the whole-map extraction: 4 with AVX, else 2. `allow_avx = false` forces the SSE2
+/// kernel for the rest of the process (for tests: both kernels must give the bits of the scalar function).
+int featureLanes(bool allow_avx = true);
+
 /// Appends the context features (see FeatureOptions::context_radius) to `features` (rows = lattice samples):
 /// for each column, the mean over the samples whose blocks lie within the window (masked box filter).
 cv::Mat addContextFeatures(const Lattice& lattice, const cv::Mat& features, double context_radius, double resolution);
