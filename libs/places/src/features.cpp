@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "memory_advice.h"
+
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
@@ -348,7 +350,9 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
   const int M = scans.num_beams;
   const std::size_t Ms = static_cast<std::size_t>(M);
   const std::size_t copies = 1 + options.capped_ranges.size();
-  cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F, cv::Scalar(0));
+  // Not initialised: every row's base columns are computed and every capped copy is computed or copied.
+  cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F);
+  detail::adviseHugePages(out.data, out.total() * out.elemSize());
   // Jobs (a scan and where its features go) are gathered kLanes at a time for extractFeaturesLanes: the base
   // scan of every sample, and each capped copy whose cap is reached; a copy whose cap no beam reaches is the
   // scan itself, so its features are copied from the base columns.

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "gridtopo/core/error.h"
+#include "memory_advice.h"
 
 namespace gridtopo::places {
 
@@ -143,13 +144,19 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   SimulatedScans out;
   out.num_beams = options.num_beams;
   const int M = options.num_beams;
-  out.ranges_mm.assign(samples.size() * static_cast<std::size_t>(M), 0);
   if (samples.empty()) return out;
+  const std::size_t total = samples.size() * static_cast<std::size_t>(M);
+  out.ranges_mm.reserve(total);
+  detail::adviseHugePages(out.ranges_mm.data(), total * sizeof(std::uint16_t));
+  out.ranges_mm.resize(total);
   for (const cv::Point& p : samples)
     if (p.x < 0 || p.y < 0 || p.x >= occ.cols() || p.y >= occ.rows() || !occ.isFree(p.y, p.x))
       throw std::invalid_argument("simulateScans: sample is not a free cell of the map");
   const double max_mm = options.max_range * 1000.0;
-  cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U, cv::Scalar(0));
+  // Not initialised: every sample lies on one line of every family, and both sweeps of a family write its
+  // two beams.
+  cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U);
+  detail::adviseHugePages(by_beam.data, by_beam.total() * by_beam.elemSize());
   // Shallow directions walk the image's columns, read as the rows of its transpose; steep ones walk the
   // transposed image's columns, i.e. the image's rows.
   cv::Mat cells_t;
@@ -183,9 +190,19 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   for (int t = 1; t < nt; ++t) pool.emplace_back(worker, false);
   worker(true);  // the calling thread works too and reports progress
   for (auto& t : pool) t.join();
-  // Sample-major for the feature extraction.
   cv::Mat by_sample(static_cast<int>(samples.size()), M, CV_16U, out.ranges_mm.data());
-  cv::transpose(by_beam, by_sample);
+  // Sample-major for the feature extraction, each thread transposing its own range of samples.
+  const int n_samples = static_cast<int>(samples.size());
+  auto transposePart = [&](int t) {
+    const int a = n_samples * t / nt, b = n_samples * (t + 1) / nt;
+    if (b <= a) return;
+    cv::Mat dst = by_sample.rowRange(a, b);
+    cv::transpose(by_beam.colRange(a, b), dst);
+  };
+  pool.clear();
+  for (int t = 1; t < nt; ++t) pool.emplace_back(transposePart, t);
+  transposePart(0);
+  for (auto& t : pool) t.join();
   if (progress) progress(n_dirs, n_dirs);
   return out;
 }
