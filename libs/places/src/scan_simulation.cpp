@@ -8,7 +8,6 @@
 #include <thread>
 
 #include "gridtopo/core/error.h"
-#include "memory_advice.h"
 
 namespace gridtopo::places {
 
@@ -146,8 +145,6 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   const int M = options.num_beams;
   if (samples.empty()) return out;
   const std::size_t total = samples.size() * static_cast<std::size_t>(M);
-  out.ranges_mm.reserve(total);
-  detail::adviseHugePages(out.ranges_mm.data(), total * sizeof(std::uint16_t));
   out.ranges_mm.resize(total);
   for (const cv::Point& p : samples)
     if (p.x < 0 || p.y < 0 || p.x >= occ.cols() || p.y >= occ.rows() || !occ.isFree(p.y, p.x))
@@ -156,7 +153,6 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   // Not initialised: every sample lies on one line of every family, and both sweeps of a family write its
   // two beams.
   cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U);
-  detail::adviseHugePages(by_beam.data, by_beam.total() * by_beam.elemSize());
   // Shallow directions walk the image's columns, read as the rows of its transpose; steep ones walk the
   // transposed image's columns, i.e. the image's rows.
   cv::Mat cells_t;
