@@ -154,33 +154,6 @@ TEST(Segmentation, S1FillsFurnitureEnclosedByTheSegment) {
   EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 2);
 }
 
-TEST(Segmentation, S1bSplitsASmallRoomBehindANarrowNeck) {
-  // A 2.2 x 2.7 m room joined to a 6 x 5 m room through a 0.9 m door. With the 1.3 m neck its core (0.9 x 1.4 m
-  // = 1.26 m^2) is below the 2 m^2 part area, so S1 alone does not split; S1b (cores >= 0.5 m^2 that claim
-  // >= 3 m^2 when the parts grow back) does, through the door. A 6.5 m^2 claim threshold is above the small room's
-  // 6.0 m^2 (with half of the door): no split.
-  cv::Mat seg(120, 200, CV_32S, cv::Scalar(0));
-  seg(cv::Rect(10, 10, 120, 100)).setTo(1);   // 6 x 5 m
-  seg(cv::Rect(134, 10, 44, 54)).setTo(1);    // 2.2 x 2.7 m
-  seg(cv::Rect(130, 30, 4, 18)).setTo(1);     // the door: 0.2 m thick, 0.9 m wide
-  SegmentationRules o;  // defaults: neck 1.3 m, parts >= 2 m^2, S1b off
-  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 1);
-  o.small_core_area = 0.5;
-  o.small_room_area = 3.0;
-  const cv::Mat out = splitAtNecks(seg, 0.05, o);
-  EXPECT_EQ(segmentCount(out), 2);
-  EXPECT_EQ(out.at<int>(60, 60), 1);                          // the large room keeps the id
-  EXPECT_EQ(out.at<int>(30, 150), 2);
-  EXPECT_EQ(out.at<int>(39, 130), 1);                         // the cut runs through the middle of the door
-  EXPECT_EQ(out.at<int>(39, 133), 2);
-  EXPECT_EQ(cv::countNonZero(out == 2), 44 * 54 + 2 * 18);  // the small room and half of the door
-  o.small_room_area = 6.5;
-  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 1);
-  o.small_room_area = 3.0;
-  o.small_core_area = 1.9;  // the core is about 1.3 m^2 (a little more next to the door): not a candidate
-  EXPECT_EQ(segmentCount(splitAtNecks(seg, 0.05, o)), 1);
-}
-
 TEST(Segmentation, SegmentVoteGivesEachSegmentOneLabel) {
   // The floor plan's left room is 60 % room, 40 % corridor (a confusion inside the room); a doorway keeps its label.
   cv::Mat l = floorPlan();

@@ -22,8 +22,6 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   seg_rules.neck_width = s.read_double(sec, "split_neck_width", seg_rules.neck_width);
   seg_rules.min_part_area = s.read_double(sec, "split_min_part_area", seg_rules.min_part_area);
   seg_rules.fill_obstacle_area = s.read_double(sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
-  seg_rules.small_core_area = s.read_double(sec, "split_small_core_area", seg_rules.small_core_area);
-  seg_rules.small_room_area = s.read_double(sec, "split_small_room_area", seg_rules.small_room_area);
   seg_rules.segment_vote = s.read_bool(sec, "segment_vote", seg_rules.segment_vote);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
@@ -41,10 +39,6 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
   if (!(seg_rules.fill_obstacle_area >= 0 && seg_rules.fill_obstacle_area <= 1000))
     throw InputError(where, 0, "split_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
-  if (!(seg_rules.small_core_area > 0 && seg_rules.small_core_area <= 1000))
-    throw InputError(where, 0, "split_small_core_area", "must be in (0, 1000] square metres");
-  if (!(seg_rules.small_room_area >= 0 && seg_rules.small_room_area <= 1000))
-    throw InputError(where, 0, "split_small_room_area", "must be in [0, 1000] square metres (0 = off)");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -56,8 +50,6 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
       << "\nsplit_min_part_area = " << seg_rules.min_part_area
       << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
-      << "\nsplit_small_core_area = " << seg_rules.small_core_area
-      << "\nsplit_small_room_area = " << seg_rules.small_room_area
       << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false") << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";

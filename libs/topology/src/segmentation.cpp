@@ -160,64 +160,33 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     cv::compare(dist, half_px, core, cv::CMP_GT);
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
-    // Candidate parts: every core part of at least min_part_area, and with rule S1b the smaller ones of at least
-    // small_core_area (kept only if they claim a room's worth of cells when all candidates grow back).
-    const bool s1b = o.small_room_area > 0;
-    const double small_core_px = s1b ? std::min(min_part_px, o.small_core_area / (resolution * resolution)) : min_part_px;
-    std::vector<int> cand(static_cast<std::size_t>(n), 0);  // 1 = large part, 2 = small part
-    int n_large = 0, n_cand = 0;
-    for (int c = 1; c < n; ++c) {
-      const int a = stats.at<int>(c, cv::CC_STAT_AREA);
-      if (a >= min_part_px) cand[static_cast<std::size_t>(c)] = 1, ++n_large, ++n_cand;
-      else if (a >= small_core_px) cand[static_cast<std::size_t>(c)] = 2, ++n_cand;
-    }
-    if (n_cand < 2) continue;
-    // Seeds grow back over the segment's cells in the crop (label image `own`: component index, 0 = not yet),
-    // breadth-first from all seeds at once, so the cut runs through the middle of a neck.
-    cv::Mat own(mask.size(), CV_32S);
-    auto grow = [&]() {
-      own.setTo(0);
-      std::deque<cv::Point> q;
-      for (int y = 0; y < cc.rows; ++y)
-        for (int x = 0; x < cc.cols; ++x) {
-          const int c = cc.at<int>(y, x);
-          if (cand[static_cast<std::size_t>(c)]) own.at<int>(y, x) = c, q.emplace_back(x, y);
-        }
-      while (!q.empty()) {
-        const cv::Point p = q.front();
-        q.pop_front();
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int yy = p.y + dy, xx = p.x + dx;  // the empty frame keeps these inside the crop
-            if (!area.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
-            own.at<int>(yy, xx) = own.at<int>(p);
-            q.emplace_back(xx, yy);
-          }
-      }
-    };
-    grow();
-    if (n_cand > n_large) {
-      // S1b: small parts that claim less than small_room_area of the segment's own cells are not rooms.
-      std::vector<int> claimed(static_cast<std::size_t>(n), 0);
-      for (int y = 0; y < r.height; ++y)
-        for (int x = 0; x < r.width; ++x)
-          if (inner.at<unsigned char>(y, x)) ++claimed[static_cast<std::size_t>(own.at<int>(y + 1, x + 1))];
-      const double small_room_px = o.small_room_area / (resolution * resolution);
-      bool dropped = false;
-      for (int c = 1; c < n; ++c)
-        if (cand[static_cast<std::size_t>(c)] == 2 && claimed[static_cast<std::size_t>(c)] < small_room_px)
-          cand[static_cast<std::size_t>(c)] = 0, --n_cand, dropped = true;
-      if (n_cand < 2) continue;
-      if (dropped) grow();
-    }
-    // Segment ids: the first candidate part keeps the segment's id, the others get new ones.
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);
     int parts = 0;
     for (int c = 1; c < n; ++c)
-      if (cand[static_cast<std::size_t>(c)]) part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
+      if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_part_px) part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
+    if (parts < 2) continue;
+    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet).
+    cv::Mat own(mask.size(), CV_32S, cv::Scalar(0));
+    std::deque<cv::Point> q;
+    for (int y = 0; y < cc.rows; ++y)
+      for (int x = 0; x < cc.cols; ++x) {
+        const int id = part_id[static_cast<std::size_t>(cc.at<int>(y, x))];
+        if (id) own.at<int>(y, x) = id, q.emplace_back(x, y);
+      }
+    while (!q.empty()) {
+      const cv::Point p = q.front();
+      q.pop_front();
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int yy = p.y + dy, xx = p.x + dx;  // the empty frame keeps these inside the crop
+          if (!area.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
+          own.at<int>(yy, xx) = own.at<int>(p);
+          q.emplace_back(xx, yy);
+        }
+    }
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
-        const int id = part_id[static_cast<std::size_t>(own.at<int>(y + 1, x + 1))];
+        const int id = own.at<int>(y + 1, x + 1);
         if (id && inner.at<unsigned char>(y, x)) seg.at<int>(r.y + y, r.x + x) = id;
       }
   }

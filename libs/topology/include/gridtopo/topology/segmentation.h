@@ -40,13 +40,6 @@ struct SegmentationRules {
   /// stubs between two doors of one wall are enclosed obstacles too (lab_ipa), and filling them joins rooms.
   /// 0 = off.
   double fill_obstacle_area = 0.25;
-  /// m^2; rule S1b (small rooms behind a narrow neck): a core part smaller than min_part_area but of at least
-  /// small_core_area also seeds a segment if, when all parts grow back over the segment, it claims at least
-  /// small_room_area of the segment's cells (a small room behind a door: its core is small, but nothing else
-  /// reaches its cells except through the door). Seeds between chairs or in alcoves claim little and are
-  /// dropped (the others then regrow without them). small_room_area = 0: off.
-  double small_core_area = 0.5;
-  double small_room_area = 0.0;
   /// Segment vote (a label correction after the segmentation, not part of relaxation): inside every segment, the
   /// room and corridor cells all take the one of the two labels that has more cells in the segment (doorway
   /// cells keep theirs). A room is one place, so one label; used by buildTopology when true.
