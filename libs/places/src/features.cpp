@@ -309,7 +309,7 @@ inline vd vsqrt(vd v) {
 #include "features_lanes.inc"
 }  // namespace lanes_sse2
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)  // GCC: #pragma GCC target
 #define GRIDTOPO_FEATURES_AVX 1
 #pragma GCC push_options
 #pragma GCC target("avx")  // AVX only: no FMA, which would fuse a * b + c and change the bits
