@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <opencv2/imgproc.hpp>
 
 #include "gridtopo/places/features.h"
@@ -166,4 +167,52 @@ TEST(Features, CappedCopiesEqualFeaturesOfTheCappedScan) {
     }
   // The corridor's capped copy at 2 m differs from its base features (the cap is in effect there).
   EXPECT_NE(f.at<float>(0, idx("max_beam")), f.at<float>(0, F + idx("max_beam")));
+}
+
+TEST(Features, LanesEqualScalarBitForBit) {
+  // The whole-map extraction runs several scans at once in SIMD lanes (SSE2: 2, AVX: 4); each lane must give
+  // the bits of the one-scan function, for both kernels. Scans: every lattice sample of a cluttered room (with a
+  // long corridor, so the 10 m cap applies) and random scans (zeros, ties, 30 m beams); 3 + the lattice count
+  // is odd, so the last batch is partial.
+  OccupancyImage occ = test::rectangleRoom(24.0, 6.0, 0.05);
+  cv::RNG rng(3);
+  for (int i = 0; i < 60; ++i)
+    occ.cells(cv::Rect(rng.uniform(10, 470), rng.uniform(10, 120), rng.uniform(1, 8), rng.uniform(1, 8))).setTo(kOccupied);
+  const auto lat = buildLattice(occ, 0.5);
+  ScanSimulationOptions so;
+  SimulatedScans scans = simulateScans(occ, lat.samples, so);
+  const int M = scans.num_beams;
+  // Extra scans: all zero, a few 30 m beams, random, and nearly constant ones (20 m +- a few mm: the standard
+  // deviations then cancel to a few digits, so a sum taken in another order would show in the floats).
+  for (int extra = 0; extra < 9 + (scans.size() % 2 == 0); ++extra)
+    for (int k = 0; k < M; ++k)
+      scans.ranges_mm.push_back(static_cast<std::uint16_t>(extra == 0   ? 0
+                                                           : extra == 1 ? 30000 * (k % 7 == 0)
+                                                           : extra < 5  ? rng.uniform(0, 30001)
+                                                                        : 20000 + (k * extra) % 5));
+  ASSERT_EQ(scans.size() % 2, 1u);
+  ASSERT_GT(scans.size(), 100u);
+  FeatureOptions o;
+  o.capped_ranges = {2.0, 10.0};
+  const std::size_t F = numFeatures();
+  std::vector<float> beams(static_cast<std::size_t>(M)), expected(F * 3);
+  for (bool avx : {false, true}) {
+    const int lanes = featureLanes(avx);
+    const cv::Mat f = extractFeatures(scans, o, 2);
+    ASSERT_EQ(static_cast<std::size_t>(f.cols), 3 * F);
+    int mismatches = 0, capped_differ = 0;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        const float cap = c == 0 ? 1e9f : static_cast<float>(o.capped_ranges[c - 1]);
+        for (int k = 0; k < M; ++k) beams[static_cast<std::size_t>(k)] = std::min(scans.scan(i)[k] * 0.001f, cap);
+        extractFeatures(beams.data(), M, o, expected.data() + c * F);
+      }
+      const float* row = f.ptr<float>(static_cast<int>(i));
+      mismatches += std::memcmp(row, expected.data(), 3 * F * sizeof(float)) != 0;
+      capped_differ += std::memcmp(row, row + F, F * sizeof(float)) != 0;
+    }
+    EXPECT_EQ(mismatches, 0) << lanes << " lanes";
+    EXPECT_GT(capped_differ, 20) << "the caps must be in effect for many scans";
+  }
+  featureLanes(true);
 }

@@ -2,7 +2,12 @@
 
 #include <opencv2/imgproc.hpp>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <thread>
@@ -128,6 +133,16 @@ const std::vector<cv::Point2d>& beamDirections(int M) {
 }
 }  // namespace
 
+namespace {
+// The raw moments from the edge sums of polygonMoments (orientation-independent).
+cv::Moments momentsFromEdgeSums(double a00, double a10, double a01, double a20, double a11, double a02, double a30,
+                                double a21, double a12, double a03) {
+  const double sgn = a00 < 0 ? -1.0 : 1.0;
+  return cv::Moments(sgn * a00 / 2, sgn * a10 / 6, sgn * a01 / 6, sgn * a20 / 12, sgn * a11 / 24, sgn * a02 / 12,
+                     sgn * a30 / 20, sgn * a21 / 60, sgn * a12 / 60, sgn * a03 / 20);
+}
+}  // namespace
+
 // Raw moments up to order 3 of a simple polygon (Green's theorem over its edges), as cv::moments computes them
 // for a contour; written out because this runs once per classified cell and cv::moments' overhead dominated.
 cv::Moments polygonMoments(const std::vector<cv::Point2d>& p) {
@@ -148,63 +163,50 @@ cv::Moments polygonMoments(const std::vector<cv::Point2d>& p) {
     a21 += d * (x0s * (3 * y0 + y1) + 2 * x1 * x0 * sy + x1s * (y0 + 3 * y1));
     a12 += d * (y0s * (3 * x0 + x1) + 2 * y1 * y0 * sx + y1s * (x0 + 3 * x1));
   }
-  const double sgn = a00 < 0 ? -1.0 : 1.0;
-  return cv::Moments(sgn * a00 / 2, sgn * a10 / 6, sgn * a01 / 6, sgn * a20 / 12, sgn * a11 / 24, sgn * a02 / 12,
-                     sgn * a30 / 20, sgn * a21 / 60, sgn * a12 / 60, sgn * a03 / 20);
+  return momentsFromEdgeSums(a00, a10, a01, a20, a11, a02, a30, a21, a12, a03);
 }
 
-void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out) {
-  MeanStd diff, diffc, beam, ratio, rel;
+namespace {
+// Everything extractFeatures() accumulates over the beams of one scan; writeFeatures() turns it into the
+// features. The scalar path (one scan) and the lane path (several scans at once, extractFeaturesLanes) fill
+// it with the same operations in the same order, so both give the same bits.
+struct ScanSums {
+  MeanStd diff, diffc, beam, ratio, rel, cd;
   int gs = 0, gl = 0;
   double bmax = 0, bmin = 1e18;
-  for (int k = 0; k < M; ++k) bmax = std::max<double>(bmax, b[k]), bmin = std::min<double>(bmin, b[k]);
-  const double inv_bmax = 1.0 / std::max(bmax, 1e-6);
-  for (int k = 0; k < M; ++k) {
-    const double x = b[k], y = b[k + 1 < M ? k + 1 : 0];
-    const double d = std::abs(x - y);
-    diff.add(d);
-    diffc.add(std::abs(std::min(x, o.beam_cap) - std::min(y, o.beam_cap)));
-    beam.add(x);
-    ratio.add(std::max(x, y) > 0 ? std::min(x, y) / std::max(x, y) : 1.0);
-    rel.add(x * inv_bmax);
-    gs += d > o.gap_small;
-    gl += d > o.gap_large;
-  }
-  const double mu = beam.mean();
-  double m2 = 0, m4 = 0;
-  for (int k = 0; k < M; ++k) {
-    const double e = b[k] - mu;
-    m2 += e * e, m4 += e * e * e * e;
-  }
-  m2 /= M, m4 /= M;
-  const double kurt = m2 > 1e-12 ? m4 / (m2 * m2) - 3.0 : 0.0;
-  // Chords through the cell.
-  const int h = M / 2, q = M / 4;
+  double m2 = 0, m4 = 0;  // sums of (b - mean)^2 and ^4
   double cmin = 1e18, cmax = 0;
   int kstar = 0;
+  cv::Moments m;
+  double L = 0;
+  cv::Point2d cen{0, 0};
+};
+
+// Chords through the cell (scalar in both paths: the sums b_k + b_{k+M/2} are float additions).
+void chordSums(const float* b, int M, ScanSums& r) {
+  const int h = M / 2;
   for (int k = 0; k < h; ++k) {
     const double c = b[k] + b[k + h];
-    if (c < cmin) cmin = c, kstar = k;
-    cmax = std::max(cmax, c);
+    if (c < r.cmin) r.cmin = c, r.kstar = k;
+    r.cmax = std::max(r.cmax, c);
   }
+}
+
+cv::Point2d polygonCentroid(const cv::Moments& m) {
+  return std::abs(m.m00) > 1e-12 ? cv::Point2d(m.m10 / m.m00, m.m01 / m.m00) : cv::Point2d(0, 0);
+}
+
+void writeFeatures(const ScanSums& r, const float* b, int M, float* out) {
+  double m2 = r.m2, m4 = r.m4;
+  m2 /= M, m4 /= M;
+  const double kurt = m2 > 1e-12 ? m4 / (m2 * m2) - 3.0 : 0.0;
+  const int h = M / 2, q = M / 4, kstar = r.kstar;
+  const double cmin = r.cmin, cmax = r.cmax, bmin = r.bmin, bmax = r.bmax;
   const double perp = b[(kstar + q) % M] + b[(kstar + q + h) % M];
   const double centering = cmin > 0 ? std::min(b[kstar], b[kstar + h]) / cmin : 0.5;
-  // Polygon.
-  thread_local std::vector<cv::Point2d> poly;
-  poly.resize(static_cast<std::size_t>(M));
-  const auto& dirs = beamDirections(M);
-  for (int k = 0; k < M; ++k) poly[static_cast<std::size_t>(k)] = dirs[static_cast<std::size_t>(k)] * static_cast<double>(b[k]);
-  const cv::Moments m = polygonMoments(poly);
-  const double A = std::abs(m.m00);
-  double L = 0;
-  for (int k = 0; k < M; ++k) {
-    const cv::Point2d d = poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>(k + 1 < M ? k + 1 : 0)];
-    L += std::sqrt(d.x * d.x + d.y * d.y);
-  }
-  cv::Point2d cen(0, 0);
-  if (A > 1e-12) cen = cv::Point2d(m.m10 / m.m00, m.m01 / m.m00);
-  MeanStd cd;
-  for (const auto& p : poly) cd.add(std::sqrt((p.x - cen.x) * (p.x - cen.x) + (p.y - cen.y) * (p.y - cen.y)));
+  const cv::Moments& m = r.m;
+  const double A = std::abs(m.m00), L = r.L;
+  const cv::Point2d cen = r.cen;
   double l1 = 0, l2 = 0;
   if (A > 1e-12) {
     const double a = m.mu20, c = m.mu02, bb = m.mu11;
@@ -215,19 +217,19 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   double hu[7] = {0, 0, 0, 0, 0, 0, 0};
   if (A > 1e-12) cv::HuMoments(m, hu);
   int i = 0;
-  out[i++] = static_cast<float>(diff.mean());
-  out[i++] = static_cast<float>(diff.std());
-  out[i++] = static_cast<float>(diffc.mean());
-  out[i++] = static_cast<float>(diffc.std());
-  out[i++] = static_cast<float>(beam.mean());
-  out[i++] = static_cast<float>(beam.std());
-  out[i++] = static_cast<float>(gs);
-  out[i++] = static_cast<float>(gl);
-  out[i++] = static_cast<float>(ratio.mean());
-  out[i++] = static_cast<float>(ratio.std());
+  out[i++] = static_cast<float>(r.diff.mean());
+  out[i++] = static_cast<float>(r.diff.std());
+  out[i++] = static_cast<float>(r.diffc.mean());
+  out[i++] = static_cast<float>(r.diffc.std());
+  out[i++] = static_cast<float>(r.beam.mean());
+  out[i++] = static_cast<float>(r.beam.std());
+  out[i++] = static_cast<float>(r.gs);
+  out[i++] = static_cast<float>(r.gl);
+  out[i++] = static_cast<float>(r.ratio.mean());
+  out[i++] = static_cast<float>(r.ratio.std());
   out[i++] = static_cast<float>(kurt);
-  out[i++] = static_cast<float>(rel.mean());
-  out[i++] = static_cast<float>(rel.std());
+  out[i++] = static_cast<float>(r.rel.mean());
+  out[i++] = static_cast<float>(r.rel.std());
   out[i++] = static_cast<float>(bmin);
   out[i++] = static_cast<float>(bmax);
   out[i++] = static_cast<float>(cmin);
@@ -238,8 +240,8 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   out[i++] = static_cast<float>(L);
   out[i++] = static_cast<float>(L > 0 ? A / L : 0.0);
   out[i++] = static_cast<float>(A > 1e-12 ? L * L / A : 0.0);
-  out[i++] = static_cast<float>(cd.mean());
-  out[i++] = static_cast<float>(cd.std());
+  out[i++] = static_cast<float>(r.cd.mean());
+  out[i++] = static_cast<float>(r.cd.std());
   out[i++] = static_cast<float>(emaj);
   out[i++] = static_cast<float>(emin);
   out[i++] = static_cast<float>(emaj > 0 ? emin / emaj : 0.0);
@@ -247,36 +249,163 @@ void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out)
   out[i++] = static_cast<float>(std::hypot(cen.x, cen.y));
   out[i++] = static_cast<float>(bmax > 0 ? A / (M_PI * bmax * bmax) : 0.0);
 }
+}  // namespace
+
+void extractFeatures(const float* b, int M, const FeatureOptions& o, float* out) {
+  ScanSums r;
+  for (int k = 0; k < M; ++k) r.bmax = std::max<double>(r.bmax, b[k]), r.bmin = std::min<double>(r.bmin, b[k]);
+  const double inv_bmax = 1.0 / std::max(r.bmax, 1e-6);
+  for (int k = 0; k < M; ++k) {
+    const double x = b[k], y = b[k + 1 < M ? k + 1 : 0];
+    const double d = std::abs(x - y);
+    r.diff.add(d);
+    r.diffc.add(std::abs(std::min(x, o.beam_cap) - std::min(y, o.beam_cap)));
+    r.beam.add(x);
+    r.ratio.add(std::max(x, y) > 0 ? std::min(x, y) / std::max(x, y) : 1.0);
+    r.rel.add(x * inv_bmax);
+    r.gs += d > o.gap_small;
+    r.gl += d > o.gap_large;
+  }
+  const double mu = r.beam.mean();
+  for (int k = 0; k < M; ++k) {
+    const double e = b[k] - mu;
+    r.m2 += e * e, r.m4 += e * e * e * e;
+  }
+  chordSums(b, M, r);
+  // Polygon.
+  thread_local std::vector<cv::Point2d> poly;
+  poly.resize(static_cast<std::size_t>(M));
+  const auto& dirs = beamDirections(M);
+  for (int k = 0; k < M; ++k) poly[static_cast<std::size_t>(k)] = dirs[static_cast<std::size_t>(k)] * static_cast<double>(b[k]);
+  r.m = polygonMoments(poly);
+  for (int k = 0; k < M; ++k) {
+    const cv::Point2d d = poly[static_cast<std::size_t>(k)] - poly[static_cast<std::size_t>(k + 1 < M ? k + 1 : 0)];
+    r.L += std::sqrt(d.x * d.x + d.y * d.y);
+  }
+  const cv::Point2d cen = r.cen = polygonCentroid(r.m);
+  for (const auto& p : poly) r.cd.add(std::sqrt((p.x - cen.x) * (p.x - cen.x) + (p.y - cen.y) * (p.y - cen.y)));
+  writeFeatures(r, b, M, out);
+}
+
+namespace {
+// The same computation for several scans at once, one scan per SIMD lane (GCC vector extensions): every lane
+// performs exactly the scalar operations of extractFeatures() in the same order (no sum is split or reordered,
+// selects replace branches; +, -, *, /, sqrt are correctly rounded in SIMD as in scalar code, and no FMA is
+// enabled), so the features are bit-identical (test Features.LanesEqualScalarBitForBit). Vectorising over
+// scans, not over beams, is what keeps the sums exact. Two builds of the kernel (features_lanes.inc): SSE2, two
+// lanes (every x86-64), and AVX, four lanes, chosen at run time when the CPU has AVX.
+namespace lanes_sse2 {
+constexpr int kLanes = 2;
+typedef double vd __attribute__((vector_size(8 * kLanes)));
+inline vd vsqrt(vd v) {
+#if defined(__SSE2__)
+  return reinterpret_cast<vd>(_mm_sqrt_pd(reinterpret_cast<__m128d>(v)));
+#else
+  vd r;
+  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(v[l]);
+  return r;
+#endif
+}
+#include "features_lanes.inc"
+}  // namespace lanes_sse2
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)  // GCC: #pragma GCC target
+#define GRIDTOPO_FEATURES_AVX 1
+#pragma GCC push_options
+#pragma GCC target("avx")  // AVX only: no FMA, which would fuse a * b + c and change the bits
+namespace lanes_avx {
+constexpr int kLanes = 4;
+typedef double vd __attribute__((vector_size(8 * kLanes)));
+inline vd vsqrt(vd v) { return reinterpret_cast<vd>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(v))); }
+#include "features_lanes.inc"
+}  // namespace lanes_avx
+#pragma GCC pop_options
+#endif
+
+constexpr int kMaxLanes = 4;
+std::atomic<bool> g_allow_avx{true};
+
+struct LaneKernel {
+  int lanes;
+  void (*run)(const float* const*, int, const FeatureOptions&, float* const*);
+};
+
+LaneKernel laneKernel() {
+#ifdef GRIDTOPO_FEATURES_AVX
+  if (g_allow_avx && __builtin_cpu_supports("avx")) return {lanes_avx::kLanes, lanes_avx::extractFeaturesLanes};
+#endif
+  return {lanes_sse2::kLanes, lanes_sse2::extractFeaturesLanes};
+}
+}  // namespace
+
+int featureLanes(bool allow_avx) {
+  g_allow_avx = allow_avx;
+  return laneKernel().lanes;
+}
 
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads) {
   const std::size_t n = scans.size(), F = numFeatures();
   const int M = scans.num_beams;
+  const std::size_t Ms = static_cast<std::size_t>(M);
   const std::size_t copies = 1 + options.capped_ranges.size();
-  cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F, cv::Scalar(0));
-  auto work = [&](std::size_t begin, std::size_t end) {
-    std::vector<float> beams(static_cast<std::size_t>(M)), capped(static_cast<std::size_t>(M));
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::uint16_t* s = scans.scan(i);
-      for (int k = 0; k < M; ++k) beams[static_cast<std::size_t>(k)] = s[k] * 0.001f;
-      float* row = out.ptr<float>(static_cast<int>(i));
-      extractFeatures(beams.data(), M, options, row);
-      const float longest = *std::max_element(beams.begin(), beams.end());
-      for (std::size_t c = 0; c < options.capped_ranges.size(); ++c) {
-        const float cap = static_cast<float>(options.capped_ranges[c]);
-        float* copy = row + F * (c + 1);
-        if (longest <= cap) {  // no beam reaches the cap: the capped scan is the scan, so are its features
-          std::copy(row, row + F, copy);
-          continue;
+  // Not initialised: every row's base columns are computed and every capped copy is computed or copied.
+  cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F);
+  // Jobs (a scan and where its features go) are gathered kLanes at a time for extractFeaturesLanes: the base
+  // scan of every sample, and each capped copy whose cap is reached; a copy whose cap no beam reaches is the
+  // scan itself, so its features are copied from the base columns.
+  constexpr std::size_t kChunk = 512;  // samples per work item (dynamic, so capped copies spread over threads)
+  std::atomic<std::size_t> next{0};
+  const LaneKernel kernel = laneKernel();
+  const int kLanes = kernel.lanes;
+  auto work = [&]() {
+    std::vector<float> buf(static_cast<std::size_t>(kLanes) * (1 + options.capped_ranges.size()) * Ms);
+    std::vector<float> scratch(F);
+    const float* lane_beams[kMaxLanes];
+    float* lane_out[kMaxLanes];
+    int used = 0;
+    std::size_t buf_used = 0;
+    std::vector<std::pair<float*, std::size_t>> copy_later;  // (row, capped copy c)
+    auto flush = [&]() {
+      if (used == 0) return;
+      for (int l = used; l < kLanes; ++l) lane_beams[l] = lane_beams[0], lane_out[l] = scratch.data();
+      kernel.run(lane_beams, M, options, lane_out);
+      used = 0, buf_used = 0;
+    };
+    for (std::size_t b0; (b0 = next.fetch_add(kChunk)) < n;) {
+      for (std::size_t i = b0; i < std::min(n, b0 + kChunk); ++i) {
+        const std::uint16_t* s = scans.scan(i);
+        float* row = out.ptr<float>(static_cast<int>(i));
+        const std::size_t need = Ms * (1 + options.capped_ranges.size());
+        if (buf_used + need > buf.size()) flush();
+        float* beams = buf.data() + buf_used;
+        buf_used += Ms;
+        std::uint16_t longest_mm = 0;
+        for (int k = 0; k < M; ++k) beams[k] = s[k] * 0.001f, longest_mm = std::max(longest_mm, s[k]);
+        const float longest = longest_mm * 0.001f;  // the longest beam (the conversion is monotonic)
+        lane_beams[used] = beams, lane_out[used] = row;
+        if (++used == kLanes) flush();
+        for (std::size_t c = 0; c < options.capped_ranges.size(); ++c) {
+          const float cap = static_cast<float>(options.capped_ranges[c]);
+          if (longest <= cap) {  // no beam reaches the cap: the capped scan is the scan, so are its features
+            copy_later.emplace_back(row, c);
+            continue;
+          }
+          if (buf_used + Ms > buf.size()) flush();
+          float* capped = buf.data() + buf_used;
+          buf_used += Ms;
+          for (int k = 0; k < M; ++k) capped[k] = std::min(s[k] * 0.001f, cap);  // = min(beams[k], cap)
+          lane_beams[used] = capped, lane_out[used] = row + F * (c + 1);
+          if (++used == kLanes) flush();
         }
-        for (int k = 0; k < M; ++k) capped[static_cast<std::size_t>(k)] = std::min(beams[static_cast<std::size_t>(k)], cap);
-        extractFeatures(capped.data(), M, options, copy);
       }
     }
+    flush();
+    for (const auto& [row, c] : copy_later) std::copy(row, row + F, row + F * (c + 1));
   };
-  const std::size_t nt = static_cast<std::size_t>(std::max(1, threads));
+  const int nt = std::max(1, threads);
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < nt; ++t) pool.emplace_back(work, n * t / nt, n * (t + 1) / nt);
-  work(0, n / nt);
+  for (int t = 1; t < nt; ++t) pool.emplace_back(work);
+  work();
   for (auto& t : pool) t.join();
   return out;
 }

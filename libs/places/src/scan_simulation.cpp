@@ -64,14 +64,45 @@ Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing) {
 
 namespace {
 
-// One family of parallel digital lines along the columns of `cells` (the caller transposes the image for
-// steep directions, so memory is always walked along rows): the row of line j at column k is j + offset[k],
-// offset[k] = floor(k * slope + 0.5), |slope| <= 1. Every cell lies on exactly one line. A forward pass
-// (k increasing) measures the free run behind each cell (the beam pointing to decreasing k), a backward pass the
-// run ahead.
-void sweepFamily(const cv::Mat& cells, const cv::Mat& sample_index, double resolution, double slope, int beam_back,
-                 int beam_ahead, double max_range_mm, cv::Mat& by_beam) {
-  const int n_major = cells.cols, n_minor = cells.rows;
+// The samples of each column of an image (CSR): (row, sample index) of column k are
+// items[begin[k]] .. items[begin[k + 1] - 1], in increasing row.
+struct ColumnSamples {
+  std::vector<int> begin;
+  std::vector<std::pair<int, int>> items;
+};
+
+ColumnSamples samplesByColumn(const std::vector<cv::Point>& samples, int cols, bool transposed) {
+  ColumnSamples cs;
+  cs.begin.assign(static_cast<std::size_t>(cols) + 1, 0);
+  for (const cv::Point& p : samples) cs.begin[static_cast<std::size_t>(transposed ? p.y : p.x) + 1]++;
+  for (int k = 0; k < cols; ++k) cs.begin[static_cast<std::size_t>(k) + 1] += cs.begin[static_cast<std::size_t>(k)];
+  cs.items.resize(samples.size());
+  std::vector<int> fill(cs.begin.begin(), cs.begin.end() - 1);
+  std::vector<std::size_t> order(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) order[i] = i;
+  // Increasing row within a column: sort by (row) stably; the samples come in block-row order already, so a
+  // stable sort keeps ties (none: one sample per cell) in index order.
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return (transposed ? samples[a].x : samples[a].y) < (transposed ? samples[b].x : samples[b].y);
+  });
+  for (std::size_t i : order) {
+    const cv::Point& p = samples[i];
+    const int col = transposed ? p.y : p.x, row = transposed ? p.x : p.y;
+    cs.items[static_cast<std::size_t>(fill[static_cast<std::size_t>(col)]++)] = {row, static_cast<int>(i)};
+  }
+  return cs;
+}
+
+// One family of parallel digital lines along the columns of an image (the caller swaps the roles of rows and
+// columns for steep directions): the row of line j at column k is j + offset[k], offset[k] = floor(k * slope +
+// 0.5), |slope| <= 1. Every cell lies on exactly one line. A forward sweep (k increasing) measures the free run
+// behind each cell (the beam pointing to decreasing k), a backward sweep the run ahead.
+// The sweeps go column by column over all lines at once (`columns` holds the image's column k as its row k, so
+// it is read in memory order) with one run counter per line; the run lengths are those of walking each line on
+// its own (as this function did until 2026-12), without the cache misses of following a slanted line.
+void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double resolution, double slope,
+                 int beam_back, int beam_ahead, double max_range_mm, cv::Mat& by_beam) {
+  const int n_major = columns.rows, n_minor = columns.cols;
   std::vector<int> offset(static_cast<std::size_t>(n_major));
   for (int k = 0; k < n_major; ++k) offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor(k * slope + 0.5));
   const int min_off = *std::min_element(offset.begin(), offset.end());
@@ -82,23 +113,24 @@ void sweepFamily(const cv::Mat& cells, const cv::Mat& sample_index, double resol
   std::vector<std::uint16_t> mm(static_cast<std::size_t>(max_run) + 1);
   for (int r = 0; r <= max_run; ++r)
     mm[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(std::lround(std::min((r + 0.5) * step_mm, max_range_mm)));
-  for (int j = -max_off; j <= n_minor - 1 - min_off; ++j) {
-    // The columns where line j is inside the image form one interval (offset is monotonic).
-    int k0 = 0, k1 = n_major;
-    while (k0 < n_major && (j + offset[static_cast<std::size_t>(k0)] < 0 || j + offset[static_cast<std::size_t>(k0)] >= n_minor)) ++k0;
-    while (k1 > k0 && (j + offset[static_cast<std::size_t>(k1 - 1)] < 0 || j + offset[static_cast<std::size_t>(k1 - 1)] >= n_minor)) --k1;
-    for (int pass = 0; pass < 2; ++pass) {
-      // Beam-major output: one row per beam, so a sweep's writes stay within one row (cache friendly).
-      std::uint16_t* row_out = by_beam.ptr<std::uint16_t>(pass == 0 ? beam_back : beam_ahead);
-      int run = 0;
-      for (int t = k0; t < k1; ++t) {
-        const int k = pass == 0 ? t : k0 + k1 - 1 - t;
-        const int row = j + offset[static_cast<std::size_t>(k)];
-        if (cells.ptr<unsigned char>(row)[k] != kFree) { run = 0; continue; }
-        const int idx = sample_index.ptr<int>(row)[k];
-        if (idx >= 0) row_out[idx] = mm[static_cast<std::size_t>(std::min(run, max_run))];
-        ++run;
+  // run[j + max_off]: free cells of line j passed since its last non-free cell (or since it entered the
+  // image), saturated at max_run (only min(run, max_run) is used). A line is inside the image for one interval
+  // of k, so its counter is untouched (0) until it enters.
+  std::vector<int> run(static_cast<std::size_t>(n_minor + max_off - min_off));
+  for (int pass = 0; pass < 2; ++pass) {
+    std::fill(run.begin(), run.end(), 0);
+    // Beam-major output: one row per beam.
+    std::uint16_t* out = by_beam.ptr<std::uint16_t>(pass == 0 ? beam_back : beam_ahead);
+    for (int t = 0; t < n_major; ++t) {
+      const int k = pass == 0 ? t : n_major - 1 - t;
+      // r[m]: the counter of the line through row m of column k (j = m - offset[k]).
+      int* r = run.data() + (max_off - offset[static_cast<std::size_t>(k)]);
+      for (int s = samples.begin[static_cast<std::size_t>(k)]; s < samples.begin[static_cast<std::size_t>(k) + 1]; ++s) {
+        const auto& [m, idx] = samples.items[static_cast<std::size_t>(s)];
+        out[idx] = mm[static_cast<std::size_t>(r[m])];
       }
+      const unsigned char* c = columns.ptr<unsigned char>(k);
+      for (int m = 0; m < n_minor; ++m) r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : 0;
     }
   }
 }
@@ -112,20 +144,22 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   SimulatedScans out;
   out.num_beams = options.num_beams;
   const int M = options.num_beams;
-  out.ranges_mm.assign(samples.size() * static_cast<std::size_t>(M), 0);
   if (samples.empty()) return out;
-  cv::Mat sample_index(occ.cells.size(), CV_32S, cv::Scalar(-1));
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const cv::Point& p = samples[i];
+  const std::size_t total = samples.size() * static_cast<std::size_t>(M);
+  out.ranges_mm.resize(total);
+  for (const cv::Point& p : samples)
     if (p.x < 0 || p.y < 0 || p.x >= occ.cols() || p.y >= occ.rows() || !occ.isFree(p.y, p.x))
       throw std::invalid_argument("simulateScans: sample is not a free cell of the map");
-    sample_index.at<int>(p.y, p.x) = static_cast<int>(i);
-  }
   const double max_mm = options.max_range * 1000.0;
-  cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U, cv::Scalar(0));
-  cv::Mat cells_t, index_t;
+  // Not initialised: every sample lies on one line of every family, and both sweeps of a family write its
+  // two beams.
+  cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U);
+  // Shallow directions walk the image's columns, read as the rows of its transpose; steep ones walk the
+  // transposed image's columns, i.e. the image's rows.
+  cv::Mat cells_t;
   cv::transpose(occ.cells, cells_t);
-  cv::transpose(sample_index, index_t);
+  const ColumnSamples by_col = samplesByColumn(samples, occ.cols(), false);
+  const ColumnSamples by_row = samplesByColumn(samples, occ.rows(), true);
   const std::size_t n_dirs = static_cast<std::size_t>(M / 2);
   std::atomic<std::size_t> next{0}, done{0};
   auto process = [&](std::size_t k) {
@@ -135,10 +169,10 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
     if (std::abs(dc) >= std::abs(dr)) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(occ.cells, sample_index, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, by_beam);
+      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, by_beam);
     } else {
       // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
-      sweepFamily(cells_t, index_t, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, by_beam);
+      sweepFamily(occ.cells, by_row, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, by_beam);
     }
   };
   auto worker = [&](bool report) {
@@ -153,9 +187,19 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   for (int t = 1; t < nt; ++t) pool.emplace_back(worker, false);
   worker(true);  // the calling thread works too and reports progress
   for (auto& t : pool) t.join();
-  // Sample-major for the feature extraction.
   cv::Mat by_sample(static_cast<int>(samples.size()), M, CV_16U, out.ranges_mm.data());
-  cv::transpose(by_beam, by_sample);
+  // Sample-major for the feature extraction, each thread transposing its own range of samples.
+  const int n_samples = static_cast<int>(samples.size());
+  auto transposePart = [&](int t) {
+    const int a = n_samples * t / nt, b = n_samples * (t + 1) / nt;
+    if (b <= a) return;
+    cv::Mat dst = by_sample.rowRange(a, b);
+    cv::transpose(by_beam.colRange(a, b), dst);
+  };
+  pool.clear();
+  for (int t = 1; t < nt; ++t) pool.emplace_back(transposePart, t);
+  transposePart(0);
+  for (auto& t : pool) t.join();
   if (progress) progress(n_dirs, n_dirs);
   return out;
 }

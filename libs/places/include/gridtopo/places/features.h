@@ -43,8 +43,13 @@ cv::Moments polygonMoments(const std::vector<cv::Point2d>& polygon);
 void extractFeatures(const float* beams_m, int M, const FeatureOptions& options, float* out);
 
 /// Features of every simulated scan: CV_32F, samples x (numFeatures() x (1 + capped_ranges.size())), without the
-/// context copies. Parallel over samples.
+/// context copies. Parallel over samples (chunks handed out dynamically), and within a thread several scans at
+/// once in SIMD lanes; bit-identical to calling the one-scan extractFeatures() on each (capped) scan.
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads = 2);
+
+/// Scans per SIMD batch of the whole-map extraction: 4 with AVX, else 2. `allow_avx = false` forces the SSE2
+/// kernel for the rest of the process (for tests: both kernels must give the bits of the scalar function).
+int featureLanes(bool allow_avx = true);
 
 /// Appends the context features (see FeatureOptions::context_radius) to `features` (rows = lattice samples):
 /// for each column, the mean over the samples whose blocks lie within the window (masked box filter).

@@ -1,8 +1,9 @@
 #pragma once
 // Step 1 of Mozos et al. (ICRA 2005): a simulated 360-degree range scan at every cell to classify.
-// Whole-map technique: for every beam direction the grid is partitioned into parallel digital lines, and one
-// pass along each line (forwards and backwards) gives the free run length of every cell in that direction and
-// its opposite at once -- O(cells) per pair of directions instead of one ray cast per cell and beam.
+// Whole-map technique: for every beam direction the grid is partitioned into parallel digital lines, and a
+// forward and a backward sweep over the lines give the free run length of every cell in that direction and its
+// opposite at once -- O(cells) per pair of directions instead of one ray cast per cell and beam. The sweeps
+// advance all lines of a direction together, column by column, so the image is read in memory order.
 // Cells are classified on a lattice of square blocks (side `lattice_spacing` metres); every free cell of a
 // block takes the result of its block's sample cell.
 #include <mrpt/config/CLoadableOptions.h>

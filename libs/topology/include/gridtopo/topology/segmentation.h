@@ -32,7 +32,7 @@ struct SegmentationRules {
   /// the door's width). 0 = off.
   double merge_contact = 5.0;
   double neck_width = 1.3;     ///< m; rule S1; 0 = off
-  double min_part_area = 2.0;  ///< m^2, minimum area of each part (after removing the border band)
+  double min_part_area = 0.5;  ///< m^2, minimum area of each part (after removing the border band)
   /// m^2; rule S1: obstacles enclosed by a segment (4-connected blobs of non-free cells surrounded by the
   /// segment's cells, touching no other segment) up to this area count as part of the segment when the necks are
   /// measured: furniture standing in a room (chairs, tables, pillars) is not a wall, and the band around every
