@@ -66,7 +66,9 @@ std::optional<std::string> parseReal(const std::string& text, T& out) {
 std::optional<std::string> parseIniValue(const std::string& text, int& out) { return parseInteger(text, out); }
 std::optional<std::string> parseIniValue(const std::string& text, unsigned& out) { return parseInteger(text, out); }
 std::optional<std::string> parseIniValue(const std::string& text, long& out) { return parseInteger(text, out); }
-std::optional<std::string> parseIniValue(const std::string& text, unsigned long& out) { return parseInteger(text, out); }
+std::optional<std::string> parseIniValue(const std::string& text, unsigned long& out) {
+  return parseInteger(text, out);
+}
 std::optional<std::string> parseIniValue(const std::string& text, double& out) { return parseReal(text, out); }
 std::optional<std::string> parseIniValue(const std::string& text, float& out) { return parseReal(text, out); }
 

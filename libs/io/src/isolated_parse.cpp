@@ -20,12 +20,14 @@ namespace {
 
 constexpr std::uint64_t kNoEntry = ~std::uint64_t{0};
 
-std::string entryName(std::uint64_t entry) { return entry == kNoEntry ? std::string() : "entry " + std::to_string(entry); }
+std::string entryName(std::uint64_t entry) {
+  return entry == kNoEntry ? std::string() : "entry " + std::to_string(entry);
+}
 
 /// What the checking child leaves for its parent (in shared memory).
 struct ChildReport {
   volatile std::uint64_t entry;  ///< the top-level entry being read
-  volatile int status;           ///< 0 running / parsed, 1 InputError or other exception, 2 out of memory
+  volatile int status;           ///< 0 running / parsed, 1 an exception, 2 out of its address space
   char field[128];
   char message[1024];
 };
@@ -63,8 +65,9 @@ void checkParsesInChild(const std::string& path, const std::function<void(volati
       std::fclose(statm);
     }
     if (pages > 0) {
-      const std::uintmax_t limit = static_cast<std::uintmax_t>(pages) * static_cast<std::uintmax_t>(::sysconf(_SC_PAGESIZE)) +
-                                   (std::uintmax_t{1} << 30) + 64 * file_size;
+      const auto page = static_cast<std::uintmax_t>(::sysconf(_SC_PAGESIZE));
+      const std::uintmax_t limit =
+          static_cast<std::uintmax_t>(pages) * page + (std::uintmax_t{1} << 30) + 64 * file_size;
       rlimit as{};
       if (::getrlimit(RLIMIT_AS, &as) == 0 && (as.rlim_max == RLIM_INFINITY || limit < as.rlim_max)) {
         as.rlim_cur = static_cast<rlim_t>(limit);
@@ -86,10 +89,12 @@ void checkParsesInChild(const std::string& path, const std::function<void(volati
       report->status = 2;
     } catch (const std::exception& e) {
       copyText(report->field, sizeof report->field, entryName(report->entry));
-      copyText(report->message, sizeof report->message, e.what());
+      copyText(report->message, sizeof report->message, innermostMrptMessage(e.what()));
       report->status = 1;
     } catch (...) {
-      report->status = 2;  // MRPT rethrows allocation failures as its own exceptions, not always std::
+      copyText(report->field, sizeof report->field, entryName(report->entry));
+      copyText(report->message, sizeof report->message, "unknown error while reading the file");
+      report->status = 1;
     }
     ::_exit(0);
   }
@@ -116,7 +121,8 @@ void checkParsesInChild(const std::string& path, const std::function<void(volati
                          std::to_string(sig) + ") reading this object: the file is corrupted");
   }
   if (rep.status == 2)
-    throw InputError(path, 0, where, "reading this object needs more memory than the file can justify: the file is corrupted");
+    throw InputError(path, 0, where,
+                     "reading this object needs more memory than the file can justify: the file is corrupted");
   if (rep.status == 1) throw InputError(path, 0, rep.field, rep.message);
 }
 

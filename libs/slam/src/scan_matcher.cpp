@@ -236,7 +236,8 @@ double stopBelow(double best_obj, const Pose2& x, const MatchPrior* prior) {
   const double lp = prior->log_prior(x);
   double bound = (best_obj - lp) / prior->likelihood_scale;
   if (!std::isfinite(bound)) return -std::numeric_limits<double>::infinity();
-  while (bound * prior->likelihood_scale + lp > best_obj) bound = std::nextafter(bound, -std::numeric_limits<double>::infinity());
+  while (bound * prior->likelihood_scale + lp > best_obj)
+    bound = std::nextafter(bound, -std::numeric_limits<double>::infinity());
   return bound;
 }
 
