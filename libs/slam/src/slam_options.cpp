@@ -105,16 +105,12 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
   std::string file = "<ini>";
   // MRPT file-backed configs know their file name; memory ones do not.
   if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&source)) file = f->getAssociatedFile();
-  auto parseError = [&](const std::string& key, const std::string& text, const std::string& what) {
-    return InputError(file, 0, "[" + section + "] " + key, "cannot parse '" + text + "' as " + what);
-  };
   forEachKey(*this, [&](const char* key, auto& value) {
-    using T = std::decay_t<decltype(value)>;
-    if (!source.keyExists(section, key)) return;
-    const std::string text = iniValueText(source.read_string(section, key, "", false));
-    T v{};
-    if (const auto expected = parseIniValue(text, v)) throw parseError(key, text, *expected);
-    value = v;
+    try {
+      readIniValue(source, section, key, value);
+    } catch (const InputError& e) {  // name the file too: "<file>: [section] key: cannot parse ..."
+      throw InputError(file, 0, "[" + section + "] " + key, e.message());
+    }
   });
   if (source.keyExists(section, "match_method")) {
     const std::string m = iniValueText(source.read_string(section, "match_method", "", false));
