@@ -19,6 +19,7 @@
 #include "gridtopo/core/progress.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/training.h"
+#include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/pipeline.h"
@@ -187,8 +188,9 @@ int main(int argc, char** argv) {
       }
       bar.finish();
     }
-    topology::ConfusionMatrix total_before, total_after, total_corrected, total_voted;
-    const bool vote = topo.seg_rules.segment_vote;
+    topology::ConfusionMatrix total_before, total_after, total_corrected, total_voted, total_blob, total_oracle,
+        total_oracle_keep, total_blob_oracle;
+    const bool vote = topo.seg_rules.segment_vote, blob = topo.blob_vote.enabled;
     std::ostringstream per_map;
     std::vector<SegRun> seg_plain, seg_furn;
     MeanStd loo_after;
@@ -223,25 +225,51 @@ int main(int argc, char** argv) {
       const auto lab = places::labelFromFeatures(lmaps[i].occ, samples[i].lattice, samples[i].features, model,
                                                  topo.relaxation, topo.threads);
       const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation,
-                                                    {0, 0}, topo.seg_rules);
-      topology::ConfusionMatrix before, after, corrected, voted;
+                                                    {0, 0}, topo.seg_rules, topo.blob_vote, &lab.lattice, lab.probs);
+      topology::ConfusionMatrix before, after, corrected, voted, blob_voted, oracle, oracle_keep, blob_oracle;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
       corrected.add(lmaps[i].codes, topo_res.labels_corrected);
       voted.add(lmaps[i].codes, topo_res.labels);
+      if (blob) blob_voted.add(lmaps[i].codes, topo_res.labels_blob_vote);
       total_before.add(before), total_after.add(after), total_corrected.add(corrected), total_voted.add(voted);
+      total_blob.add(blob_voted);
+      // Diagnostics (round 5): the oracle region vote (ground-truth regions, relaxed probabilities) and the blob
+      // vote with the true majority of every geometric blob (the ceiling of the blob vote for these blobs).
+      const cv::Mat cell_probs = topology::cellProbabilities(lab.labels, lab.lattice, lab.probs);
+      oracle.add(lmaps[i].codes, topology::oracleRegionVote(lmaps[i].codes, lab.labels, cell_probs, false));
+      oracle_keep.add(lmaps[i].codes, topology::oracleRegionVote(lmaps[i].codes, lab.labels, cell_probs, true));
+      {
+        cv::Mat truth_onehot(lab.labels.size(), CV_32FC3, cv::Scalar::all(0));
+        for (int r = 0; r < truth_onehot.rows; ++r)
+          for (int c = 0; c < truth_onehot.cols; ++c) {
+            const int t = places::labelFromCode(lmaps[i].codes.at<unsigned char>(r, c));
+            if (t >= 0) truth_onehot.at<cv::Vec3f>(r, c)[t] = 1.0f;
+          }
+        const cv::Mat blobs =
+            topology::geometricBlobs(lab.labels < places::kNumLabels, lmaps[i].occ.resolution, topo.blob_vote);
+        blob_oracle.add(lmaps[i].codes, topology::voteLabelsInAreas(lab.labels, blobs, truth_onehot));
+      }
+      total_oracle.add(oracle), total_oracle_keep.add(oracle_keep), total_blob_oracle.add(blob_oracle);
       loo_after.v.push_back(after.accuracy());
       per_map << (i ? ",\n" : "") << "    {\"map\": \"" << files[i].name << "\", \"order\": \""
               << places::orderName(model.order) << "\", \"relaxation_iterations\": " << lab.relaxation.iterations
               << ", \"accuracy_before\": " << before.accuracy() << ", \"accuracy_after\": " << after.accuracy()
               << ", \"accuracy_corrected\": " << corrected.accuracy()
               << (vote ? ", \"accuracy_segment_vote\": " + std::to_string(voted.accuracy()) : std::string())
+              << (blob ? ", \"accuracy_blob_vote\": " + std::to_string(blob_voted.accuracy()) : std::string())
+              << ", \"oracle_region_vote_accuracy\": " << oracle.accuracy()
+              << ", \"oracle_region_vote_keep_doorways_accuracy\": " << oracle_keep.accuracy()
+              << ", \"blob_oracle_accuracy\": " << blob_oracle.accuracy()
               << ", \"doorway_recall_before\": "
               << before.recall(2) << ", \"doorway_recall_after\": " << after.recall(2)
               << ", \"after_relaxation\": " << after.toJson(6) << "}";
       std::cerr << files[i].name << ": order " << places::orderName(model.order) << " acc before "
                 << pct(before.accuracy()) << " after " << pct(after.accuracy()) << " corrected "
-                << pct(corrected.accuracy()) << (vote ? " vote " + pct(voted.accuracy()) : std::string()) << " door recall " << pct(before.recall(2)) << "/"
+                << pct(corrected.accuracy()) << (vote ? " vote " + pct(voted.accuracy()) : std::string())
+                << (blob ? " blob vote " + pct(blob_voted.accuracy()) : std::string()) << " oracle region vote "
+                << pct(oracle.accuracy()) << " (keeping doorways " << pct(oracle_keep.accuracy()) << ") blob oracle "
+                << pct(blob_oracle.accuracy()) << " door recall " << pct(before.recall(2)) << "/"
                 << pct(after.recall(2)) << "\n";
       if (!dump_arg.getValue().empty()) {
         fs::create_directories(dump_arg.getValue());
@@ -255,6 +283,9 @@ int main(int argc, char** argv) {
         if (vote)
           cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_segment_vote.png",
                       errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
+        if (blob)
+          cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_blob_vote.png",
+                      errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_blob_vote));
       }
       if (!no_seg.getValue()) {
         const cv::Mat gt_img = cv::imread(files[i].groundtruth, cv::IMREAD_UNCHANGED);
@@ -268,7 +299,7 @@ int main(int argc, char** argv) {
           const auto t0 = std::chrono::steady_clock::now();
           const auto l = places::labelPlaces(occ, model, topo.relaxation, topo.threads, path);
           const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation, {0, 0},
-                                                  topo.seg_rules);
+                                                  topo.seg_rules, topo.blob_vote, &l.lattice, l.probs);
           const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           SegRun run{fs::path(path).stem().string(), topology::scoreSegmentation(t.segmentation, gt), secs};
           std::cerr << "  " << run.map << ": segments " << run.score.segments << " rooms " << run.score.rooms
@@ -306,7 +337,12 @@ int main(int argc, char** argv) {
        << "  \"labels\": {\n    \"before_relaxation\": " << total_before.toJson(4)
        << ",\n    \"after_relaxation\": " << total_after.toJson(4) << ",\n    \"after_correction\": "
        << total_corrected.toJson(4)
-       << (vote ? ",\n    \"after_segment_vote\": " + total_voted.toJson(4) : std::string()) << ",\n    \"per_map\": [\n" << per_map.str() << "\n    ]\n  }";
+       << (vote ? ",\n    \"after_segment_vote\": " + total_voted.toJson(4) : std::string())
+       << (blob ? ",\n    \"after_blob_vote\": " + total_blob.toJson(4) : std::string())
+       << ",\n    \"oracle_region_vote_accuracy\": " << total_oracle.accuracy()
+       << ",\n    \"oracle_region_vote\": " << total_oracle.toJson(4)
+       << ",\n    \"oracle_region_vote_keep_doorways_accuracy\": " << total_oracle_keep.accuracy()
+       << ",\n    \"blob_oracle_accuracy\": " << total_blob_oracle.accuracy() << ",\n    \"per_map\": [\n" << per_map.str() << "\n    ]\n  }";
     auto segJson = [&](const char* name, const std::vector<SegRun>& runs, const MeanStd& p, const MeanStd& r,
                        const MeanStd& t) {
       js << ",\n  \"" << name << "\": {\"precision_mean\": " << p.mean() << ", \"precision_std\": " << p.std()
@@ -329,10 +365,17 @@ int main(int argc, char** argv) {
     md << "| measure | value |\n|---|---|\n"
        << "| cell accuracy before relaxation (pooled over maps) | " << pct(total_before.accuracy()) << " % |\n"
        << "| cell accuracy after relaxation (pooled) | " << pct(total_after.accuracy()) << " % |\n"
+       << (blob ? "| cell accuracy after blob vote, before correction (pooled) | " + pct(total_blob.accuracy()) + " % |\n"
+                : std::string())
        << "| cell accuracy after region correction (pooled) | " << pct(total_corrected.accuracy()) << " % |\n"
        << (vote ? "| cell accuracy after region correction and segment vote (pooled) | " + pct(total_voted.accuracy()) +
                       " % |\n"
                 : std::string())
+       << "| diagnostic: oracle region vote (ground-truth regions, relaxed probabilities; pooled) | "
+       << pct(total_oracle.accuracy()) << " % (predicted doorways kept: " << pct(total_oracle_keep.accuracy())
+       << " %) |\n"
+       << "| diagnostic: blob oracle (geometric blobs voted with their true majority; pooled) | "
+       << pct(total_blob_oracle.accuracy()) << " % |\n"
        << "| cell accuracy after relaxation, mean ± std over maps | " << pct(loo_after.mean()) << " ± "
        << pct(loo_after.std()) << " % |\n"
        << "| recall room / corridor / doorway (after relaxation) | " << pct(total_after.recall(0)) << " / "

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/topology/segmentation.h"
@@ -24,6 +25,11 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "split_min_part_area", seg_rules.min_part_area);
   readIniValue(s, sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
   readIniValue(s, sec, "segment_vote", seg_rules.segment_vote);
+  readIniValue(s, sec, "blob_vote", blob_vote.enabled);
+  readIniValue(s, sec, "blob_vote_neck_width", blob_vote.neck_width);
+  readIniValue(s, sec, "blob_vote_min_core_area", blob_vote.min_core_area);
+  readIniValue(s, sec, "blob_vote_fill_obstacle_area", blob_vote.fill_obstacle_area);
+  readIniValue(s, sec, "blob_vote_min_share", blob_vote.min_share);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
@@ -40,6 +46,14 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
   if (!(seg_rules.fill_obstacle_area >= 0 && seg_rules.fill_obstacle_area <= 1000))
     throw InputError(where, 0, "split_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
+  if (!(blob_vote.neck_width > 0 && blob_vote.neck_width <= 20))
+    throw InputError(where, 0, "blob_vote_neck_width", "must be in (0, 20] metres");
+  if (!(blob_vote.min_core_area > 0 && blob_vote.min_core_area <= 1000))
+    throw InputError(where, 0, "blob_vote_min_core_area", "must be in (0, 1000] square metres");
+  if (!(blob_vote.fill_obstacle_area >= 0 && blob_vote.fill_obstacle_area <= 1000))
+    throw InputError(where, 0, "blob_vote_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
+  if (!(blob_vote.min_share >= 0.5 && blob_vote.min_share <= 1))
+    throw InputError(where, 0, "blob_vote_min_share", "must be in [0.5, 1]");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -51,7 +65,11 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
       << "\nsplit_min_part_area = " << seg_rules.min_part_area
       << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
-      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false") << "\n[relaxation]\n";
+      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false")
+      << "\nblob_vote      = " << (blob_vote.enabled ? "true" : "false")
+      << "\nblob_vote_neck_width = " << blob_vote.neck_width << "\nblob_vote_min_core_area = " << blob_vote.min_core_area
+      << "\nblob_vote_fill_obstacle_area = " << blob_vote.fill_obstacle_area
+      << "\nblob_vote_min_share = " << blob_vote.min_share << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -78,9 +96,18 @@ int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules) {
+                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules,
+                             const BlobVoteOptions& blob_vote, const places::Lattice* lattice,
+                             const cv::Mat& lattice_probs) {
   TopologyResult r;
-  r.labels = correctRegions(labels, resolution, correction, &r.correction);
+  cv::Mat input = labels;
+  if (blob_vote.enabled) {
+    if (!lattice || lattice_probs.empty())
+      throw std::invalid_argument("buildTopology: the blob vote needs the lattice and its relaxed probabilities");
+    r.labels_blob_vote = voteInGeometricBlobs(labels, resolution, blob_vote, *lattice, lattice_probs);
+    input = r.labels_blob_vote;
+  }
+  r.labels = correctRegions(input, resolution, correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
   r.graph = buildGraph(r.regions, resolution, origin);
   r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gridtopo/places/labelling.h"
+#include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
@@ -27,6 +28,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
+  BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -44,15 +46,20 @@ TopologyOptions loadTopologyOptions(const std::string& ini_path);
 struct TopologyResult {
   cv::Mat labels;     ///< CV_8U after correction (and the segment vote if on): 0..2, places::kNoLabel for non-free cells
   cv::Mat labels_corrected;  ///< CV_8U after the region-correction rules only (= labels without segment vote)
+  cv::Mat labels_blob_vote;  ///< CV_8U after the blob vote, before correction (empty when the blob vote is off)
   CorrectionStats correction;
   RegionMap regions;
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
 };
 
-/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
+/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels). With
+/// `blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs (step 7b), which needs the
+/// relaxed lattice probabilities: `lattice` and `lattice_probs` (LabellingResult::lattice / probs); throws
+/// std::invalid_argument without them.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
                              const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
-                             const SegmentationRules& seg_rules = {});
+                             const SegmentationRules& seg_rules = {}, const BlobVoteOptions& blob_vote = {},
+                             const places::Lattice* lattice = nullptr, const cv::Mat& lattice_probs = cv::Mat());
 
 }  // namespace gridtopo::topology

@@ -1,0 +1,155 @@
+#include "gridtopo/topology/blob_vote.h"
+
+#include <deque>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::topology {
+
+namespace {
+constexpr int kRoom = static_cast<int>(places::PlaceLabel::Room);
+constexpr int kCorridor = static_cast<int>(places::PlaceLabel::Corridor);
+constexpr int kDoorway = static_cast<int>(places::PlaceLabel::Doorway);
+
+// The vote over `areas`; with `vote_doorway_cells`, cells labelled doorway count and are voted as well.
+cv::Mat voteAreas(const cv::Mat& labels, const cv::Mat& areas, const cv::Mat& probs, double min_share,
+                  bool vote_doorway_cells) {
+  CV_Assert(labels.type() == CV_8U && areas.type() == CV_32S && probs.type() == CV_32FC3);
+  CV_Assert(labels.size() == areas.size() && labels.size() == probs.size());
+  double mx = 0;
+  cv::minMaxLoc(areas, nullptr, &mx);
+  const auto n = static_cast<std::size_t>(mx) + 1;
+  std::vector<double> room(n, 0.0), corridor(n, 0.0);
+  auto votes = [&](int l) { return l == kRoom || l == kCorridor || (vote_doorway_cells && l == kDoorway); };
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const int a = areas.at<int>(y, x);
+      if (a <= 0 || !votes(labels.at<unsigned char>(y, x))) continue;
+      const cv::Vec3f& p = probs.at<cv::Vec3f>(y, x);
+      room[static_cast<std::size_t>(a)] += p[kRoom];
+      corridor[static_cast<std::size_t>(a)] += p[kCorridor];
+    }
+  std::vector<int> winner(n, -1);
+  for (std::size_t a = 1; a < n; ++a) {
+    const double sum = room[a] + corridor[a];
+    if (!(sum > 0)) continue;
+    const int w = corridor[a] > room[a] ? kCorridor : kRoom;
+    if ((w == kRoom ? room[a] : corridor[a]) >= min_share * sum) winner[a] = w;
+  }
+  cv::Mat out = labels.clone();
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const int a = areas.at<int>(y, x);
+      unsigned char& l = out.at<unsigned char>(y, x);
+      if (a <= 0 || !votes(l)) continue;
+      const int w = winner[static_cast<std::size_t>(a)];
+      if (w >= 0) l = static_cast<unsigned char>(w);
+    }
+  return out;
+}
+}  // namespace
+
+cv::Mat cellProbabilities(const cv::Mat& labels, const places::Lattice& lattice, const cv::Mat& lattice_probs) {
+  CV_Assert(labels.type() == CV_8U && lattice_probs.type() == CV_32FC3);
+  cv::Mat out(labels.size(), CV_32FC3, cv::Scalar::all(0));
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      if (labels.at<unsigned char>(y, x) >= places::kNumLabels) continue;
+      const int by = y / lattice.stride, bx = x / lattice.stride;
+      if (lattice.block_sample.at<int>(by, bx) < 0) continue;
+      out.at<cv::Vec3f>(y, x) = lattice_probs.at<cv::Vec3f>(by, bx);
+    }
+  return out;
+}
+
+cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVoteOptions& o) {
+  CV_Assert(free_mask.type() == CV_8U && resolution > 0);
+  // Free cells with a one-cell non-free frame, so the image border counts as a wall.
+  cv::Mat free(free_mask.rows + 2, free_mask.cols + 2, CV_8U, cv::Scalar(0));
+  cv::compare(free_mask, 0, free(cv::Rect(1, 1, free_mask.cols, free_mask.rows)), cv::CMP_NE);
+  cv::Mat area = free.clone();
+  const double fill_px = o.fill_obstacle_area / (resolution * resolution);
+  if (fill_px > 0) {
+    // Obstacles not connected to the frame and no larger than fill_px: furniture.
+    cv::Mat cc, stats, cent;
+    const int n = cv::connectedComponentsWithStats(free == 0, cc, stats, cent, 4, CV_32S);
+    const int frame = cc.at<int>(0, 0);
+    std::vector<unsigned char> fill(static_cast<std::size_t>(n), 0);
+    for (int c = 1; c < n; ++c) fill[static_cast<std::size_t>(c)] = c != frame && stats.at<int>(c, cv::CC_STAT_AREA) <= fill_px;
+    for (int y = 0; y < cc.rows; ++y)
+      for (int x = 0; x < cc.cols; ++x)
+        if (fill[static_cast<std::size_t>(cc.at<int>(y, x))]) area.at<unsigned char>(y, x) = 255;
+  }
+  cv::Mat dist, core, cc, stats, cent;
+  cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::compare(dist, 0.5 * o.neck_width / resolution, core, cv::CMP_GT);
+  const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
+  const double min_core_px = o.min_core_area / (resolution * resolution);
+  std::vector<int> id(static_cast<std::size_t>(n), 0);
+  int next = 0;
+  for (int c = 1; c < n; ++c)
+    if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_core_px) id[static_cast<std::size_t>(c)] = ++next;
+  cv::Mat blobs(free.size(), CV_32S, cv::Scalar(0));
+  std::deque<cv::Point> q;
+  for (int y = 0; y < cc.rows; ++y)
+    for (int x = 0; x < cc.cols; ++x) {
+      const int b = id[static_cast<std::size_t>(cc.at<int>(y, x))];
+      if (b && free.at<unsigned char>(y, x)) blobs.at<int>(y, x) = b, q.emplace_back(x, y);
+    }
+  while (!q.empty()) {
+    const cv::Point p = q.front();
+    q.pop_front();
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int yy = p.y + dy, xx = p.x + dx;  // the frame keeps these inside
+        if (!free.at<unsigned char>(yy, xx) || blobs.at<int>(yy, xx)) continue;
+        blobs.at<int>(yy, xx) = blobs.at<int>(p);
+        q.emplace_back(xx, yy);
+      }
+  }
+  return blobs(cv::Rect(1, 1, free_mask.cols, free_mask.rows)).clone();
+}
+
+cv::Mat voteLabelsInAreas(const cv::Mat& labels, const cv::Mat& areas, const cv::Mat& cell_probs, double min_share) {
+  return voteAreas(labels, areas, cell_probs, min_share, false);
+}
+
+cv::Mat voteInGeometricBlobs(const cv::Mat& labels, double resolution, const BlobVoteOptions& options,
+                             const places::Lattice& lattice, const cv::Mat& lattice_probs) {
+  const cv::Mat blobs = geometricBlobs(labels < places::kNumLabels, resolution, options);
+  return voteLabelsInAreas(labels, blobs, cellProbabilities(labels, lattice, lattice_probs), options.min_share);
+}
+
+cv::Mat groundTruthRegions(const cv::Mat& truth_codes, const cv::Mat& labels, std::vector<int>* region_label) {
+  CV_Assert(truth_codes.type() == CV_8U && labels.type() == CV_8U && truth_codes.size() == labels.size());
+  cv::Mat out(labels.size(), CV_32S, cv::Scalar(0));
+  if (region_label) region_label->assign(1, -1);
+  int offset = 0;
+  for (int l = 0; l < places::kNumLabels; ++l) {
+    cv::Mat mask = (truth_codes == places::labelCode(l)) & (labels < places::kNumLabels), cc;
+    const int n = cv::connectedComponents(mask, cc, 8, CV_32S);
+    for (int y = 0; y < cc.rows; ++y)
+      for (int x = 0; x < cc.cols; ++x)
+        if (const int c = cc.at<int>(y, x)) out.at<int>(y, x) = offset + c;
+    if (region_label) region_label->insert(region_label->end(), static_cast<std::size_t>(n - 1), l);
+    offset += n - 1;
+  }
+  return out;
+}
+
+cv::Mat oracleRegionVote(const cv::Mat& truth_codes, const cv::Mat& labels, const cv::Mat& cell_probs,
+                         bool keep_predicted_doorways) {
+  std::vector<int> region_label;
+  cv::Mat regions = groundTruthRegions(truth_codes, labels, &region_label);
+  for (int y = 0; y < regions.rows; ++y)
+    for (int x = 0; x < regions.cols; ++x) {
+      int& r = regions.at<int>(y, x);
+      if (r > 0 && region_label[static_cast<std::size_t>(r)] == kDoorway) r = 0;  // doorway regions: not voted
+    }
+  return voteAreas(labels, regions, cell_probs, 0.5, !keep_predicted_doorways);
+}
+
+}  // namespace gridtopo::topology
