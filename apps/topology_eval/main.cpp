@@ -249,6 +249,11 @@ int main(int argc, char** argv) {
         const cv::Mat blobs =
             topology::geometricBlobs(lab.labels < places::kNumLabels, lmaps[i].occ.resolution, topo.blob_vote);
         blob_oracle.add(lmaps[i].codes, topology::voteLabelsInAreas(lab.labels, blobs, truth_onehot));
+        if (!dump_arg.getValue().empty()) {
+          fs::create_directories(dump_arg.getValue());
+          cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_blobs.png",
+                      segmentationView(lmaps[i].occ, blobs, topology::groundTruthRegions(lmaps[i].codes, lab.labels)));
+        }
       }
       total_oracle.add(oracle), total_oracle_keep.add(oracle_keep), total_blob_oracle.add(blob_oracle);
       loo_after.v.push_back(after.accuracy());

@@ -110,7 +110,8 @@ TEST(BlobVote, GeometricBlobsSplitAtDoorsAndIgnoreFurniture) {
   free(cv::Rect(10, 10, 80, 80)).setTo(255);
   free(cv::Rect(94, 10, 80, 80)).setTo(255);
   free(cv::Rect(90, 40, 4, 18)).setTo(255);
-  BlobVoteOptions o;  // neck 1.3 m, cores >= 0.5 m^2, fill <= 0.25 m^2
+  BlobVoteOptions o;
+  o.neck_width = 1.3, o.min_core_area = 0.5, o.fill_obstacle_area = 0.25, o.grow_limit = 0;
   cv::Mat b = geometricBlobs(free, 0.05, o);
   double mx = 0;
   cv::minMaxLoc(b, nullptr, &mx);
@@ -144,6 +145,7 @@ TEST(BlobVote, VoteInBlobsBeforeCorrection) {
   const places::Lattice lat = cellLattice(l.size());
   BlobVoteOptions o;
   o.enabled = true;
+  o.neck_width = 1.3, o.grow_limit = 0, o.min_share = 0.5;
   // Left room: 48 rows room (0.6 / 0.3), 32 rows corridor (0.3 / 0.6): room 3072 vs corridor 2688, share 0.533.
   const cv::Mat v = voteInGeometricBlobs(l, 0.05, o, lat, probs);
   EXPECT_EQ(v.at<unsigned char>(20, 60), R);

@@ -92,23 +92,36 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
   int next = 0;
   for (int c = 1; c < n; ++c)
     if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_core_px) id[static_cast<std::size_t>(c)] = ++next;
-  cv::Mat blobs(free.size(), CV_32S, cv::Scalar(0));
+  cv::Mat blobs(free.size(), CV_32S, cv::Scalar(0)), steps(free.size(), CV_32S, cv::Scalar(0));
   std::deque<cv::Point> q;
   for (int y = 0; y < cc.rows; ++y)
     for (int x = 0; x < cc.cols; ++x) {
       const int b = id[static_cast<std::size_t>(cc.at<int>(y, x))];
       if (b && free.at<unsigned char>(y, x)) blobs.at<int>(y, x) = b, q.emplace_back(x, y);
     }
+  const int max_steps = o.grow_limit > 0 ? static_cast<int>(o.grow_limit / resolution) : -1;
   while (!q.empty()) {
     const cv::Point p = q.front();
     q.pop_front();
+    const int st = steps.at<int>(p) + 1;
+    if (max_steps >= 0 && st > max_steps) continue;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const int yy = p.y + dy, xx = p.x + dx;  // the frame keeps these inside
         if (!free.at<unsigned char>(yy, xx) || blobs.at<int>(yy, xx)) continue;
         blobs.at<int>(yy, xx) = blobs.at<int>(p);
+        steps.at<int>(yy, xx) = st;
         q.emplace_back(xx, yy);
       }
+  }
+  if (max_steps >= 0) {
+    // Free cells no core reached within the limit: blobs of their own.
+    cv::Mat rest = free & (blobs == 0), rc;
+    const int m = cv::connectedComponents(rest, rc, 8, CV_32S);
+    (void)m;
+    for (int y = 0; y < rc.rows; ++y)
+      for (int x = 0; x < rc.cols; ++x)
+        if (const int c = rc.at<int>(y, x)) blobs.at<int>(y, x) = next + c;
   }
   return blobs(cv::Rect(1, 1, free_mask.cols, free_mask.rows)).clone();
 }

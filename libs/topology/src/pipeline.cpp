@@ -28,6 +28,7 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "blob_vote", blob_vote.enabled);
   readIniValue(s, sec, "blob_vote_neck_width", blob_vote.neck_width);
   readIniValue(s, sec, "blob_vote_min_core_area", blob_vote.min_core_area);
+  readIniValue(s, sec, "blob_vote_grow_limit", blob_vote.grow_limit);
   readIniValue(s, sec, "blob_vote_fill_obstacle_area", blob_vote.fill_obstacle_area);
   readIniValue(s, sec, "blob_vote_min_share", blob_vote.min_share);
   const std::string where = "[" + sec + "]";
@@ -50,6 +51,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "blob_vote_neck_width", "must be in (0, 20] metres");
   if (!(blob_vote.min_core_area > 0 && blob_vote.min_core_area <= 1000))
     throw InputError(where, 0, "blob_vote_min_core_area", "must be in (0, 1000] square metres");
+  if (!(blob_vote.grow_limit >= 0 && blob_vote.grow_limit <= 100))
+    throw InputError(where, 0, "blob_vote_grow_limit", "must be in [0, 100] metres (0 = no limit)");
   if (!(blob_vote.fill_obstacle_area >= 0 && blob_vote.fill_obstacle_area <= 1000))
     throw InputError(where, 0, "blob_vote_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
   if (!(blob_vote.min_share >= 0.5 && blob_vote.min_share <= 1))
@@ -68,6 +71,7 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false")
       << "\nblob_vote      = " << (blob_vote.enabled ? "true" : "false")
       << "\nblob_vote_neck_width = " << blob_vote.neck_width << "\nblob_vote_min_core_area = " << blob_vote.min_core_area
+      << "\nblob_vote_grow_limit = " << blob_vote.grow_limit
       << "\nblob_vote_fill_obstacle_area = " << blob_vote.fill_obstacle_area
       << "\nblob_vote_min_share = " << blob_vote.min_share << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);

@@ -16,14 +16,18 @@ struct BlobVoteOptions {
   bool enabled = false;  ///< [topology] blob_vote
   /// m; [topology] blob_vote_neck_width: free cells closer than half of this to an obstacle are removed to find
   /// the blob cores, so blobs are separated by passages narrower than this (doors).
-  double neck_width = 1.3;
+  double neck_width = 2.6;
   double min_core_area = 0.5;  ///< m^2; [topology] blob_vote_min_core_area: smaller cores seed no blob
+  /// m; [topology] blob_vote_grow_limit: a core grows back over at most this many metres of breadth-first steps
+  /// (8-connected, one cell per step); free cells no core reaches form blobs of their own (8-connected
+  /// components), so a corridor narrower than the neck width is not swallowed by the rooms along it. 0 = no limit.
+  double grow_limit = 1.5;
   /// m^2; [topology] blob_vote_fill_obstacle_area: obstacles (4-connected blobs of non-free cells not touching the
   /// image border) up to this area count as free space for the distance transform (furniture is not a wall).
   double fill_obstacle_area = 0.25;
   /// [topology] blob_vote_min_share: a blob is voted only when the winner's share of the blob's room + corridor
   /// probability mass is at least this (0.5 = always).
-  double min_share = 0.5;
+  double min_share = 0.75;
 };
 
 /// Per-cell probabilities (CV_32FC3): every cell with a label 0..2 in `labels` takes its lattice block's
@@ -33,7 +37,9 @@ cv::Mat cellProbabilities(const cv::Mat& labels, const places::Lattice& lattice,
 /// Geometric blobs of the free cells `free_mask` (CV_8U, non-zero = free): cores = 8-connected components of
 /// the cells farther than neck_width / 2 from every non-free cell (and from the image border), enclosed
 /// obstacles up to fill_obstacle_area counted as free, of at least min_core_area; each core grows back
-/// breadth-first (8-connected) over the free cells. CV_32S, ids 1..K; 0 = not free or reached by no core.
+/// breadth-first (8-connected) over the free cells, at most grow_limit metres when grow_limit > 0; the free
+/// cells left over are blobs of their own (8-connected components). CV_32S, ids 1..K; 0 = not free (or, without
+/// a grow limit, reached by no core).
 cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVoteOptions& options);
 
 /// Vote: in every area of `areas` (CV_32S, > 0), the cells labelled room or corridor in `labels` (CV_8U) all take
