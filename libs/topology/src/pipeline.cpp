@@ -4,7 +4,9 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cctype>
 #include <cmath>
+#include <string>
 #include <filesystem>
 
 #include "gridtopo/core/error.h"
@@ -17,6 +19,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "resolution", resolution);
   readIniValue(s, sec, "free_threshold", free_threshold);
   readIniValue(s, sec, "grid_free_threshold", grid_free_threshold);
+  readIniValue(s, sec, "free_opening_radius", free_opening_radius);
+  readIniValue(s, sec, "grid_free_opening_radius", grid_free_opening_radius);
   readIniValue(s, sec, "overlay_scale", overlay_scale);
   readIniValue(s, sec, "segmentation", segmentation);
   readIniValue(s, sec, "merge_contact", seg_rules.merge_contact);
@@ -30,6 +34,10 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   if (free_threshold < 1 || free_threshold > 255) throw InputError(where, 0, "free_threshold", "must be in [1, 255]");
   if (grid_free_threshold < 129 || grid_free_threshold > 255)
     throw InputError(where, 0, "grid_free_threshold", "must be in [129, 255] (p_free > 0.5)");
+  if (!(free_opening_radius >= 0 && free_opening_radius <= 1))
+    throw InputError(where, 0, "free_opening_radius", "must be in [0, 1] metres (0 = off)");
+  if (!(grid_free_opening_radius >= 0 && grid_free_opening_radius <= 1))
+    throw InputError(where, 0, "grid_free_opening_radius", "must be in [0, 1] metres (0 = off)");
   if (segmentation != "regions" && segmentation != "doorways")
     throw InputError(where, 0, "segmentation", "must be regions or doorways");
   if (!(seg_rules.merge_contact >= 0 && seg_rules.merge_contact <= 100))
@@ -48,6 +56,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
       << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
+      << "\nfree_opening_radius = " << free_opening_radius
+      << "\ngrid_free_opening_radius = " << grid_free_opening_radius
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
       << "\nsplit_min_part_area = " << seg_rules.min_part_area
       << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
@@ -75,6 +85,28 @@ int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
            map_path.compare(map_path.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   return endsWith(".gridmap") || endsWith(".gridmap.gz") ? grid_free_threshold : free_threshold;
+}
+
+double TopologyOptions::freeOpeningRadiusFor(const std::string& map_path) const {
+  namespace fs = std::filesystem;
+  std::string ext = fs::path(map_path).extension().string();
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  bool grid = ext == ".yaml" || ext == ".yml" || ext == ".gridmap" ||
+              (ext == ".gz" && fs::path(map_path).stem().extension() == ".gridmap");
+  for (const char* y : {".yaml", ".yml"})
+    grid = grid || fs::is_regular_file(fs::path(map_path).replace_extension(y));
+  return grid ? grid_free_opening_radius : free_opening_radius;
+}
+
+places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
+                                            int free_threshold, double opening_radius) {
+  places::OccupancyImage occ = places::occupancyFromGrey(grey, resolution, source, free_threshold);
+  if (places::countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
+  places::openFreeSpace(occ, opening_radius);
+  if (places::countFree(occ) == 0)
+    throw InputError(source, "no free cell is left after the free-space opening of radius " +
+                                 std::to_string(opening_radius) + " m (free_opening_radius / grid_free_opening_radius)");
+  return occ;
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,

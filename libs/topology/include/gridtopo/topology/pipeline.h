@@ -24,6 +24,12 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// gridtopo-slam map, whose clamped log-odds never reach grey 250). 204 = p_free >= 0.8, i.e. ROS map_saver's
   /// free_thresh 0.196.
   int grid_free_threshold = 204;
+  /// [topology] radius (m) of the morphological opening of the free space (places::openFreeSpace) for plain
+  /// images (0 = off: the labelled floor plans are drawn, not scanned) ...
+  double free_opening_radius = 0;
+  /// ... and for maps that come with a ROS .yaml, .gridmap(.gz) files and the GUI's SLAM map: 0.05 m (one cell
+  /// at 5 cm) closes the one-cell gaps of dotted walls and removes one-cell ray streaks.
+  double grid_free_opening_radius = 0.05;
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
@@ -35,6 +41,10 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// The free threshold for a map file: grid_free_threshold for .gridmap(.gz), free_threshold otherwise
   /// (plain images and ROS YAML maps, whose readers already give 0 / 205 / 254-255 greys).
   int freeThresholdFor(const std::string& map_path) const;
+
+  /// The free-space opening radius for a map file: grid_free_opening_radius for a ROS .yaml (or an image with a
+  /// .yaml beside it) and .gridmap(.gz), free_opening_radius for plain images.
+  double freeOpeningRadiusFor(const std::string& map_path) const;
 };
 
 /// Reads a topology INI (config-ini/topology.ini: [topology], [relaxation], [correction]); an empty path gives the
@@ -49,6 +59,12 @@ struct TopologyResult {
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
 };
+
+/// The occupancy image that labelling sees: places::occupancyFromGrey with `free_threshold`, then
+/// places::openFreeSpace with `opening_radius`. Throws InputError (naming `source`) for an unusable image or a map
+/// without free cells.
+places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
+                                            int free_threshold, double opening_radius);
 
 /// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
