@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> overlay("", "overlay",
                                          "write a PNG: our segments in colours, reference room borders in red", false,
                                          "", "png", cmd);
+    TCLAP::ValueArg<std::string> errors("", "errors",
+                                        "write a PNG of the label errors (wrong cells in the predicted label's colour)",
+                                        false, "", "png", cmd);
     cmd.parse(argc, argv);
 
     const topology::TopologyOptions opt = topology::loadTopologyOptions(ini.getValue());
@@ -114,6 +117,13 @@ int main(int argc, char** argv) {
           if (r.at<int>(y, x) != r.at<int>(y - 1, x) || r.at<int>(y, x) != r.at<int>(y, x - 1))
             img.at<cv::Vec3b>(y, x) = cv::Vec3b(0, 0, 255);
       outs.write(overlay.getValue(), [&](const std::string& p) {
+        if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
+      });
+    }
+    if (!errors.getValue().empty()) {
+      cv::Mat truth = topology::warpReferenceToMap(rcodes, a, map_free.size());
+      const cv::Mat img = topology::labelErrorOverlay(occ, truth, labels);
+      outs.write(errors.getValue(), [&](const std::string& p) {
         if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
       });
     }
