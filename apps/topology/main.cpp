@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
                                          });
     bar.update(90, "regions");
     const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt.correction, opt.segmentation,
-                                              cv::Point2d(grid->getXMin(), grid->getYMin()), opt.seg_rules);
+                                              cv::Point2d(grid->getXMin(), grid->getYMin()), opt.seg_rules,
+                                              opt.corridor_split);
     bar.update(100, "exports");
     bar.finish();
 

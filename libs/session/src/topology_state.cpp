@@ -65,7 +65,7 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   t.has_labelling = true;
   if (progress) progress("regions", 0, 1);
   t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options.correction, options.segmentation,
-                                   {0, 0}, options.seg_rules);
+                                   {0, 0}, options.seg_rules, options.corridor_split);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("done", 1, 1);
   return t;

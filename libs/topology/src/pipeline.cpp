@@ -28,6 +28,9 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "split_min_part_area", seg_rules.min_part_area);
   readIniValue(s, sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
   readIniValue(s, sec, "segment_vote", seg_rules.segment_vote);
+  readIniValue(s, sec, "corridor_split", corridor_split.enabled);
+  readIniValue(s, sec, "corridor_min_branch", corridor_split.min_branch);
+  readIniValue(s, sec, "corridor_min_piece_area", corridor_split.min_piece_area);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
@@ -48,6 +51,10 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
   if (!(seg_rules.fill_obstacle_area >= 0 && seg_rules.fill_obstacle_area <= 1000))
     throw InputError(where, 0, "split_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
+  if (!(corridor_split.min_branch >= 0 && corridor_split.min_branch <= 100))
+    throw InputError(where, 0, "corridor_min_branch", "must be in [0, 100] metres");
+  if (!(corridor_split.min_piece_area >= 0 && corridor_split.min_piece_area <= 1000))
+    throw InputError(where, 0, "corridor_min_piece_area", "must be in [0, 1000] square metres");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -61,7 +68,10 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
       << "\nsplit_min_part_area = " << seg_rules.min_part_area
       << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
-      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false") << "\n[relaxation]\n";
+      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false")
+      << "\ncorridor_split = " << (corridor_split.enabled ? "true" : "false")
+      << "\ncorridor_min_branch = " << corridor_split.min_branch
+      << "\ncorridor_min_piece_area = " << corridor_split.min_piece_area << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -110,11 +120,11 @@ places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resoluti
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules) {
+                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules,
+                             const CorridorSplitOptions& corridor) {
   TopologyResult r;
   r.labels = correctRegions(labels, resolution, correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
-  r.graph = buildGraph(r.regions, resolution, origin);
   r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)
                                               : roomSegmentation(r.regions, seg_rules.merge_contact, resolution);
   if (seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, seg_rules);
@@ -122,8 +132,9 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Cor
   if (seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
-    r.graph = buildGraph(r.regions, resolution, origin);
   }
+  r.regions = splitCorridors(r.regions, resolution, corridor);
+  r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }
 

@@ -8,6 +8,7 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/correction.h"
+#include "gridtopo/topology/corridor_split.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/topology/segmentation.h"
@@ -33,6 +34,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
+  CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -55,7 +57,7 @@ struct TopologyResult {
   cv::Mat labels;     ///< CV_8U after correction (and the segment vote if on): 0..2, places::kNoLabel for non-free cells
   cv::Mat labels_corrected;  ///< CV_8U after the region-correction rules only (= labels without segment vote)
   CorrectionStats correction;
-  RegionMap regions;
+  RegionMap regions;        ///< the graph's regions: 8-connected equal-label regions, corridors split at junctions
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
 };
@@ -66,9 +68,11 @@ struct TopologyResult {
 places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
                                             int free_threshold, double opening_radius);
 
-/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels).
+/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels). The segmentation is
+/// made from the 8-connected regions; the returned regions and graph then have corridors split into pieces at
+/// their junctions (`corridor`, see corridor_split.h).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
                              const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
-                             const SegmentationRules& seg_rules = {});
+                             const SegmentationRules& seg_rules = {}, const CorridorSplitOptions& corridor = {});
 
 }  // namespace gridtopo::topology
