@@ -60,9 +60,9 @@ int main(int argc, char** argv) {
     ro.resolution = opt.resolution;
     const auto grid = io::readGridMap(map_arg.getValue(), ro);
     const cv::Mat grey = io::gridToImage(*grid);
-    const places::OccupancyImage occ =
-        places::occupancyFromGrey(grey, grid->getResolution(), map_arg.getValue(),
-                                  opt.freeThresholdFor(map_arg.getValue()));
+    const places::OccupancyImage occ = topology::occupancyForTopology(
+        grey, grid->getResolution(), map_arg.getValue(), opt.freeThresholdFor(map_arg.getValue()),
+        opt.freeOpeningRadiusFor(map_arg.getValue()));
     if (occ.resolution > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)
       std::cerr << "warning: map resolution " << occ.resolution << " m is coarser than the model's lattice ("
                 << model.scan.lattice_spacing << " m); results may differ from training\n";
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     bar.update(90, "regions");
     const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt.correction, opt.segmentation,
                                               cv::Point2d(grid->getXMin(), grid->getYMin()), opt.seg_rules,
-                                              opt.blob_vote, &lab.lattice, lab.probs);
+                                              opt.corridor_split, opt.blob_vote, &lab.lattice, lab.probs);
     bar.update(100, "exports");
     bar.finish();
 

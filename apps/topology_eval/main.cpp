@@ -57,22 +57,6 @@ std::string pct(double v) {
 // Saturated label colours (BGR) of the dumped views: room blue, corridor green, doorway red.
 const cv::Vec3b kLabelColour[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
-cv::Mat errorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted) {
-  static const cv::Vec3b pale[3] = {{250, 215, 190}, {200, 240, 200}, {200, 200, 250}};
-  cv::Mat out(occ.cells.size(), CV_8UC3);
-  for (int r = 0; r < out.rows; ++r)
-    for (int c = 0; c < out.cols; ++c) {
-      cv::Vec3b& o = out.at<cv::Vec3b>(r, c);
-      o = occ.isFree(r, c) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(90, 90, 90);
-      const int t = places::labelFromCode(truth_codes.at<unsigned char>(r, c));
-      if (t < 0 || !occ.isFree(r, c)) continue;
-      const int p = predicted.at<unsigned char>(r, c);
-      if (p >= places::kNumLabels) o = cv::Vec3b(0, 0, 0);
-      else o = p == t ? pale[t] : kLabelColour[p];
-    }
-  return out;
-}
-
 // Segmentation of a benchmark map for viewing: segments in colours, segment borders black, non-free cells grey,
 // and the ground-truth room borders (free cells next to a ground-truth door line) red.
 cv::Mat segmentationView(const places::OccupancyImage& occ, const cv::Mat& seg, const cv::Mat& gt) {
@@ -225,7 +209,8 @@ int main(int argc, char** argv) {
       const auto lab = places::labelFromFeatures(lmaps[i].occ, samples[i].lattice, samples[i].features, model,
                                                  topo.relaxation, topo.threads);
       const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation,
-                                                    {0, 0}, topo.seg_rules, topo.blob_vote, &lab.lattice, lab.probs);
+                                                    {0, 0}, topo.seg_rules, topology::CorridorSplitOptions{}, topo.blob_vote,
+                                                    &lab.lattice, lab.probs);
       topology::ConfusionMatrix before, after, corrected, voted, blob_voted, oracle, oracle_keep, blob_oracle;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
@@ -280,17 +265,17 @@ int main(int argc, char** argv) {
         fs::create_directories(dump_arg.getValue());
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_labels.png", places::labelsToCodes(topo_res.labels));
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_before_relaxation.png",
-                    errorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels_initial));
+                    topology::labelErrorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels_initial));
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_relaxation.png",
-                    errorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels));
+                    topology::labelErrorOverlay(lmaps[i].occ, lmaps[i].codes, lab.labels));
         cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_correction.png",
-                    errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_corrected));
+                    topology::labelErrorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_corrected));
         if (vote)
           cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_segment_vote.png",
-                      errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
+                      topology::labelErrorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels));
         if (blob)
           cv::imwrite(dump_arg.getValue() + "/" + files[i].name + "_errors_after_blob_vote.png",
-                      errorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_blob_vote));
+                      topology::labelErrorOverlay(lmaps[i].occ, lmaps[i].codes, topo_res.labels_blob_vote));
       }
       if (!no_seg.getValue()) {
         const cv::Mat gt_img = cv::imread(files[i].groundtruth, cv::IMREAD_UNCHANGED);
@@ -304,7 +289,8 @@ int main(int argc, char** argv) {
           const auto t0 = std::chrono::steady_clock::now();
           const auto l = places::labelPlaces(occ, model, topo.relaxation, topo.threads, path);
           const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation, {0, 0},
-                                                  topo.seg_rules, topo.blob_vote, &l.lattice, l.probs);
+                                                  topo.seg_rules, topology::CorridorSplitOptions{}, topo.blob_vote,
+                                                  &l.lattice, l.probs);
           const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           SegRun run{fs::path(path).stem().string(), topology::scoreSegmentation(t.segmentation, gt), secs};
           std::cerr << "  " << run.map << ": segments " << run.score.segments << " rooms " << run.score.rooms

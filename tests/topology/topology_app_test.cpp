@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "gridtopo/io/map_io.h"
@@ -142,4 +143,49 @@ TEST(TopologyEvalApp, FixedModelErrorOverlaysAndPerMapConfusion) {
   const double a = std::atof(js.c_str() + acc + 18);
   EXPECT_GT(a, 0.87);
   EXPECT_LT(a, 1.0);
+}
+
+namespace {
+// The number after "key": at or after the first occurrence of `after` (to pick a nested object's field).
+double jsonNumber(const std::string& json, const std::string& key, const std::string& after = "") {
+  const auto p = json.find("\"" + key + "\": ", after.empty() ? 0 : json.find(after));
+  return p == std::string::npos ? -1 : std::stod(json.substr(p + key.size() + 4));
+}
+}  // namespace
+
+TEST(TopologyCompareApp, ScoresAMapInAnotherFrameAgainstTheReference) {
+  const fs::path d = fresh("compare");
+  // The "map": lab_intel turned by 90°, i.e. the same building in another frame.
+  const std::string ref = kData + "/places/maps/lab_intel.png";
+  cv::Mat turned;
+  cv::rotate(cv::imread(ref, cv::IMREAD_UNCHANGED), turned, cv::ROTATE_90_CLOCKWISE);
+  const std::string map = (d / "turned.png").string();
+  ASSERT_TRUE(cv::imwrite(map, turned));
+  ASSERT_EQ(run(map + " -m " + kModel + " -o " + (d / "out").string(), d / "err"), 0) << slurp(d / "err");
+  const std::string cmp = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-topology-compare " + map + " " +
+                          (d / "out").string() + " --reference-map " + ref + " --reference-labels " + kData +
+                          "/places/labelled/training_intel.png --reference-segmentation " + kData +
+                          "/places/groundtruth/lab_intel_gt_segmentation.png";
+  ASSERT_EQ(std::system((cmp + " -j " + (d / "c.json").string() + " --overlay " + (d / "c.png").string() + " > " +
+                         (d / "out.txt").string() + " 2>&1")
+                            .c_str()),
+            0)
+      << slurp(d / "out.txt");
+  const std::string j = slurp(d / "c.json");
+  EXPECT_GT(jsonNumber(j, "correlation"), 0.95) << j;
+  // The shipped model saw lab_intel: cell accuracy and segmentation are high (a regression bound; measured 2026-12-02:
+  // see doc/topology.md, "Scoring a map in another frame").
+  EXPECT_GT(jsonNumber(j, "cell_accuracy"), 0.85) << j;
+  EXPECT_GT(jsonNumber(j, "recall", "\"segmentation\""), 0.95) << j;
+  EXPECT_GT(jsonNumber(j, "precision", "\"segmentation\""), 0.93) << j;
+  EXPECT_TRUE(fs::exists(d / "c.png"));
+  // A missing reference is a clear error naming the file, and nothing is written.
+  std::string bad = cmp;
+  bad.replace(bad.find("--reference-map " + ref), 16 + ref.size(), "--reference-map /nonexistent/ref.png");
+  EXPECT_NE(std::system((bad + " -j " + (d / "bad.json").string() + " > " +
+                         (d / "bad.txt").string() + " 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_NE(slurp(d / "bad.txt").find("/nonexistent/ref.png"), std::string::npos) << slurp(d / "bad.txt");
+  EXPECT_FALSE(fs::exists(d / "bad.json"));
 }

@@ -31,6 +31,21 @@ OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const 
   return occ;
 }
 
+std::size_t openFreeSpace(OccupancyImage& occ, double radius) {
+  if (occ.cells.empty() || !(radius > 0) || !std::isfinite(radius)) return 0;
+  const int r = static_cast<int>(std::lround(radius / occ.resolution));
+  if (r < 1) return 0;
+  const cv::Mat free_mask = occ.cells == kFree;
+  cv::Mat opened;
+  // Pixels outside the image count as free for the erosion, so a map cut at its border keeps its edge cells.
+  cv::morphologyEx(free_mask, opened, cv::MORPH_OPEN,
+                   cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1)), cv::Point(-1, -1), 1,
+                   cv::BORDER_CONSTANT, cv::Scalar(255));
+  const cv::Mat removed = free_mask & ~opened;
+  occ.cells.setTo(kUnknown, removed);
+  return static_cast<std::size_t>(cv::countNonZero(removed));
+}
+
 std::size_t countFree(const OccupancyImage& occ) {
   return occ.cells.empty() ? 0 : static_cast<std::size_t>(cv::countNonZero(occ.cells == kFree));
 }

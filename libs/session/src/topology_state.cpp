@@ -34,6 +34,10 @@ int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& optio
   return map.source == "<slam>" ? options.grid_free_threshold : options.freeThresholdFor(map.source);
 }
 
+double freeOpeningRadiusFor(const MapLayer& map, const topology::TopologyOptions& options) {
+  return map.source == "<slam>" ? options.grid_free_opening_radius : options.freeOpeningRadiusFor(map.source);
+}
+
 TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::PlacesModel> model,
                              const topology::TopologyOptions& options,
                              const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
@@ -43,9 +47,9 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   TopologyData t;
   t.map = map;
   t.model = model;
-  t.occ = places::occupancyFromGrey(map.grey, map.resolution, map.source, freeThresholdFor(map, options));
+  t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, freeThresholdFor(map, options),
+                                        freeOpeningRadiusFor(map, options));
   // places::labelPlaces(), step by step, keeping the scans and the features.
-  if (places::countFree(t.occ) == 0) throw InputError(map.source, "the map has no free cell (nothing to label)");
   places::ScanSimulationOptions scan = model->scan;
   scan.threads = options.threads;
   const places::Lattice lattice = places::buildLattice(t.occ, scan.lattice_spacing);
@@ -61,8 +65,8 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   t.has_labelling = true;
   if (progress) progress("regions", 0, 1);
   t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options.correction, options.segmentation,
-                                   {0, 0}, options.seg_rules, options.blob_vote, &t.labelling.lattice,
-                                   t.labelling.probs);
+                                   {0, 0}, options.seg_rules, options.corridor_split, options.blob_vote,
+                                   &t.labelling.lattice, t.labelling.probs);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("done", 1, 1);
   return t;

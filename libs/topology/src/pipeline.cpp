@@ -4,7 +4,9 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cctype>
 #include <cmath>
+#include <string>
 #include <filesystem>
 #include <stdexcept>
 
@@ -18,6 +20,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "resolution", resolution);
   readIniValue(s, sec, "free_threshold", free_threshold);
   readIniValue(s, sec, "grid_free_threshold", grid_free_threshold);
+  readIniValue(s, sec, "free_opening_radius", free_opening_radius);
+  readIniValue(s, sec, "grid_free_opening_radius", grid_free_opening_radius);
   readIniValue(s, sec, "overlay_scale", overlay_scale);
   readIniValue(s, sec, "segmentation", segmentation);
   readIniValue(s, sec, "merge_contact", seg_rules.merge_contact);
@@ -31,12 +35,19 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "blob_vote_grow_limit", blob_vote.grow_limit);
   readIniValue(s, sec, "blob_vote_fill_obstacle_area", blob_vote.fill_obstacle_area);
   readIniValue(s, sec, "blob_vote_min_share", blob_vote.min_share);
+  readIniValue(s, sec, "corridor_split", corridor_split.enabled);
+  readIniValue(s, sec, "corridor_min_branch", corridor_split.min_branch);
+  readIniValue(s, sec, "corridor_min_piece_area", corridor_split.min_piece_area);
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
   if (free_threshold < 1 || free_threshold > 255) throw InputError(where, 0, "free_threshold", "must be in [1, 255]");
   if (grid_free_threshold < 129 || grid_free_threshold > 255)
     throw InputError(where, 0, "grid_free_threshold", "must be in [129, 255] (p_free > 0.5)");
+  if (!(free_opening_radius >= 0 && free_opening_radius <= 1))
+    throw InputError(where, 0, "free_opening_radius", "must be in [0, 1] metres (0 = off)");
+  if (!(grid_free_opening_radius >= 0 && grid_free_opening_radius <= 1))
+    throw InputError(where, 0, "grid_free_opening_radius", "must be in [0, 1] metres (0 = off)");
   if (segmentation != "regions" && segmentation != "doorways")
     throw InputError(where, 0, "segmentation", "must be regions or doorways");
   if (!(seg_rules.merge_contact >= 0 && seg_rules.merge_contact <= 100))
@@ -57,6 +68,10 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "blob_vote_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
   if (!(blob_vote.min_share >= 0.5 && blob_vote.min_share <= 1))
     throw InputError(where, 0, "blob_vote_min_share", "must be in [0.5, 1]");
+  if (!(corridor_split.min_branch >= 0 && corridor_split.min_branch <= 100))
+    throw InputError(where, 0, "corridor_min_branch", "must be in [0, 100] metres");
+  if (!(corridor_split.min_piece_area >= 0 && corridor_split.min_piece_area <= 1000))
+    throw InputError(where, 0, "corridor_min_piece_area", "must be in [0, 1000] square metres");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -65,6 +80,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {
   out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
       << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
+      << "\nfree_opening_radius = " << free_opening_radius
+      << "\ngrid_free_opening_radius = " << grid_free_opening_radius
       << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
       << "\nsplit_min_part_area = " << seg_rules.min_part_area
       << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
@@ -73,7 +90,10 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\nblob_vote_neck_width = " << blob_vote.neck_width << "\nblob_vote_min_core_area = " << blob_vote.min_core_area
       << "\nblob_vote_grow_limit = " << blob_vote.grow_limit
       << "\nblob_vote_fill_obstacle_area = " << blob_vote.fill_obstacle_area
-      << "\nblob_vote_min_share = " << blob_vote.min_share << "\n[relaxation]\n";
+      << "\nblob_vote_min_share = " << blob_vote.min_share
+      << "\ncorridor_split = " << (corridor_split.enabled ? "true" : "false")
+      << "\ncorridor_min_branch = " << corridor_split.min_branch
+      << "\ncorridor_min_piece_area = " << corridor_split.min_piece_area << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -99,10 +119,32 @@ int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
   return endsWith(".gridmap") || endsWith(".gridmap.gz") ? grid_free_threshold : free_threshold;
 }
 
+double TopologyOptions::freeOpeningRadiusFor(const std::string& map_path) const {
+  namespace fs = std::filesystem;
+  std::string ext = fs::path(map_path).extension().string();
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  bool grid = ext == ".yaml" || ext == ".yml" || ext == ".gridmap" ||
+              (ext == ".gz" && fs::path(map_path).stem().extension() == ".gridmap");
+  for (const char* y : {".yaml", ".yml"})
+    grid = grid || fs::is_regular_file(fs::path(map_path).replace_extension(y));
+  return grid ? grid_free_opening_radius : free_opening_radius;
+}
+
+places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
+                                            int free_threshold, double opening_radius) {
+  places::OccupancyImage occ = places::occupancyFromGrey(grey, resolution, source, free_threshold);
+  if (places::countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
+  places::openFreeSpace(occ, opening_radius);
+  if (places::countFree(occ) == 0)
+    throw InputError(source, "no free cell is left after the free-space opening of radius " +
+                                 std::to_string(opening_radius) + " m (free_opening_radius / grid_free_opening_radius)");
+  return occ;
+}
+
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
                              const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules,
-                             const BlobVoteOptions& blob_vote, const places::Lattice* lattice,
-                             const cv::Mat& lattice_probs) {
+                             const CorridorSplitOptions& corridor, const BlobVoteOptions& blob_vote,
+                             const places::Lattice* lattice, const cv::Mat& lattice_probs) {
   TopologyResult r;
   cv::Mat input = labels;
   if (blob_vote.enabled) {
@@ -113,7 +155,6 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Cor
   }
   r.labels = correctRegions(input, resolution, correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
-  r.graph = buildGraph(r.regions, resolution, origin);
   r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)
                                               : roomSegmentation(r.regions, seg_rules.merge_contact, resolution);
   if (seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, seg_rules);
@@ -121,8 +162,9 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Cor
   if (seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
-    r.graph = buildGraph(r.regions, resolution, origin);
   }
+  r.regions = splitCorridors(r.regions, resolution, corridor);
+  r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }
 

@@ -25,6 +25,14 @@ struct OccupancyImage {
 OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const std::string& source = "<image>",
                                  int free_threshold = 250, int occupied_threshold = 50);
 
+/// Morphological opening of the free space (OpenCV erode then dilate, square kernel of half-side `radius` metres,
+/// rounded to whole cells; < half a cell does nothing): free passages narrower than about 2 * radius + 1 cell and
+/// free specks and streaks that thin disappear. Made for occupancy grids built by SLAM, where walls seen edge-on
+/// or through glass come out as dotted lines (one-cell gaps that rays and regions leak through) and single rays
+/// through windows leave one-cell free streaks in the unknown. Cells that stop being free become kUnknown.
+/// Returns the number of cells removed.
+std::size_t openFreeSpace(OccupancyImage& occ, double radius);
+
 /// Number of free cells.
 std::size_t countFree(const OccupancyImage& occ);
 

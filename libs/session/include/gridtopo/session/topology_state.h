@@ -94,6 +94,9 @@ cv::Point2d nodeAnchorWorld(const TopologyData& t, const topology::GraphNode& n)
 /// The grey level from which a cell of `map` counts as free: the probabilistic-grid threshold for a map the SLAM
 /// built ("<slam>") or a .gridmap(.gz), the image threshold otherwise (topology::TopologyOptions::freeThresholdFor).
 int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& options);
+/// The free-space opening radius for a map layer: the grid radius for the map that the GUI's SLAM built ("<slam>"),
+/// topology::TopologyOptions::freeOpeningRadiusFor otherwise.
+double freeOpeningRadiusFor(const MapLayer& map, const topology::TopologyOptions& options);
 
 /// Writes the files gridtopo-topology writes (topology.graphml/.json/.dot, overlay.png, labels.png,
 /// labels_before_correction.png, segmentation.png, segmentation_colour.png, options.ini) into `dir`, all or

@@ -25,6 +25,12 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
 /// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells.
 cv::Mat segmentationImage16(const cv::Mat& segmentation);
 
+/// Label errors for viewing: non-free cells dark grey, free cells white, labelled free cells pale in their true
+/// label's colour when `predicted` (CV_8U labels 0..2, else none) agrees with `truth_codes` (77 / 115 / 179), in the
+/// saturated colour of the *predicted* label when it does not (room blue, corridor green, doorway red), black when
+/// there is no prediction.
+cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted);
+
 /// A colour rendering of a segmentation (random but fixed colour per id) for viewing.
 cv::Mat colourSegmentation(const cv::Mat& segmentation);
 

@@ -9,6 +9,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
+#include "gridtopo/topology/corridor_split.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/topology/segmentation.h"
@@ -25,10 +26,17 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// gridtopo-slam map, whose clamped log-odds never reach grey 250). 204 = p_free >= 0.8, i.e. ROS map_saver's
   /// free_thresh 0.196.
   int grid_free_threshold = 204;
+  /// [topology] radius (m) of the morphological opening of the free space (places::openFreeSpace) for plain
+  /// images (0 = off: the labelled floor plans are drawn, not scanned) ...
+  double free_opening_radius = 0;
+  /// ... and for maps that come with a ROS .yaml, .gridmap(.gz) files and the GUI's SLAM map: 0.05 m (one cell
+  /// at 5 cm) closes the one-cell gaps of dotted walls and removes one-cell ray streaks.
+  double grid_free_opening_radius = 0.05;
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
+  CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -37,6 +45,10 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// The free threshold for a map file: grid_free_threshold for .gridmap(.gz), free_threshold otherwise
   /// (plain images and ROS YAML maps, whose readers already give 0 / 205 / 254-255 greys).
   int freeThresholdFor(const std::string& map_path) const;
+
+  /// The free-space opening radius for a map file: grid_free_opening_radius for a ROS .yaml (or an image with a
+  /// .yaml beside it) and .gridmap(.gz), free_opening_radius for plain images.
+  double freeOpeningRadiusFor(const std::string& map_path) const;
 };
 
 /// Reads a topology INI (config-ini/topology.ini: [topology], [relaxation], [correction]); an empty path gives the
@@ -48,18 +60,26 @@ struct TopologyResult {
   cv::Mat labels_corrected;  ///< CV_8U after the region-correction rules only (= labels without segment vote)
   cv::Mat labels_blob_vote;  ///< CV_8U after the blob vote, before correction (empty when the blob vote is off)
   CorrectionStats correction;
-  RegionMap regions;
+  RegionMap regions;        ///< the graph's regions: 8-connected equal-label regions, corridors split at junctions
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
 };
 
-/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels). With
-/// `blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs (step 7b), which needs the
-/// relaxed lattice probabilities: `lattice` and `lattice_probs` (LabellingResult::lattice / probs); throws
-/// std::invalid_argument without them.
+/// The occupancy image that labelling sees: places::occupancyFromGrey with `free_threshold`, then
+/// places::openFreeSpace with `opening_radius`. Throws InputError (naming `source`) for an unusable image or a map
+/// without free cells.
+places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
+                                            int free_threshold, double opening_radius);
+
+/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels). The segmentation is
+/// made from the 8-connected regions; the returned regions and graph then have corridors split into pieces at
+/// their junctions (`corridor`, see corridor_split.h). With `blob_vote.enabled`, the room / corridor labels are
+/// first voted in geometric blobs (step 7b), which needs the relaxed lattice probabilities: `lattice` and
+/// `lattice_probs` (LabellingResult::lattice / probs); throws std::invalid_argument without them.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
                              const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
-                             const SegmentationRules& seg_rules = {}, const BlobVoteOptions& blob_vote = {},
-                             const places::Lattice* lattice = nullptr, const cv::Mat& lattice_probs = cv::Mat());
+                             const SegmentationRules& seg_rules = {}, const CorridorSplitOptions& corridor = {},
+                             const BlobVoteOptions& blob_vote = {}, const places::Lattice* lattice = nullptr,
+                             const cv::Mat& lattice_probs = cv::Mat());
 
 }  // namespace gridtopo::topology

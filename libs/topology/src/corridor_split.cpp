@@ -1,0 +1,253 @@
+#include "gridtopo/topology/corridor_split.h"
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::topology {
+
+namespace {
+constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+
+// Skeleton neighbours (8) and crossing number (0 -> 1 transitions around the 8-neighbourhood, in circular order).
+int neighbours(const cv::Mat& sk, int y, int x) {
+  int n = 0;
+  for (int k = 0; k < 8; ++k) n += sk.at<unsigned char>(y + kDy[k], x + kDx[k]) != 0;
+  return n;
+}
+int crossings(const cv::Mat& sk, int y, int x) {
+  int c = 0;
+  for (int k = 0; k < 8; ++k)
+    c += sk.at<unsigned char>(y + kDy[k], x + kDx[k]) == 0 && sk.at<unsigned char>(y + kDy[(k + 1) % 8], x + kDx[(k + 1) % 8]) != 0;
+  return c;
+}
+
+// Copy of `mask` (CV_8U, 0 / 255) with its holes (4-connected components of zeros not touching the image border)
+// of at most `max_cells` cells set to 255.
+cv::Mat fillHoles(const cv::Mat& mask, double max_cells) {
+  cv::Mat filled = mask.clone(), holes, stats, cents;
+  const int nh = cv::connectedComponentsWithStats(mask == 0, holes, stats, cents, 4, CV_32S);
+  std::vector<unsigned char> fill(static_cast<std::size_t>(nh), 0);
+  for (int h = 1; h < nh; ++h) {
+    const int l = stats.at<int>(h, cv::CC_STAT_LEFT), t = stats.at<int>(h, cv::CC_STAT_TOP);
+    const bool inner = l > 0 && t > 0 && l + stats.at<int>(h, cv::CC_STAT_WIDTH) < mask.cols &&
+                       t + stats.at<int>(h, cv::CC_STAT_HEIGHT) < mask.rows;
+    fill[static_cast<std::size_t>(h)] = inner && stats.at<int>(h, cv::CC_STAT_AREA) <= max_cells;
+  }
+  for (int y = 0; y < mask.rows; ++y)
+    for (int x = 0; x < mask.cols; ++x)
+      if (fill[static_cast<std::size_t>(holes.at<int>(y, x))]) filled.at<unsigned char>(y, x) = 255;
+  return filled;
+}
+
+// Splits one corridor region (mask with a one-cell zero border) into pieces: CV_32S, 1..K inside the mask, 0 outside.
+// Returns K (1 when the region has no junction).
+int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions& o, cv::Mat& pieces) {
+  pieces = cv::Mat(mask.size(), CV_32S, cv::Scalar(0));
+  // The skeleton is traced on a lattice of about 0.1 m (thinning costs grow with area and width), then carried
+  // back to the map's cells.
+  const int f = std::max(1, static_cast<int>(std::lround(0.1 / resolution)));
+  // Small holes (pillars, furniture, islands of another label) would make loops in the skeleton, and every loop
+  // two junctions: they are filled for tracing the skeleton (the pieces still cover only the region's cells). The
+  // coarse lattice is filled again: thin parts of the region can open new holes there.
+  const cv::Mat filled = fillHoles(mask, o.max_hole_area / (resolution * resolution));
+  cv::Mat small_mask = filled;
+  if (f > 1) {
+    cv::resize(filled, small_mask, cv::Size((mask.cols + f - 1) / f, (mask.rows + f - 1) / f), 0, 0, cv::INTER_AREA);
+    small_mask = fillHoles(small_mask > 127, o.max_hole_area / (resolution * resolution * f * f));
+    cv::copyMakeBorder(small_mask, small_mask, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  }
+  const int pad = f > 1 ? 1 : 0;  // the small lattice has its own one-cell zero border
+  auto toFull = [&](int x, int y) { return cv::Point((x - pad) * f + f / 2, (y - pad) * f + f / 2); };
+  cv::Mat sk;
+  cv::ximgproc::thinning(small_mask, sk, cv::ximgproc::THINNING_ZHANGSUEN);
+  cv::Mat dist;
+  cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // Prune: remove dead-end pixels (min_branch + the corridor's half-width) times, the half-width being the median
+  // distance to the wall along the skeleton: a side branch must reach min_branch beyond the corridor's wall to
+  // survive (a recess or a bump of the wall makes a skeleton spur as long as the half-width plus its depth). Longer
+  // branches lose that much length, which does not move the junctions. Dead ends are found once; afterwards only the
+  // neighbours of removed pixels can become dead ends.
+  std::vector<float> half_widths;
+  for (int y = 1; y < sk.rows - 1; ++y)
+    for (int x = 1; x < sk.cols - 1; ++x)
+      if (sk.at<unsigned char>(y, x)) {
+        const cv::Point p = toFull(x, y);
+        if (p.x < mask.cols && p.y < mask.rows) half_widths.push_back(dist.at<float>(p));
+      }
+  float half_width = 0;
+  if (!half_widths.empty()) {
+    std::nth_element(half_widths.begin(), half_widths.begin() + half_widths.size() / 2, half_widths.end());
+    half_width = half_widths[half_widths.size() / 2];
+  }
+  const int prune = static_cast<int>(std::lround((o.min_branch / resolution + half_width) / f));
+  std::vector<cv::Point> ends, next;
+  for (int y = 1; y < sk.rows - 1; ++y)
+    for (int x = 1; x < sk.cols - 1; ++x)
+      if (sk.at<unsigned char>(y, x) && crossings(sk, y, x) <= 1) ends.emplace_back(x, y);
+  for (int it = 0; it < prune && !ends.empty(); ++it) {
+    for (const auto& p : ends) sk.at<unsigned char>(p) = 0;
+    next.clear();
+    for (const auto& p : ends)
+      for (int k = 0; k < 8; ++k) {
+        const cv::Point q(p.x + kDx[k], p.y + kDy[k]);
+        if (sk.at<unsigned char>(q) == 255 && crossings(sk, q.y, q.x) <= 1) {
+          sk.at<unsigned char>(q) = 254;  // queued once
+          next.push_back(q);
+        }
+      }
+    ends.swap(next);
+  }
+  // Junction zones: a disc of the local half-width (+1 cell) around every skeleton point with >= 3 branches.
+  cv::Mat zone(mask.size(), CV_8U, cv::Scalar(0)), small_zone(sk.size(), CV_8U, cv::Scalar(0));
+  bool any = false;
+  for (int y = 1; y < sk.rows - 1; ++y)
+    for (int x = 1; x < sk.cols - 1; ++x)
+      if (sk.at<unsigned char>(y, x) && crossings(sk, y, x) >= 3) {
+        cv::Point p = toFull(x, y);
+        p.x = std::min(p.x, mask.cols - 1), p.y = std::min(p.y, mask.rows - 1);
+        const double r = dist.at<float>(p) + f;
+        cv::circle(zone, p, static_cast<int>(std::ceil(r)), cv::Scalar(255), cv::FILLED);
+        cv::circle(small_zone, {x, y}, static_cast<int>(std::ceil(r / f)), cv::Scalar(255), cv::FILLED);
+        any = true;
+      }
+  if (!any) {
+    pieces.setTo(1, mask);
+    return 1;
+  }
+  zone &= mask;
+  // Seeds: junction zones (8-connected components) and the skeleton's branches outside them.
+  cv::Mat zid, bid;
+  const int nz = cv::connectedComponents(zone, zid, 8, CV_32S) - 1;
+  const cv::Mat branches = sk & ~small_zone;
+  const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
+  std::deque<cv::Point> q;
+  for (int y = 0; y < mask.rows; ++y)
+    for (int x = 0; x < mask.cols; ++x)
+      if (const int z = zid.at<int>(y, x)) {
+        pieces.at<int>(y, x) = z;
+        q.emplace_back(x, y);
+      }
+  for (int y = 0; y < bid.rows; ++y)
+    for (int x = 0; x < bid.cols; ++x)
+      if (const int b = bid.at<int>(y, x)) {
+        const cv::Point p = toFull(x, y);
+        if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieces.at<int>(p)) continue;
+        pieces.at<int>(p) = nz + b;
+        q.push_back(p);
+      }
+  // Geodesic growth inside the region (breadth-first, 8-connected).
+  while (!q.empty()) {
+    const cv::Point p = q.front();
+    q.pop_front();
+    for (int k = 0; k < 8; ++k) {
+      const int x = p.x + kDx[k], y = p.y + kDy[k];
+      if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
+      if (!mask.at<unsigned char>(y, x) || pieces.at<int>(y, x)) continue;
+      pieces.at<int>(y, x) = pieces.at<int>(p);
+      q.emplace_back(x, y);
+    }
+  }
+  // Small pieces join the neighbour they share most border with, smallest first (sizes and borders are updated as
+  // pieces merge; union-find maps every piece to the one it ended in).
+  const int n = nz + nb;
+  std::vector<long long> size(static_cast<std::size_t>(n) + 1, 0);
+  for (int y = 0; y < pieces.rows; ++y)
+    for (int x = 0; x < pieces.cols; ++x) size[static_cast<std::size_t>(pieces.at<int>(y, x))]++;
+  std::vector<std::map<int, long long>> border(static_cast<std::size_t>(n) + 1);
+  for (const auto& [ab, len] : regionAdjacency(pieces)) {
+    border[static_cast<std::size_t>(ab.first)][ab.second] += len;
+    border[static_cast<std::size_t>(ab.second)][ab.first] += len;
+  }
+  std::vector<int> parent(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i <= n; ++i) parent[static_cast<std::size_t>(i)] = i;
+  const long long min_cells = static_cast<long long>(std::ceil(o.min_piece_area / (resolution * resolution)));
+  for (;;) {
+    int small = 0;
+    for (int i = 1; i <= n; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      if (parent[u] == i && size[u] > 0 && size[u] < min_cells && !border[u].empty() &&
+          (!small || size[u] < size[static_cast<std::size_t>(small)]))
+        small = i;
+    }
+    if (!small) break;
+    const auto us = static_cast<std::size_t>(small);
+    int best = 0;
+    long long best_len = -1;
+    for (const auto& [other, len] : border[us])
+      if (len > best_len) best = other, best_len = len;
+    const auto ub = static_cast<std::size_t>(best);
+    parent[us] = best;
+    size[ub] += size[us];
+    size[us] = 0;
+    for (const auto& [other, len] : border[us]) {
+      border[static_cast<std::size_t>(other)].erase(small);
+      if (other == best) continue;
+      border[ub][other] += len;
+      border[static_cast<std::size_t>(other)][best] += len;
+    }
+    border[us].clear();
+  }
+  auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)];
+    return i;
+  };
+  // Renumber 1..K.
+  std::map<int, int> renum;
+  for (int y = 0; y < pieces.rows; ++y)
+    for (int x = 0; x < pieces.cols; ++x)
+      if (int& v = pieces.at<int>(y, x)) v = renum.emplace(root(v), static_cast<int>(renum.size()) + 1).first->second;
+  return static_cast<int>(renum.size());
+}
+}  // namespace
+
+RegionMap splitCorridors(const RegionMap& rm, double resolution, const CorridorSplitOptions& o) {
+  if (!o.enabled) return rm;
+  RegionMap out;
+  out.ids = cv::Mat(rm.ids.size(), CV_32S, cv::Scalar(0));
+  for (const Region& r : rm.regions) {
+    // ROI with a one-cell margin (thinning and the neighbour tests read one cell around every pixel).
+    const cv::Rect roi = (r.bbox + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, rm.ids.cols, rm.ids.rows);
+    cv::Mat mask(r.bbox.height + 2, r.bbox.width + 2, CV_8U, cv::Scalar(0));
+    const cv::Point off = r.bbox.tl() - cv::Point(1, 1);  // mask (0, 0) in image coordinates
+    cv::Mat(mask, cv::Rect(roi.tl() - off, roi.size())).setTo(255, rm.ids(roi) == r.id);
+    cv::Mat pieces;
+    const int k = r.label == static_cast<int>(places::PlaceLabel::Corridor) ? splitOne(mask, resolution, o, pieces)
+                                                                             : (pieces = mask / 255, 1);
+    if (pieces.type() != CV_32S) pieces.convertTo(pieces, CV_32S);
+    const int base = static_cast<int>(out.regions.size());
+    std::vector<long long> n(static_cast<std::size_t>(k), 0), sx(n), sy(n);
+    std::vector<cv::Rect> box(static_cast<std::size_t>(k));
+    for (int y = 0; y < pieces.rows; ++y)
+      for (int x = 0; x < pieces.cols; ++x) {
+        const int p = pieces.at<int>(y, x);
+        if (!p) continue;
+        const int gx = x + off.x, gy = y + off.y;
+        out.ids.at<int>(gy, gx) = base + p;
+        const std::size_t i = static_cast<std::size_t>(p - 1);
+        ++n[i], sx[i] += gx, sy[i] += gy;
+        box[i] = n[i] == 1 ? cv::Rect(gx, gy, 1, 1) : (box[i] | cv::Rect(gx, gy, 1, 1));
+      }
+    for (int i = 0; i < k; ++i) {
+      const std::size_t u = static_cast<std::size_t>(i);
+      Region q;
+      q.id = base + i + 1;
+      q.label = r.label;
+      q.cells = static_cast<int>(n[u]);
+      q.area_m2 = q.cells * resolution * resolution;
+      q.centroid = n[u] ? cv::Point2d(double(sx[u]) / n[u], double(sy[u]) / n[u]) : r.centroid;
+      q.bbox = box[u];
+      out.regions.push_back(q);
+    }
+  }
+  return out;
+}
+
+}  // namespace gridtopo::topology
