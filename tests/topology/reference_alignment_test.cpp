@@ -97,7 +97,7 @@ TEST(TopologyOptions, FreeOpeningKeysAreReadCheckedAndPickedByMapKind) {
   EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("slam/map.gridmap.gz"), 0.05);
   EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("slam/MAP.GRIDMAP"), 0.05);
   const std::string ini = testing::TempDir() + "/opening.ini";
-  for (const std::string& bad : {"grid_free_opening_radius = -0.1", "free_opening_radius = 2", "free_opening_radius = x"}) {
+  for (const std::string bad : {"grid_free_opening_radius = -0.1", "free_opening_radius = 2", "free_opening_radius = x"}) {
     FILE* f = std::fopen(ini.c_str(), "w");
     std::fprintf(f, "[topology]\n%s\n", bad.c_str());
     std::fclose(f);

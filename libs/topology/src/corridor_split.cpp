@@ -16,12 +16,7 @@ namespace {
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 
-// Skeleton neighbours (8) and crossing number (0 -> 1 transitions around the 8-neighbourhood, in circular order).
-int neighbours(const cv::Mat& sk, int y, int x) {
-  int n = 0;
-  for (int k = 0; k < 8; ++k) n += sk.at<unsigned char>(y + kDy[k], x + kDx[k]) != 0;
-  return n;
-}
+// Crossing number: 0 -> 1 transitions around the 8-neighbourhood in circular order (1 = dead end, >= 3 = junction).
 int crossings(const cv::Mat& sk, int y, int x) {
   int c = 0;
   for (int k = 0; k < 8; ++k)
