@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       throw InputError(ref_labels.getValue(), "reference map, labels and segmentation differ in size");
     const cv::Mat ref_free = rmap > 250;
 
-    const auto s = topology::scoreAgainstReference(map_free, labels, seg, ref_free, rcodes, rooms);
+    const auto s = topology::scoreAgainstReference(map_free, labels, seg, ref_free, rcodes, rooms, 100, ref_map.getValue());
     const auto& a = s.alignment;
     std::ostringstream js;
     js << std::setprecision(6) << "{\n  \"format\": \"gridtopo-topology-compare\",\n  \"map\": \"" << map_arg.getValue()

@@ -38,9 +38,10 @@ struct ReferenceScore {
 /// Scores `labels` (CV_8U, place labels 0..2 or places::kNoLabel) and `segments` (CV_32S, 0 = none) of a map whose
 /// free cells are `map_free` against the reference: `reference_codes` (room 77 / corridor 115 / doorway 179) and
 /// `reference_rooms` (groundTruthRooms of the reference's ground truth), both in the frame of `reference_free`.
-/// Ground-truth rooms with fewer than `min_room_cells` free map cells are left out.
+/// Ground-truth rooms with fewer than `min_room_cells` free map cells are left out. Alignment errors name `source`.
 ReferenceScore scoreAgainstReference(const cv::Mat& map_free, const cv::Mat& labels, const cv::Mat& segments,
                                      const cv::Mat& reference_free, const cv::Mat& reference_codes,
-                                     const cv::Mat& reference_rooms, int min_room_cells = 100);
+                                     const cv::Mat& reference_rooms, int min_room_cells = 100,
+                                     const std::string& source = "<reference>");
 
 }  // namespace gridtopo::topology
