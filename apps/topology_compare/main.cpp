@@ -16,7 +16,6 @@
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/occupancy.h"
-#include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/pipeline.h"
@@ -81,12 +80,7 @@ int main(int argc, char** argv) {
     if (codes.size() != map_free.size() || seg16.size() != map_free.size())
       throw InputError(dir, "labels.png / segmentation.png are not the size of the map (" +
                                 std::to_string(map_free.cols) + "x" + std::to_string(map_free.rows) + ")");
-    cv::Mat labels(codes.size(), CV_8U, cv::Scalar(places::kNoLabel));
-    for (int y = 0; y < codes.rows; ++y)
-      for (int x = 0; x < codes.cols; ++x) {
-        const int l = places::labelFromCode(codes.at<unsigned char>(y, x));
-        if (l >= 0) labels.at<unsigned char>(y, x) = static_cast<unsigned char>(l);
-      }
+    const cv::Mat labels = places::labelsFromCodes(codes);
     cv::Mat seg;
     seg16.convertTo(seg, CV_32S);
 

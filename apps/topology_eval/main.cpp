@@ -54,8 +54,6 @@ std::string pct(double v) {
 // Error overlay of one labelled map: the map in grey, correctly labelled cells in a pale colour of their label,
 // wrongly labelled cells in the saturated colour of the predicted label (room blue, corridor green, doorway red),
 // labelled cells without a prediction in black.
-// Saturated label colours (BGR) of the dumped views: room blue, corridor green, doorway red.
-const cv::Vec3b kLabelColour[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
 // Segmentation of a benchmark map for viewing: segments in colours, segment borders black, non-free cells grey,
 // and the ground-truth room borders (free cells next to a ground-truth door line) red.
@@ -90,7 +88,7 @@ cv::Mat labelsView(const places::OccupancyImage& occ, const cv::Mat& labels) {
     for (int c = 0; c < out.cols; ++c) {
       const int l = labels.at<unsigned char>(r, c);
       out.at<cv::Vec3b>(r, c) = !occ.isFree(r, c) ? cv::Vec3b(110, 110, 110)
-                                : l < places::kNumLabels ? kLabelColour[l] : cv::Vec3b(255, 255, 255);
+                                : l < places::kNumLabels ? topology::kLabelColoursBgr[l] : cv::Vec3b(255, 255, 255);
     }
   return out;
 }

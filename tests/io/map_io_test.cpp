@@ -353,3 +353,18 @@ TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
   EXPECT_NEAR(m.getXMin(), -51.2f, 1e-5);  // MRPT itself: half a cell off
   EXPECT_NEAR(m.getYMin(), -12.4f, 1e-5);
 }
+
+TEST(MapIo, MapFileKindFollowsTheReader) {
+  using gridtopo::io::MapFileKind;
+  using gridtopo::io::mapFileKind;
+  EXPECT_EQ(mapFileKind("a/map.gridmap"), MapFileKind::Gridmap);
+  EXPECT_EQ(mapFileKind("a/MAP.GRIDMAP.GZ"), MapFileKind::Gridmap);
+  EXPECT_EQ(mapFileKind("a/map.yaml"), MapFileKind::RosMap);
+  EXPECT_EQ(mapFileKind("a/map.YML"), MapFileKind::RosMap);
+  const fs::path d = tmpDir() / "kind";
+  fs::create_directories(d);
+  std::ofstream(d / "plan.png") << "x";
+  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapFileKind::PlainImage);
+  std::ofstream(d / "plan.yaml") << "image: plan.png\n";
+  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapFileKind::RosMap);  // a .yaml beside the image
+}

@@ -257,15 +257,30 @@ void writeGz(const std::string& tmp, const mrpt::serialization::CSerializable& o
 
 }  // namespace
 
+namespace {
+// The ROS YAML with the same stem as an image, or "" if there is none.
+std::string yamlBeside(const std::string& path) {
+  for (const char* ext : {".yaml", ".yml"}) {
+    const fs::path yaml = fs::path(path).replace_extension(ext);
+    if (fs::is_regular_file(yaml)) return yaml.string();
+  }
+  return "";
+}
+}  // namespace
+
+MapFileKind mapFileKind(const std::string& path) {
+  const std::string l = lower(path);
+  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return MapFileKind::Gridmap;
+  if (endsWith(l, ".yaml") || endsWith(l, ".yml") || !yamlBeside(path).empty()) return MapFileKind::RosMap;
+  return MapFileKind::PlainImage;
+}
+
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options) {
   const std::string l = lower(path);
   if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path);
-  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return readGridmapFile(path);
+  if (mapFileKind(path) == MapFileKind::Gridmap) return readGridmapFile(path);
   // An image: a ROS YAML with the same stem beside it gives resolution, origin and thresholds.
-  for (const char* ext : {".yaml", ".yml"}) {
-    const fs::path yaml = fs::path(path).replace_extension(ext);
-    if (fs::is_regular_file(yaml)) return readRosMap(yaml.string(), path);
-  }
+  if (const std::string yaml = yamlBeside(path); !yaml.empty()) return readRosMap(yaml, path);
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
   const cv::Mat img = loadGrey(path);

@@ -38,6 +38,17 @@ cv::Mat labelsToCodes(const cv::Mat& labels) {
   return out;
 }
 
+cv::Mat labelsFromCodes(const cv::Mat& codes) {
+  CV_Assert(codes.type() == CV_8U);
+  cv::Mat out(codes.size(), CV_8U, cv::Scalar(kNoLabel));
+  for (int r = 0; r < codes.rows; ++r)
+    for (int c = 0; c < codes.cols; ++c) {
+      const int l = labelFromCode(codes.at<unsigned char>(r, c));
+      if (l >= 0) out.at<unsigned char>(r, c) = static_cast<unsigned char>(l);
+    }
+  return out;
+}
+
 LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,
                                   const PlacesModel& model, const RelaxationOptions& relax, int threads) {
   LabellingResult res;

@@ -148,14 +148,8 @@ TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map) {
       throw InputError(labels.string(), "label image is " + std::to_string(codes.cols) + "x" +
                                             std::to_string(codes.rows) + " but the open map is " +
                                             std::to_string(map.cols()) + "x" + std::to_string(map.rows()));
-    cv::Mat l(codes.size(), CV_8U, cv::Scalar(places::kNoLabel));
-    for (int r = 0; r < codes.rows; ++r)
-      for (int c = 0; c < codes.cols; ++c) {
-        const int v = places::labelFromCode(codes.at<unsigned char>(r, c));
-        if (v >= 0) l.at<unsigned char>(r, c) = static_cast<unsigned char>(v);
-      }
-    t.topo.labels = l;
-    t.topo.regions = topology::extractRegions(l, map.resolution);
+    t.topo.labels = places::labelsFromCodes(codes);
+    t.topo.regions = topology::extractRegions(t.topo.labels, map.resolution);
   } else if (!map.empty() && (t.topo.graph.rows != map.rows() || t.topo.graph.cols != map.cols())) {
     // Graph only: it is drawn in the frame of the open map, which must be the same size.
     throw InputError(path, 0, "rows/cols",

@@ -206,7 +206,6 @@ cv::Mat colourSegmentation(const cv::Mat& seg) {
 }
 
 cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted) {
-  static const cv::Vec3b kSaturated[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
   static const cv::Vec3b pale[3] = {{250, 215, 190}, {200, 240, 200}, {200, 200, 250}};
   cv::Mat out(occ.cells.size(), CV_8UC3);
   for (int r = 0; r < out.rows; ++r)
@@ -217,7 +216,7 @@ cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& trut
       if (t < 0 || !occ.isFree(r, c)) continue;
       const int p = predicted.at<unsigned char>(r, c);
       if (p >= places::kNumLabels) o = cv::Vec3b(0, 0, 0);
-      else o = p == t ? pale[t] : kSaturated[p];
+      else o = p == t ? pale[t] : kLabelColoursBgr[p];
     }
   return out;
 }

@@ -4,13 +4,13 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
 
-#include <cctype>
 #include <cmath>
 #include <string>
 #include <filesystem>
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/io/map_io.h"
 #include "gridtopo/topology/segmentation.h"
 
 namespace gridtopo::topology {
@@ -112,22 +112,11 @@ TopologyOptions loadTopologyOptions(const std::string& ini_path) {
 }
 
 int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
-  auto endsWith = [&](const std::string& suffix) {
-    return map_path.size() >= suffix.size() &&
-           map_path.compare(map_path.size() - suffix.size(), suffix.size(), suffix) == 0;
-  };
-  return endsWith(".gridmap") || endsWith(".gridmap.gz") ? grid_free_threshold : free_threshold;
+  return io::mapFileKind(map_path) == io::MapFileKind::Gridmap ? grid_free_threshold : free_threshold;
 }
 
 double TopologyOptions::freeOpeningRadiusFor(const std::string& map_path) const {
-  namespace fs = std::filesystem;
-  std::string ext = fs::path(map_path).extension().string();
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  bool grid = ext == ".yaml" || ext == ".yml" || ext == ".gridmap" ||
-              (ext == ".gz" && fs::path(map_path).stem().extension() == ".gridmap");
-  for (const char* y : {".yaml", ".yml"})
-    grid = grid || fs::is_regular_file(fs::path(map_path).replace_extension(y));
-  return grid ? grid_free_opening_radius : free_opening_radius;
+  return io::mapFileKind(map_path) == io::MapFileKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
 }
 
 places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,

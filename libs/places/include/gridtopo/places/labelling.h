@@ -36,5 +36,8 @@ cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::
 
 /// Label indices -> training-map codes (room 77, corridor 115, doorway 179, 0 elsewhere).
 cv::Mat labelsToCodes(const cv::Mat& labels);
+/// Training-map codes -> label indices (0 room, 1 corridor, 2 doorway; kNoLabel for any other code): the inverse
+/// of labelsToCodes, e.g. to read back a labels.png of gridtopo-topology.
+cv::Mat labelsFromCodes(const cv::Mat& codes);
 
 }  // namespace gridtopo::places

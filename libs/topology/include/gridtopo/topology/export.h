@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gridtopo/places/occupancy.h"
+#include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
 
@@ -24,6 +25,9 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
 
 /// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells.
 cv::Mat segmentationImage16(const cv::Mat& segmentation);
+
+/// Saturated label colours (BGR) of the evaluation views: room blue, corridor green, doorway red.
+inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
 /// Label errors for viewing: non-free cells dark grey, free cells white, labelled free cells pale in their true
 /// label's colour when `predicted` (CV_8U labels 0..2, else none) agrees with `truth_codes` (77 / 115 / 179), in the

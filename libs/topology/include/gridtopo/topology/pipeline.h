@@ -42,7 +42,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
 
-  /// The free threshold for a map file: grid_free_threshold for .gridmap(.gz), free_threshold otherwise
+  /// The free threshold for a map file (io::mapFileKind): grid_free_threshold for .gridmap(.gz), free_threshold otherwise
   /// (plain images and ROS YAML maps, whose readers already give 0 / 205 / 254-255 greys).
   int freeThresholdFor(const std::string& map_path) const;
 
