@@ -6,6 +6,7 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
+#include "mask_ops.h"
 
 namespace gridtopo::topology {
 
@@ -70,19 +71,9 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
   // Free cells with a one-cell non-free frame, so the image border counts as a wall.
   cv::Mat free(free_mask.rows + 2, free_mask.cols + 2, CV_8U, cv::Scalar(0));
   cv::compare(free_mask, 0, free(cv::Rect(1, 1, free_mask.cols, free_mask.rows)), cv::CMP_NE);
-  cv::Mat area = free.clone();
+  // Obstacles not connected to the frame and no larger than fill_obstacle_area: furniture.
   const double fill_px = o.fill_obstacle_area / (resolution * resolution);
-  if (fill_px > 0) {
-    // Obstacles not connected to the frame and no larger than fill_px: furniture.
-    cv::Mat cc, stats, cent;
-    const int n = cv::connectedComponentsWithStats(free == 0, cc, stats, cent, 4, CV_32S);
-    const int frame = cc.at<int>(0, 0);
-    std::vector<unsigned char> fill(static_cast<std::size_t>(n), 0);
-    for (int c = 1; c < n; ++c) fill[static_cast<std::size_t>(c)] = c != frame && stats.at<int>(c, cv::CC_STAT_AREA) <= fill_px;
-    for (int y = 0; y < cc.rows; ++y)
-      for (int x = 0; x < cc.cols; ++x)
-        if (fill[static_cast<std::size_t>(cc.at<int>(y, x))]) area.at<unsigned char>(y, x) = 255;
-  }
+  const cv::Mat area = fill_px > 0 ? fillSmallHoles(free, fill_px) : free.clone();
   cv::Mat dist, core, cc, stats, cent;
   cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   cv::compare(dist, 0.5 * o.neck_width / resolution, core, cv::CMP_GT);
@@ -92,28 +83,14 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
   int next = 0;
   for (int c = 1; c < n; ++c)
     if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_core_px) id[static_cast<std::size_t>(c)] = ++next;
-  cv::Mat blobs(free.size(), CV_32S, cv::Scalar(0)), steps(free.size(), CV_32S, cv::Scalar(0));
-  std::deque<cv::Point> q;
+  cv::Mat blobs(free.size(), CV_32S, cv::Scalar(0));
   for (int y = 0; y < cc.rows; ++y)
     for (int x = 0; x < cc.cols; ++x) {
       const int b = id[static_cast<std::size_t>(cc.at<int>(y, x))];
-      if (b && free.at<unsigned char>(y, x)) blobs.at<int>(y, x) = b, q.emplace_back(x, y);
+      if (b && free.at<unsigned char>(y, x)) blobs.at<int>(y, x) = b;
     }
   const int max_steps = o.grow_limit > 0 ? static_cast<int>(o.grow_limit / resolution) : -1;
-  while (!q.empty()) {
-    const cv::Point p = q.front();
-    q.pop_front();
-    const int st = steps.at<int>(p) + 1;
-    if (max_steps >= 0 && st > max_steps) continue;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int yy = p.y + dy, xx = p.x + dx;  // the frame keeps these inside
-        if (!free.at<unsigned char>(yy, xx) || blobs.at<int>(yy, xx)) continue;
-        blobs.at<int>(yy, xx) = blobs.at<int>(p);
-        steps.at<int>(yy, xx) = st;
-        q.emplace_back(xx, yy);
-      }
-  }
+  growSeeds(blobs, free, max_steps);
   if (max_steps >= 0) {
     // Free cells no core reached within the limit: blobs of their own.
     cv::Mat rest = free & (blobs == 0), rc;

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <map>
 
 #include "gridtopo/places/place_label.h"
+#include "mask_ops.h"
 
 namespace gridtopo::topology {
 
@@ -24,24 +24,6 @@ int crossings(const cv::Mat& sk, int y, int x) {
   return c;
 }
 
-// Copy of `mask` (CV_8U, 0 / 255) with its holes (4-connected components of zeros not touching the image border)
-// of at most `max_cells` cells set to 255.
-cv::Mat fillHoles(const cv::Mat& mask, double max_cells) {
-  cv::Mat filled = mask.clone(), holes, stats, cents;
-  const int nh = cv::connectedComponentsWithStats(mask == 0, holes, stats, cents, 4, CV_32S);
-  std::vector<unsigned char> fill(static_cast<std::size_t>(nh), 0);
-  for (int h = 1; h < nh; ++h) {
-    const int l = stats.at<int>(h, cv::CC_STAT_LEFT), t = stats.at<int>(h, cv::CC_STAT_TOP);
-    const bool inner = l > 0 && t > 0 && l + stats.at<int>(h, cv::CC_STAT_WIDTH) < mask.cols &&
-                       t + stats.at<int>(h, cv::CC_STAT_HEIGHT) < mask.rows;
-    fill[static_cast<std::size_t>(h)] = inner && stats.at<int>(h, cv::CC_STAT_AREA) <= max_cells;
-  }
-  for (int y = 0; y < mask.rows; ++y)
-    for (int x = 0; x < mask.cols; ++x)
-      if (fill[static_cast<std::size_t>(holes.at<int>(y, x))]) filled.at<unsigned char>(y, x) = 255;
-  return filled;
-}
-
 // Splits one corridor region (mask with a one-cell zero border) into pieces: CV_32S, 1..K inside the mask, 0 outside.
 // Returns K (1 when the region has no junction).
 int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions& o, cv::Mat& pieces) {
@@ -52,11 +34,11 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   // Small holes (pillars, furniture, islands of another label) would make loops in the skeleton, and every loop
   // two junctions: they are filled for tracing the skeleton (the pieces still cover only the region's cells). The
   // coarse lattice is filled again: thin parts of the region can open new holes there.
-  const cv::Mat filled = fillHoles(mask, o.max_hole_area / (resolution * resolution));
+  const cv::Mat filled = fillSmallHoles(mask, o.max_hole_area / (resolution * resolution));
   cv::Mat small_mask = filled;
   if (f > 1) {
     cv::resize(filled, small_mask, cv::Size((mask.cols + f - 1) / f, (mask.rows + f - 1) / f), 0, 0, cv::INTER_AREA);
-    small_mask = fillHoles(small_mask > 127, o.max_hole_area / (resolution * resolution * f * f));
+    small_mask = fillSmallHoles(small_mask > 127, o.max_hole_area / (resolution * resolution * f * f));
     cv::copyMakeBorder(small_mask, small_mask, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   }
   const int pad = f > 1 ? 1 : 0;  // the small lattice has its own one-cell zero border
@@ -123,33 +105,18 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   const int nz = cv::connectedComponents(zone, zid, 8, CV_32S) - 1;
   const cv::Mat branches = sk & ~small_zone;
   const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
-  std::deque<cv::Point> q;
   for (int y = 0; y < mask.rows; ++y)
     for (int x = 0; x < mask.cols; ++x)
-      if (const int z = zid.at<int>(y, x)) {
-        pieces.at<int>(y, x) = z;
-        q.emplace_back(x, y);
-      }
+      if (const int z = zid.at<int>(y, x)) pieces.at<int>(y, x) = z;
   for (int y = 0; y < bid.rows; ++y)
     for (int x = 0; x < bid.cols; ++x)
       if (const int b = bid.at<int>(y, x)) {
         const cv::Point p = toFull(x, y);
         if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieces.at<int>(p)) continue;
         pieces.at<int>(p) = nz + b;
-        q.push_back(p);
       }
   // Geodesic growth inside the region (breadth-first, 8-connected).
-  while (!q.empty()) {
-    const cv::Point p = q.front();
-    q.pop_front();
-    for (int k = 0; k < 8; ++k) {
-      const int x = p.x + kDx[k], y = p.y + kDy[k];
-      if (x < 0 || y < 0 || x >= mask.cols || y >= mask.rows) continue;
-      if (!mask.at<unsigned char>(y, x) || pieces.at<int>(y, x)) continue;
-      pieces.at<int>(y, x) = pieces.at<int>(p);
-      q.emplace_back(x, y);
-    }
-  }
+  growSeeds(pieces, mask);
   // Small pieces join the neighbour they share most border with, smallest first (sizes and borders are updated as
   // pieces merge; union-find maps every piece to the one it ended in).
   const int n = nz + nb;

@@ -1,11 +1,11 @@
 #include "gridtopo/topology/segmentation.h"
 
-#include <deque>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 #include <functional>
 
 #include "gridtopo/places/place_label.h"
+#include "mask_ops.h"
 
 namespace gridtopo::topology {
 
@@ -13,31 +13,13 @@ namespace {
 // Seeds: seg_of[region id - 1] > 0; grows them into the remaining labelled cells.
 cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int next) {
   cv::Mat seg(rm.ids.size(), CV_32S, cv::Scalar(0));
-  std::deque<cv::Point> q;
   for (int y = 0; y < seg.rows; ++y)
     for (int x = 0; x < seg.cols; ++x) {
       const int id = rm.ids.at<int>(y, x);
-      if (id > 0 && seg_of[static_cast<std::size_t>(id - 1)] > 0) {
-        seg.at<int>(y, x) = seg_of[static_cast<std::size_t>(id - 1)];
-        q.emplace_back(x, y);
-      }
+      if (id > 0 && seg_of[static_cast<std::size_t>(id - 1)] > 0) seg.at<int>(y, x) = seg_of[static_cast<std::size_t>(id - 1)];
     }
   // Grow into doorway cells; only seeds that border a doorway cell ever expand.
-  while (!q.empty()) {
-    const cv::Point p = q.front();
-    q.pop_front();
-    const int s = seg.at<int>(p);
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int yy = p.y + dy, xx = p.x + dx;
-        if ((!dy && !dx) || yy < 0 || xx < 0 || yy >= seg.rows || xx >= seg.cols) continue;
-        if (seg.at<int>(yy, xx) != 0) continue;
-        const int id = rm.ids.at<int>(yy, xx);
-        if (id <= 0) continue;
-        seg.at<int>(yy, xx) = s;
-        q.emplace_back(xx, yy);
-      }
-  }
+  growSeeds(seg, rm.ids > 0);
   // Isolated doorway regions.
   std::vector<int> own(rm.regions.size(), 0);
   for (int y = 0; y < seg.rows; ++y)
@@ -56,22 +38,9 @@ cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int ne
 // reach the frame, holds no cell of another segment (only non-free or unlabelled cells) and is at most
 // `max_px` cells: obstacles enclosed by the segment.
 cv::Mat withEnclosedObstacles(const cv::Mat& mask, const cv::Mat& seg_crop, double max_px) {
-  cv::Mat outside = mask == 0, cc, stats, cent;
-  const int n = cv::connectedComponentsWithStats(outside, cc, stats, cent, 4, CV_32S);
-  std::vector<unsigned char> fill(static_cast<std::size_t>(n), 0);
-  for (int c = 1; c < n; ++c) fill[static_cast<std::size_t>(c)] = stats.at<int>(c, cv::CC_STAT_AREA) <= max_px;
-  for (int y = 0; y < cc.rows; ++y)
-    for (int x = 0; x < cc.cols; ++x) {
-      const int c = cc.at<int>(y, x);
-      if (!c) continue;
-      const bool frame = y == 0 || x == 0 || y == cc.rows - 1 || x == cc.cols - 1;
-      if (frame || seg_crop.at<int>(y - 1, x - 1) != 0) fill[static_cast<std::size_t>(c)] = 0;
-    }
-  cv::Mat out = mask.clone();
-  for (int y = 0; y < cc.rows; ++y)
-    for (int x = 0; x < cc.cols; ++x)
-      if (fill[static_cast<std::size_t>(cc.at<int>(y, x))]) out.at<unsigned char>(y, x) = 255;
-  return out;
+  cv::Mat other(mask.size(), CV_8U, cv::Scalar(0));  // cells of other segments veto a hole
+  cv::compare(seg_crop, 0, other(cv::Rect(1, 1, seg_crop.cols, seg_crop.rows)), cv::CMP_NE);
+  return fillSmallHoles(mask, max_px, other);
 }
 }  // namespace
 
@@ -167,23 +136,9 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     if (parts < 2) continue;
     // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet).
     cv::Mat own(mask.size(), CV_32S, cv::Scalar(0));
-    std::deque<cv::Point> q;
     for (int y = 0; y < cc.rows; ++y)
-      for (int x = 0; x < cc.cols; ++x) {
-        const int id = part_id[static_cast<std::size_t>(cc.at<int>(y, x))];
-        if (id) own.at<int>(y, x) = id, q.emplace_back(x, y);
-      }
-    while (!q.empty()) {
-      const cv::Point p = q.front();
-      q.pop_front();
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int yy = p.y + dy, xx = p.x + dx;  // the empty frame keeps these inside the crop
-          if (!area.at<unsigned char>(yy, xx) || own.at<int>(yy, xx)) continue;
-          own.at<int>(yy, xx) = own.at<int>(p);
-          q.emplace_back(xx, yy);
-        }
-    }
+      for (int x = 0; x < cc.cols; ++x) own.at<int>(y, x) = part_id[static_cast<std::size_t>(cc.at<int>(y, x))];
+    growSeeds(own, area);
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
         const int id = own.at<int>(y + 1, x + 1);
