@@ -877,12 +877,17 @@ class Parser {
     }
     const ColumnHealth hli = diagnose(li), hll = diagnose(ll), hoi = diagnose(oi), hol = diagnose(ol);
     if (!hli.degenerate()) {
+      // Reported only: ODOM lines are not what relations are matched by, and replacing their clock would
+      // desynchronise them from the (healthy) laser lines. GMapping's corrected logs have such ODOM lines.
       if (hoi.degenerate())
-        log_.warnings.push_back("ODOM ipc timestamps look degenerate (" + hoi.describe() +
+        log_.warnings.push_back(std::string("ODOM ipc ") + (hol.degenerate() ? "and logger " : "") +
+                                "timestamps look degenerate (" + hoi.describe() +
                                 "): kept as read because the laser ipc timestamps are healthy");
-      if (hll.degenerate() || hol.degenerate())
-        log_.warnings.push_back(std::string(hll.degenerate() ? "laser" : "ODOM") + " logger timestamps look " +
-                                "degenerate (" + (hll.degenerate() ? hll : hol).describe() +
+      if (hll.degenerate())
+        log_.warnings.push_back("laser logger timestamps look degenerate (" + hll.describe() +
+                                "): kept as read (the ipc timestamps are the ones used)");
+      if (hol.degenerate() && !hoi.degenerate())
+        log_.warnings.push_back("ODOM logger timestamps look degenerate (" + hol.describe() +
                                 "): kept as read (the ipc timestamps are the ones used)");
       return;
     }
