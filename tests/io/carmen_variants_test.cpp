@@ -339,7 +339,11 @@ TEST(CarmenTimestamps, RepairedInPlaceWhenTheLoggerTimestampsAreDegenerateToo) {
   // Nothing to go by: left as read, and said so.
   log = parse(timedLog(zero, zero));
   EXPECT_EQ(log.scans[29].scan.timestamp, 0.0);
-  EXPECT_TRUE(contains(log.warnings, "the log holds no time")) << joined(log.warnings);
+  EXPECT_TRUE(contains(log.warnings, "the log holds no usable time")) << joined(log.warnings);
+  // Absurd values whose repair would overflow: left as read (finite), and said so.
+  log = parse(timedLog([](int i, bool) { return std::string(i < 15 ? "1e308" : "-1e308"); }, zero));
+  EXPECT_EQ(log.scans[29].scan.timestamp, -1e308);
+  EXPECT_TRUE(contains(log.warnings, "the log holds no usable time")) << joined(log.warnings);
 }
 
 TEST(CarmenTimestamps, HealthyTimestampsAreNeverChanged) {

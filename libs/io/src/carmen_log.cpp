@@ -360,9 +360,10 @@ ColumnHealth diagnose(const std::vector<double>& t) {
 /// Makes one column usable in place: wraps are undone (each later value shifted by the jump plus the typical
 /// step), then runs of equal values are spread by line order between their value and the next distinct one
 /// (the last run continues at the column's mean rate). A constant column stays constant: there is no time in it.
-void repairColumn(std::vector<double>& t) {
+/// Returns false if the column had to stay as read.
+bool repairColumn(std::vector<double>& t) {
   const std::size_t n = t.size();
-  if (n < 2) return;
+  if (n < 2) return false;
   const std::vector<double> raw = t;
   const double step = medianPositiveStep(raw);
   const double wrap = wrapThreshold(raw);
@@ -386,6 +387,12 @@ void repairColumn(std::vector<double>& t) {
     }
     i = j + 1;
   }
+  // Absurd values (±1e308 in a damaged file) can overflow the shifts: then the column stays as read.
+  if (!std::all_of(t.begin(), t.end(), [](double v) { return std::isfinite(v); })) {
+    t = raw;
+    return false;
+  }
+  return t != raw;
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -899,18 +906,18 @@ class Parser {
                               formatDouble(hll.last) + " s)");
       return;
     }
-    repairColumn(li);
+    const bool repaired = repairColumn(li);
     for (std::size_t i = 0; i < scans.size(); ++i) scans[i].scan.timestamp = li[i];
     if (hoi.degenerate()) {
       repairColumn(oi);
       for (std::size_t i = 0; i < odo.size(); ++i) odo[i].timestamp = oi[i];
     }
-    const bool still_constant = diagnose(li).constant;
+    const bool still_constant = !repaired || diagnose(li).constant;
     log_.warnings.push_back(
         "laser ipc timestamps are unusable (" + hli.describe() + ") and so are the logger timestamps (" +
         (hll.degenerate() ? hll : hol).describe() + "): " +
-        (still_constant ? std::string("left as read, the log holds no time (SLAM temporal updates and ODOM "
-                                      "interpolation cannot work)")
+        (still_constant ? std::string("left as read, the log holds no usable time (SLAM temporal updates and "
+                                      "ODOM interpolation cannot work)")
                         : "repaired in place: wraps undone, repeated values spread by line order between "
                           "the distinct ones (" + formatDouble(li.front()) + " .. " + formatDouble(li.back()) +
                               " s)"));
