@@ -108,6 +108,12 @@ void printSummary(std::ostream& os, const std::string& input, const io::ScanLogI
     os << "lines:              " << info.lines_or_entries << "\n";
     os << "skipped bad lines:  " << info.skipped_lines << "\n";
     for (const auto& m : info.skipped) os << "  skipped: " << m << "\n";
+    os << "skipped messages: ";
+    if (info.skipped_messages.empty()) os << "  none";
+    for (const auto& [type, lines] : info.skipped_messages) os << "  " << type << " x " << lines;
+    os << "\n";
+    for (const auto& n : info.notes) os << "note:               " << n << "\n";
+    for (const auto& w : info.warnings) os << "warning:            " << w << "\n";
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -66,6 +67,9 @@ TEST(CarmenLog, IntelCountsAndValues) {
   EXPECT_EQ(log.lines, 40557u);
   EXPECT_EQ(log.skipped_lines, 0u);
   EXPECT_EQ(log.params.at("robot_frontlaser_offset"), "0.0");
+  // A healthy log: nothing decided against its word (its backward timestamp steps are kept, see below).
+  EXPECT_TRUE(log.warnings.empty());
+  EXPECT_TRUE(log.skipped_messages.empty());
 
   const ScanRecord& first = log.scans.front();
   EXPECT_EQ(first.source_index, 13u);
@@ -117,6 +121,7 @@ TEST(CarmenLog, AcesCountsAndValues) {
   ASSERT_EQ(log.scans.size(), 7374u);
   ASSERT_EQ(log.odometry.size(), 7375u);
   EXPECT_EQ(log.params.size(), 4u);
+  EXPECT_TRUE(log.warnings.empty());
   const auto& first = log.scans.front();
   EXPECT_EQ(first.source_index, 15u);
   EXPECT_EQ(first.scan.timestamp, 70.289900);  // relative timestamps
@@ -248,6 +253,9 @@ TEST(CarmenLog, SyntheticLogWithEveryQuirk) {
   ASSERT_EQ(log.odometry.size(), 1u);
   EXPECT_EQ(log.params.at("robot_name"), "my robot with spaces");
   EXPECT_EQ(log.lines, 16u);
+  const std::map<std::string, std::size_t> skipped = {
+      {"NEFF", 1}, {"NMEA-GGA", 1}, {"RLASER", 1}, {"SYNC", 1}, {"TRUEPOS", 1}};
+  EXPECT_EQ(log.skipped_messages, skipped);
 
   const ScanRecord& a = log.scans[0];
   EXPECT_EQ(a.source_index, 10u);

@@ -207,3 +207,27 @@ TEST(ImportApp, AcesWithRelativeTimestamps) {
   const auto last = raw.getAsObservations(14747)->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
   EXPECT_EQ(mrpt::Clock::toDouble(last->timestamp), 1435.809999);
 }
+
+TEST(ImportApp, SummaryListsSkippedMessagesNotesAndWarnings) {
+  // CARMEN-logger PARAM layout with the field of view in radians, and a message gridtopo does not use.
+  const fs::path log = tmpDir() / "variants.clf";
+  std::ofstream(log) << "PARAM laser_front_laser_fov 3.14159 1071078718.462495 merci 1071078718.462494\n"
+                     << "TRUEPOS 1 2 3 4 5 6 100.0 nohost 0.1\n"
+                     << flaser(100.1, 0.0, 181) << flaser(100.3, 0.1, 181);
+  const auto r = run("-i " + log.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("first scan:         181 beams, -90 .. 90 deg (step 1 deg)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("skipped messages:   TRUEPOS x 1\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("note:               1 PARAM lines read as `PARAM name value ipc_timestamp host "
+                       "logger_timestamp`\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("warning:            PARAM laser_front_laser_fov 3.14159 read as radians (180 deg)"),
+            std::string::npos)
+      << r.out;
+  // A healthy log has no warnings and skips nothing.
+  const auto intel = run("-i " + kIntel);
+  ASSERT_EQ(intel.status, 0) << intel.err;
+  EXPECT_NE(intel.out.find("skipped messages:   none\n"), std::string::npos) << intel.out;
+  EXPECT_EQ(intel.out.find("warning:"), std::string::npos) << intel.out;
+}

@@ -13,9 +13,11 @@
 #include <iterator>
 #include <limits>
 #include <set>
+#include <tuple>
 #include <string_view>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::io {
 namespace {
@@ -97,30 +99,47 @@ std::string gunzip(const std::string& in, const std::string& name) {
 // ---------------------------------------------------------------------------------------------------------
 // Line parsing
 
-/// Message names that are CARMEN (or GMapping log) messages gridtopo does not need: skipped silently.
+/// CARMEN (and GMapping log) messages that carry nothing gridtopo uses: skipped and counted per type. The
+/// names are those of the CARMEN logger's header (old and new releases: `NMEA-GGA` and `NMEAGGA`), of the
+/// "(old)" messages it still lists (LASER3/4 and the REMISSION* lasers carry no pose), and of modules whose
+/// logs circulate with the benchmark data sets. RAWLASER1, ROBOTLASER0 and the rear lasers are handled (and
+/// counted when not used) by the parser itself.
 const std::set<std::string_view>& ignoredMessages() {
   static const std::set<std::string_view> names = {
-      "TRUEPOS",   "SYNC",       "NMEA-GGA",  "NMEA-RMC",    "NMEA-GSA",    "NMEA-GSV",     "NMEA-VTG",
-      "GPSNMEA",   "RAWLASER2",  "RAWLASER3", "RAWLASER4",   "ROBOTLASER3", "ROBOTLASER4",  "ROBOTVELOCITY",
-      "VELOCITY",  "VECTORMOVE", "SONAR",     "BUMPER",      "SCANMARK",    "POSITIONLASER", "IMU",
-      "FUSED_ODOM", "ARM",       "BASE",      "NEFF",        "LOCALIZEPOS", "GLOBALPOS",    "MARKER",
-      "LASER3D",   "KINECT",     "CAMERA",    "PANTILT",     "BASEVELOCITY", "PEARLASER"};
+      "TRUEPOS",         "SYNC",          "COMMENT",         "NMEA-GGA",        "NMEA-RMC",     "NMEA-GSA",
+      "NMEA-GSV",        "NMEA-VTG",      "NMEAGGA",         "NMEARMC",         "GPSNMEA",      "RAWLASER2",
+      "RAWLASER3",       "RAWLASER4",     "ROBOTLASER3",     "ROBOTLASER4",     "LASER3",       "LASER4",
+      "REMISSIONFLASER", "REMISSIONRLASER", "REMISSIONLASER3", "REMISSIONLASER4", "ROBOTVELOCITY", "VELOCITY",
+      "VECTORMOVE",      "FOLLOWTRAJECTORY", "SONAR",          "BUMPER",          "SCANMARK",     "POSITIONLASER",
+      "IMU",             "FUSED_ODOM",    "ARM",             "BASE",            "NEFF",         "LOCALIZEPOS",
+      "GLOBALPOS",       "MARKER",        "LASER3D",         "KINECT",          "CAMERA",       "PANTILT",
+      "BASEVELOCITY",    "PEARLASER"};
   return names;
 }
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 void tokenize(std::string_view line, std::vector<std::string_view>& out) {
   out.clear();
   std::size_t i = 0;
   const std::size_t n = line.size();
   while (i < n) {
-    while (i < n && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r' || line[i] == '\v' || line[i] == '\f'))
-      ++i;
+    while (i < n && isSpace(line[i])) ++i;
     if (i >= n) break;
     const std::size_t b = i;
-    while (i < n && !(line[i] == ' ' || line[i] == '\t' || line[i] == '\r' || line[i] == '\v' || line[i] == '\f'))
-      ++i;
+    while (i < n && !isSpace(line[i])) ++i;
     out.push_back(line.substr(b, i - b));
   }
+}
+
+/// A finite number written as the whole token (CARMEN's %f / %g output, an optional '+').
+bool parseFinite(std::string_view tok, double& v) {
+  const char* b = tok.data();
+  const char* e = tok.data() + tok.size();
+  if (b != e && *b == '+') ++b;
+  if (b == e) return false;
+  const auto res = std::from_chars(b, e, v);
+  return res.ec == std::errc() && res.ptr == e && std::isfinite(v);
 }
 
 /// Printable excerpt of a token for error messages.
@@ -134,14 +153,268 @@ std::string excerpt(std::string_view t) {
   return s;
 }
 
-/// Laser geometry that a FLASER/RLASER line does not carry; completed from the PARAMs after the whole log is
-/// read (PARAM lines may come anywhere).
-struct PendingGeometry {
-  std::size_t index;      // into CarmenLog::scans or raw scans
-  bool rear;              // RLASER / ROBOTLASER2
-  bool infer_angles;      // FLASER/RLASER: aperture from beam count and PARAMs
-  bool infer_max_range;   // FLASER/RLASER: max range from PARAMs or the default
-  bool pose_from_params;  // laser pose equals robot pose in the line: use PARAM offsets if they say otherwise
+/// Short human form of a number for warnings (full precision is in the data, not in the message).
+std::string num(double v, int digits = 4) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f %%", whole ? 100.0 * static_cast<double>(part) / whole : 0.0);
+  return buf;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// PARAM layouts
+
+/// The two PARAM layouts: `PARAM name value host logger` (old logs such as Intel and ACES, GMapping) and
+/// `PARAM name value ipc_timestamp host logger` (the CARMEN logger since 2004). Values may contain spaces, so
+/// the layout cannot be read off one line: it is a property of the writer, decided once per file.
+enum class ParamLayout { HostLogger, IpcHostLogger };
+
+const char* layoutText(ParamLayout l) {
+  return l == ParamLayout::IpcHostLogger ? "PARAM name value ipc_timestamp host logger_timestamp"
+                                         : "PARAM name value host logger_timestamp";
+}
+
+struct ParamLayoutDecision {
+  ParamLayout layout = ParamLayout::HostLogger;
+  std::size_t lines = 0;
+  std::vector<std::string> warnings;
+};
+
+bool startsWithWord(std::string_view line, std::string_view word) {
+  std::size_t i = 0;
+  while (i < line.size() && isSpace(line[i])) ++i;
+  return line.size() >= i + word.size() && line.substr(i, word.size()) == word &&
+         (line.size() == i + word.size() || isSpace(line[i + word.size()]));
+}
+
+/// Reads the third-last token (the ipc_timestamp of every CARMEN data line) of the lines that carry laser
+/// scans or odometry: the time range a PARAM's ipc_timestamp would fall into.
+bool dataIpcRange(std::string_view text, double& lo, double& hi) {
+  static const std::set<std::string_view> data = {"FLASER", "RLASER", "ODOM", "ROBOTLASER1", "ROBOTLASER2",
+                                                  "RAWLASER1"};
+  std::vector<std::string_view> tok;
+  bool any = false;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    tokenize(text.substr(pos, end - pos), tok);
+    pos = end + 1;
+    double t = 0;
+    if (tok.size() < 4 || data.count(tok[0]) == 0 || !parseFinite(tok[tok.size() - 3], t)) continue;
+    lo = any ? std::min(lo, t) : t;
+    hi = any ? std::max(hi, t) : t;
+    any = true;
+  }
+  return any;
+}
+
+/// Decides the PARAM layout of a file from all its PARAM lines:
+///  - a line of 6+ tokens whose third-last token is not a number can only be `name value host logger`;
+///  - a line of exactly 5 tokens has a value only in that layout too (weak evidence: an empty value);
+///  - a third-last token that is a number within 1 s of the logger timestamp is the ipc_timestamp of the
+///    CARMEN logger, which stamps a PARAM with both clocks at once.
+/// Certain old lines win; otherwise the majority of 5-token lines against ipc-looking lines decides; a file
+/// with only undecided lines (numeric third-last token far from the logger time) takes the new layout when
+/// those numbers fall within a day of the data lines' ipc timestamps. Every line is then read in the file's
+/// layout, and lines that fit the other layout better are reported.
+ParamLayoutDecision decideParamLayout(std::string_view text) {
+  ParamLayoutDecision d;
+  std::size_t strong_old = 0, weak_old = 0, new_likely = 0;
+  std::vector<std::size_t> new_lines, weak_lines;
+  std::vector<double> undecided_ipc;
+  std::vector<std::string_view> tok;
+  std::size_t pos = 0, lineno = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++lineno;
+    if (!startsWithWord(line, "PARAM")) continue;
+    tokenize(line, tok);
+    const std::size_t n = tok.size();
+    double logger = 0, ipc = 0;
+    if (n < 5 || !parseFinite(tok[n - 1], logger)) continue;  // malformed: the parser reports it
+    ++d.lines;
+    if (n == 5) {
+      ++weak_old;
+      weak_lines.push_back(lineno);
+    } else if (!parseFinite(tok[n - 3], ipc)) {
+      ++strong_old;
+    } else if (std::abs(ipc - logger) <= 1.0) {
+      ++new_likely;
+      new_lines.push_back(lineno);
+    } else {
+      undecided_ipc.push_back(ipc);
+    }
+  }
+  auto lineList = [](const std::vector<std::size_t>& v) {
+    std::string s;
+    for (std::size_t i = 0; i < v.size() && i < 5; ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+    if (v.size() > 5) s += ", ...";
+    return s;
+  };
+  if (strong_old > 0 || (weak_old >= new_likely && (weak_old > 0 || new_likely > 0))) {
+    d.layout = ParamLayout::HostLogger;
+    if (new_likely > 0)
+      d.warnings.push_back(std::to_string(new_likely) + " PARAM line(s) (line " + lineList(new_lines) +
+                           ") also fit `" + layoutText(ParamLayout::IpcHostLogger) + "` but were read as `" +
+                           layoutText(ParamLayout::HostLogger) + "` like the file's other PARAM lines: their " +
+                           "value ends with the number before the host");
+  } else if (new_likely > 0) {
+    d.layout = ParamLayout::IpcHostLogger;
+    if (weak_old > 0)
+      d.warnings.push_back(std::to_string(weak_old) + " PARAM line(s) (line " + lineList(weak_lines) +
+                           ") have 5 tokens, too few for `" + layoutText(ParamLayout::IpcHostLogger) +
+                           "`: read as `" + layoutText(ParamLayout::HostLogger) + "`");
+  } else if (!undecided_ipc.empty()) {
+    double lo = 0, hi = 0;
+    bool within = dataIpcRange(text, lo, hi);
+    for (const double t : undecided_ipc) within = within && t >= lo - 86400.0 && t <= hi + 86400.0;
+    d.layout = within ? ParamLayout::IpcHostLogger : ParamLayout::HostLogger;
+    d.warnings.push_back(
+        "PARAM layout undecided by the PARAM lines themselves (numeric token before the host, far from the "
+        "logger timestamp): read as `" + std::string(layoutText(d.layout)) + "` because those numbers " +
+        (within ? "lie" : "do not lie") + " within a day of the laser/ODOM ipc timestamps");
+  }
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Timestamps
+
+/// What is wrong, if anything, with one timestamp column (ipc or logger) of one stream (laser or ODOM lines)
+/// in file order.
+struct ColumnHealth {
+  std::size_t n = 0, equal_pairs = 0, zeros = 0, backward = 0, wraps = 0;
+  double largest_back = 0, largest_wrap = 0, first = 0, last = 0;
+  bool constant = false, coarse = false;
+  bool degenerate() const { return constant || coarse || wraps > 0; }
+  std::string describe() const {
+    std::string s;
+    if (constant) s = "all " + std::to_string(n) + " equal to " + formatDouble(first);
+    if (coarse)
+      s = std::to_string(equal_pairs) + " of " + std::to_string(n - 1) +
+          " consecutive lines share their value (printed with too few digits?)";
+    if (wraps) {
+      if (!s.empty()) s += "; ";
+      s += std::to_string(wraps) + " jump(s) back by up to " + num(largest_wrap, 6) +
+           " s after which the values continue from the lower value (wrapped or negative)";
+    }
+    if (zeros && !constant) s += "; " + std::to_string(zeros) + " zero values";
+    return s;
+  }
+};
+
+double medianPositiveStep(const std::vector<double>& t) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] > t[i - 1]) steps.push_back(t[i] - t[i - 1]);
+  if (steps.empty()) return 0.0;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
+/// A step back larger than this is not jitter between processes (Intel's laser timestamps step back by up
+/// to 0.9 s, 631 times: kept) but a clock that wrapped or restarted.
+double wrapThreshold(const std::vector<double>& t) { return std::max(10.0, 100.0 * medianPositiveStep(t)); }
+
+bool isWrap(const std::vector<double>& t, std::size_t i, double threshold) {
+  // The values after the jump stay low: a single stray value is not a wrap.
+  return t[i] < t[i - 1] - threshold && (i + 1 == t.size() || t[i + 1] < t[i - 1] - threshold);
+}
+
+ColumnHealth diagnose(const std::vector<double>& t) {
+  ColumnHealth h;
+  h.n = t.size();
+  if (h.n < 3) return h;  // too short to judge anything
+  h.first = t.front();
+  h.last = t.back();
+  const double wrap = wrapThreshold(t);
+  for (std::size_t i = 0; i < h.n; ++i) {
+    h.zeros += t[i] == 0.0;
+    if (i == 0) continue;
+    const double d = t[i] - t[i - 1];
+    h.equal_pairs += d == 0.0;
+    if (d < 0) {
+      ++h.backward;
+      h.largest_back = std::max(h.largest_back, -d);
+      if (isWrap(t, i, wrap)) {
+        ++h.wraps;
+        h.largest_wrap = std::max(h.largest_wrap, -d);
+      }
+    }
+  }
+  h.constant = h.equal_pairs == h.n - 1;
+  // Healthy logs (Intel, ACES, MIT, Freiburg: 0 or 1 repeats in thousands of lines) never come close.
+  h.coarse = !h.constant && h.n >= 10 && h.equal_pairs * 10 >= h.n - 1;
+  return h;
+}
+
+/// Makes one column usable in place: wraps are undone (each later value shifted by the jump plus the typical
+/// step), then runs of equal values are spread by line order between their value and the next distinct one
+/// (the last run continues at the column's mean rate). A constant column stays constant: there is no time in it.
+/// Returns false if the column had to stay as read.
+bool repairColumn(std::vector<double>& t) {
+  const std::size_t n = t.size();
+  if (n < 2) return false;
+  const std::vector<double> raw = t;
+  const double step = medianPositiveStep(raw);
+  const double wrap = wrapThreshold(raw);
+  double offset = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (isWrap(raw, i, wrap)) offset += raw[i - 1] - raw[i] + step;
+    t[i] = raw[i] + offset;
+  }
+  std::size_t last_run = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (t[i] != t[i - 1]) last_run = i;
+  const double rate = last_run > 0 ? (t[last_run] - t[0]) / static_cast<double>(last_run) : 0.0;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    while (j + 1 < n && t[j + 1] == t[i]) ++j;
+    if (j > i) {
+      double d = rate;
+      if (j + 1 < n && t[j + 1] > t[i]) d = (t[j + 1] - t[i]) / static_cast<double>(j + 1 - i);
+      if (d > 0)
+        for (std::size_t k = i + 1; k <= j; ++k) t[k] = t[i] + d * static_cast<double>(k - i);
+    }
+    i = j + 1;
+  }
+  // Absurd values (±1e308 in a damaged file) can overflow the shifts: then the column stays as read.
+  if (!std::all_of(t.begin(), t.end(), [](double v) { return std::isfinite(v); })) {
+    t = raw;
+    return false;
+  }
+  return t != raw;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The parser
+
+/// A laser line read but not yet complete: what the line does not carry (FLASER angles, max range, the
+/// mounting offset) is decided from the PARAMs and from the whole log once every line is read.
+struct PendingScan {
+  ScanRecord rec;
+  const char* type = "";          // message name, for warnings
+  bool rear = false;              // RLASER / ROBOTLASER2
+  bool infer_angles = false;      // FLASER/RLASER: aperture from beam count and PARAMs
+  bool infer_max_range = false;   // max range from PARAMs or the default
+  bool pose_from_params = false;  // laser pose equals robot pose in the line: PARAM offsets decide
+  std::string max_source;         // where the max range came from (for warnings)
+};
+
+/// Field of view and increment (radians) of the FLASER/RLASER lines of one laser, decided once from the PARAMs.
+struct OldLaserGeometry {
+  double fov = kPi;           // 180°, CARMEN's default
+  double res = 0.0;           // 0: from the field of view and each line's beam count
+  bool fov_from_res = false;  // no fov PARAM: the scan spans its beams at the given resolution, centred
 };
 
 class Parser {
@@ -150,6 +423,11 @@ class Parser {
       : name_(name), options_(options), log_(log) {}
 
   void parseAll(std::string_view text) {
+    const ParamLayoutDecision layout = decideParamLayout(text);
+    param_layout_ = layout.layout;
+    for (const auto& w : layout.warnings) log_.warnings.push_back(w);
+    if (layout.lines)
+      log_.notes.push_back(std::to_string(layout.lines) + " PARAM lines read as `" + layoutText(layout.layout) + "`");
     std::size_t pos = 0;
     std::size_t lineno = 0;
     while (pos < text.size()) {
@@ -237,6 +515,18 @@ class Parser {
     }
   }
 
+  /// `NAME ... ipc_timestamp host logger_timestamp` with an upper-case name: a CARMEN message of a module
+  /// gridtopo does not know (skipped and counted), as opposed to garbage (an error).
+  bool looksLikeCarmenMessage() const {
+    const std::string_view type = tok_[0];
+    if (!(type[0] >= 'A' && type[0] <= 'Z')) return false;
+    for (const char c : type)
+      if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-')) return false;
+    const std::size_t n = tok_.size();
+    double v = 0;
+    return n >= 4 && parseFinite(tok_[n - 3], v) && !parseFinite(tok_[n - 2], v) && parseFinite(tok_[n - 1], v);
+  }
+
   void parseLine(std::string_view line, std::size_t lineno) {
     lineno_ = lineno;
     tokenize(line, tok_);
@@ -246,37 +536,58 @@ class Parser {
       parseOldLaser(type == "RLASER");
     } else if (type == "ODOM") {
       parseOdom();
-    } else if (type == "ROBOTLASER1" || type == "ROBOTLASER2") {
-      parseRobotLaser(type == "ROBOTLASER2");
+    } else if (type == "ROBOTLASER1" || type == "ROBOTLASER2" || type == "ROBOTLASER0") {
+      parseRobotLaser(type);
     } else if (type == "RAWLASER1") {
       parseRawLaser();
     } else if (type == "PARAM") {
       parseParam();
-    } else if (ignoredMessages().count(type) == 0) {
+    } else if (ignoredMessages().count(type)) {
+      ++log_.skipped_messages[std::string(type)];
+    } else if (looksLikeCarmenMessage()) {
+      ++log_.skipped_messages[std::string(type)];
+      unknown_.emplace(std::string(type), lineno_);  // keeps the first line
+    } else {
       fail("message", "unknown message type '" + excerpt(type) + "'");
     }
   }
 
   // FLASER n r1..rn x y theta odom_x odom_y odom_theta ipc_timestamp ipc_hostname logger_timestamp
+  // and, from writers that had no pose to log, FLASER n r1..rn ipc_timestamp ipc_hostname logger_timestamp
   void parseOldLaser(bool rear) {
     const char* msg = rear ? "RLASER" : "FLASER";
     if (tok_.size() < 2) fail(msg, "missing num_readings");
     const std::size_t n = count(tok_[1], msg, " num_readings");
     if (n == 0) fail(std::string(msg) + " num_readings", "a scan needs at least one reading");
-    expectTokens(msg, n + 11, " for " + std::to_string(n) + " readings");
-    ScanRecord rec;
+    const bool posed = tok_.size() != n + 5;
+    if (posed)
+      expectTokens(msg, n + 11,
+                   " for " + std::to_string(n) + " readings (" + std::to_string(n + 5) + " without poses)");
+    PendingScan p;
+    p.type = msg;
+    p.rear = rear;
+    p.infer_angles = true;
+    p.infer_max_range = true;
+    ScanRecord& rec = p.rec;
     readRanges(2, n, msg, rec.scan);
-    const auto laser = pose(2 + n, msg, " x", " y", " theta");
-    rec.odometry = pose(5 + n, msg, " odom_x", " odom_y", " odom_theta");
-    rec.has_odometry = true;
+    if (posed) {
+      const auto laser = pose(2 + n, msg, " x", " y", " theta");
+      rec.odometry = pose(5 + n, msg, " odom_x", " odom_y", " odom_theta");
+      rec.has_odometry = true;
+      rec.scan.sensor_pose = relativePose(rec.odometry, laser);
+      p.pose_from_params = std::abs(rec.scan.sensor_pose.x) < 1e-12 && std::abs(rec.scan.sensor_pose.y) < 1e-12 &&
+                           std::abs(rec.scan.sensor_pose.phi) < 1e-12;
+    } else {
+      p.pose_from_params = true;
+    }
     timestamps(msg, rec.scan.timestamp, rec.scan.logger_timestamp);
-    rec.scan.sensor_pose = relativePose(rec.odometry, laser);
     rec.source_index = lineno_;
-    const bool centred = std::abs(rec.scan.sensor_pose.x) < 1e-12 && std::abs(rec.scan.sensor_pose.y) < 1e-12 &&
-                         std::abs(rec.scan.sensor_pose.phi) < 1e-12;
-    if (rear && !options_.read_rear_laser) return;
-    pending_.push_back({log_.scans.size(), rear, true, true, centred});
-    log_.scans.push_back(std::move(rec));
+    if (rear && !options_.read_rear_laser) {
+      ++log_.skipped_messages[msg];
+      return;
+    }
+    if (!posed) ++poseless_;
+    lasers_.push_back(std::move(p));
   }
 
   // The part ROBOTLASER1/2 and RAWLASER1 share: laser_type start_angle fov angular_res max_range accuracy
@@ -308,39 +619,50 @@ class Parser {
 
   // ROBOTLASER1 <laser config and readings> laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv
   //   forward_safety side_safety turn_axis ipc_timestamp ipc_hostname logger_timestamp
-  void parseRobotLaser(bool rear) {
-    const char* msg = rear ? "ROBOTLASER2" : "ROBOTLASER1";
-    ScanRecord rec;
+  // ROBOTLASER2 is the rear laser; ROBOTLASER0 (named in some CARMEN headers, never defined) is used only by a
+  // log without any other front laser.
+  void parseRobotLaser(std::string_view type) {
+    const bool rear = type == "ROBOTLASER2";
+    const bool zero = type == "ROBOTLASER0";
+    const char* msg = rear ? "ROBOTLASER2" : (zero ? "ROBOTLASER0" : "ROBOTLASER1");
+    PendingScan p;
+    p.type = msg;
+    p.rear = rear;
+    ScanRecord& rec = p.rec;
     LaserScan& s = rec.scan;
-    const std::size_t p = parseLaserConfigAndReadings(msg, 14, s);
-    const auto laser = pose(p, msg, " laser_x", " laser_y", " laser_theta");
-    rec.odometry = pose(p + 3, msg, " robot_x", " robot_y", " robot_theta");
+    const std::size_t k = parseLaserConfigAndReadings(msg, 14, s);
+    const auto laser = pose(k, msg, " laser_x", " laser_y", " laser_theta");
+    rec.odometry = pose(k + 3, msg, " robot_x", " robot_y", " robot_theta");
     rec.has_odometry = true;
-    number(tok_[p + 6], msg, " tv");
-    number(tok_[p + 7], msg, " rv");
+    number(tok_[k + 6], msg, " tv");
+    number(tok_[k + 7], msg, " rv");
     timestamps(msg, s.timestamp, s.logger_timestamp);
     s.sensor_pose = relativePose(rec.odometry, laser);
     rec.source_index = lineno_;
-    const bool centred = std::abs(s.sensor_pose.x) < 1e-12 && std::abs(s.sensor_pose.y) < 1e-12 &&
+    p.pose_from_params = std::abs(s.sensor_pose.x) < 1e-12 && std::abs(s.sensor_pose.y) < 1e-12 &&
                          std::abs(s.sensor_pose.phi) < 1e-12;
-    if (rear && !options_.read_rear_laser) return;
-    const bool infer_max = !(s.max_range > 0.0);
-    pending_.push_back({log_.scans.size(), rear, false, infer_max, centred});
-    log_.scans.push_back(std::move(rec));
+    if (rear && !options_.read_rear_laser) {
+      ++log_.skipped_messages[msg];
+      return;
+    }
+    p.infer_max_range = !(s.max_range > 0.0);
+    (zero ? robot0_ : lasers_).push_back(std::move(p));
   }
 
   // RAWLASER1 <laser config and readings> ipc_timestamp ipc_hostname logger_timestamp
   //   (no pose: used only if the log has no posed scans)
   void parseRawLaser() {
     const char* msg = "RAWLASER1";
-    ScanRecord rec;
-    LaserScan& s = rec.scan;
+    PendingScan p;
+    p.type = msg;
+    p.pose_from_params = true;
+    LaserScan& s = p.rec.scan;
     parseLaserConfigAndReadings(msg, 3, s);
     timestamps(msg, s.timestamp, s.logger_timestamp);
-    rec.has_odometry = false;
-    rec.source_index = lineno_;
-    raw_pending_.push_back({raw_scans_.size(), false, false, !(s.max_range > 0.0), true});
-    raw_scans_.push_back(std::move(rec));
+    p.rec.has_odometry = false;
+    p.rec.source_index = lineno_;
+    p.infer_max_range = !(s.max_range > 0.0);
+    raw_.push_back(std::move(p));
   }
 
   // ODOM x y theta tv rv accel ipc_timestamp ipc_hostname logger_timestamp
@@ -357,14 +679,18 @@ class Parser {
     log_.odometry.push_back(o);
   }
 
-  // PARAM name value ipc_hostname logger_timestamp  (no ipc_timestamp; the value may contain spaces)
+  // PARAM name value [ipc_timestamp] ipc_hostname logger_timestamp: the value may contain spaces; whether the
+  // ipc_timestamp is there is decided once for the file (decideParamLayout).
   void parseParam() {
     const char* msg = "PARAM";
     if (tok_.size() < 5) fail(msg, "expected at least 5 tokens, found " + std::to_string(tok_.size()));
     number(tok_.back(), msg, " logger_timestamp");
+    const bool with_ipc = param_layout_ == ParamLayout::IpcHostLogger && tok_.size() >= 6;
+    if (with_ipc) number(tok_[tok_.size() - 3], msg, " ipc_timestamp");
+    const std::size_t value_end = tok_.size() - (with_ipc ? 3 : 2);
     const std::string name(tok_[1]);
     std::string value;
-    for (std::size_t i = 2; i + 2 < tok_.size(); ++i) {
+    for (std::size_t i = 2; i < value_end; ++i) {
       if (!value.empty()) value += ' ';
       value += tok_[i];
     }
@@ -374,12 +700,16 @@ class Parser {
         "laser_front_laser_resolution", "laser_rear_laser_resolution", "laser_front_laser_fov",
         "laser_rear_laser_fov",         "robot_front_laser_max",       "robot_rear_laser_max"};
     if (numeric.count(name)) {
-      if (tok_.size() != 5) fail(std::string(msg) + " " + name, "expected one numeric value");
+      if (value_end != 3)
+        fail(std::string(msg) + " " + name, "expected one numeric value, found '" + excerpt(value) + "' (read as `" +
+                                                layoutText(param_layout_) + "`)");
       const double v = number(tok_[2], msg, " " + name);
       if ((name.find("resolution") != std::string::npos || name.find("_fov") != std::string::npos ||
            name.find("laser_max") != std::string::npos) &&
           !(v > 0.0))
         fail(std::string(msg) + " " + name, "must be positive");
+      if (name.find("_fov") != std::string::npos && v > 360.0 + 1e-9)
+        fail(std::string(msg) + " " + name, "more than 360 degrees");
     }
     log_.params[name] = value;
   }
@@ -390,17 +720,68 @@ class Parser {
     return std::strtod(it->second.c_str(), nullptr);  // validated when parsed
   }
 
-  void complete(ScanRecord& rec, const PendingGeometry& g) const {
-    LaserScan& s = rec.scan;
-    const std::string side = g.rear ? "rear" : "front";
-    if (g.infer_angles) {
-      // FLASER/RLASER carry no angles: n beams spread over the field of view (180° unless PARAM says), starting
-      // at −fov/2. Even counts (180, 360) stop one step short of +fov/2, odd counts (181, 361) reach it.
+  /// Units of the fov / resolution PARAMs of one laser's FLASER/RLASER lines. CARMEN documents degrees, but
+  /// logs exist with radians (`laser_front_laser_fov 3.14159`). A field of view of at most 2π is radians (no
+  /// planar CARMEN laser sees 6° or less). The resolution takes the unit that makes the beam count agree with
+  /// the field of view (180° without a fov PARAM): n beams × resolution ≈ fov, degrees on a tie. `beams` is
+  /// the most common beam count of those lines.
+  OldLaserGeometry decideGeometry(bool rear, std::size_t beams) {
+    const std::string side = rear ? "rear" : "front";
+    const std::string fov_name = "laser_" + side + "_laser_fov", res_name = "laser_" + side + "_laser_resolution";
+    const bool has_fov = log_.params.count(fov_name) > 0, has_res = log_.params.count(res_name) > 0;
+    OldLaserGeometry g;
+    if (!has_fov && !has_res) return g;
+    constexpr double kTurn = 2.0 * kPi + 1e-6;
+    const double f = param(fov_name, 0.0), r = param(res_name, 0.0);
+    const bool fov_rad = has_fov && f <= kTurn;
+    g.fov = has_fov ? (fov_rad ? f : f * kDeg) : kPi;
+    if (fov_rad)
+      log_.warnings.push_back("PARAM " + fov_name + " " + log_.params.at(fov_name) + " read as radians (" +
+                              num(g.fov / kDeg) + " deg): a field of view of at most 2π makes no sense in degrees");
+    if (!has_res) return g;
+    const double n = static_cast<double>(beams);
+    bool found = false, res_rad = false;
+    double best = 0.0;
+    for (const bool rad : {false, true}) {
+      const double R = rad ? r : r * kDeg;
+      if (beams > 1 && R * (n - 1.0) > kTurn) continue;  // more than a full turn
+      const double err = beams > 1 ? std::min(std::abs(R * n - g.fov), std::abs(R * (n - 1.0) - g.fov)) / g.fov : 0.0;
+      if (!found || err < best - 1e-9) {
+        found = true;
+        best = err;
+        res_rad = rad;
+      }
+    }
+    if (!found)
+      log_.warnings.push_back("PARAM " + res_name + " " + log_.params.at(res_name) + " spans more than a full " +
+                              "turn over " + std::to_string(beams) + " beams in degrees and in radians: read as " +
+                              "degrees");
+    g.res = res_rad ? r : r * kDeg;
+    g.fov_from_res = !has_fov;
+    if (res_rad)
+      log_.warnings.push_back("PARAM " + res_name + " " + log_.params.at(res_name) + " read as radians (" +
+                              num(g.res / kDeg) + " deg): " + std::to_string(beams) + " beams then span " +
+                              (has_fov ? "the field of view" : "180 deg"));
+    if (found && has_fov && best > 0.02)
+      log_.warnings.push_back("PARAM " + fov_name + " (" + num(g.fov / kDeg) + " deg) and " + res_name + " (" +
+                              num(g.res / kDeg) + " deg) disagree with the " + std::to_string(beams) +
+                              "-beam scans (they span " + num(g.res * (n - 1.0) / kDeg) + " deg): beams are " +
+                              "the resolution apart from -fov/2");
+    return g;
+  }
+
+  void complete(PendingScan& p) {
+    LaserScan& s = p.rec.scan;
+    const std::string side = p.rear ? "rear" : "front";
+    if (p.infer_angles) {
+      // FLASER/RLASER carry no angles: n beams spread over the field of view, starting at −fov/2. Even counts
+      // (180, 360) stop one step short of +fov/2, odd counts (181, 361) reach it.
       const std::size_t n = s.ranges.size();
-      const double fov = param("laser_" + side + "_laser_fov", 180.0) * kDeg;
-      const double res = param("laser_" + side + "_laser_resolution", 0.0) * kDeg;
-      if (res > 0.0) {
-        s.angle_increment = res;
+      const OldLaserGeometry& g = geometry_[p.rear ? 1 : 0];
+      double fov = g.fov;
+      if (g.res > 0.0) {
+        s.angle_increment = g.res;
+        if (g.fov_from_res) fov = n > 1 ? g.res * static_cast<double>(n % 2 == 0 ? n : n - 1) : g.res;
       } else if (n <= 1) {
         s.angle_increment = fov;
       } else {
@@ -408,38 +789,204 @@ class Parser {
       }
       s.start_angle = -0.5 * fov;
     }
-    if (g.infer_max_range) s.max_range = param("robot_" + side + "_laser_max", options_.default_max_range);
-    if (g.pose_from_params) {
-      // The line's laser pose equals the robot pose: either the laser is centred or the writer did not apply
-      // the mounting offset; the PARAM offsets (CARMEN robot module convention) decide.
+    if (p.infer_max_range) {
+      const std::string name = "robot_" + side + "_laser_max";
+      if (log_.params.count(name)) {
+        s.max_range = param(name, 0.0);
+        p.max_source = "PARAM " + name;
+      } else {
+        s.max_range = options_.default_max_range;
+        p.max_source = "the default max range (no PARAM " + name + ")";
+      }
+    } else {
+      p.max_source = std::string("the max_range field of the ") + p.type + " lines";
+    }
+    if (p.pose_from_params) {
+      // The line's laser pose equals the robot pose (or it has none): either the laser is centred or the writer
+      // did not apply the mounting offset; the PARAM offsets (CARMEN robot module convention) decide.
       const double off = param("robot_" + side + "laser_offset", 0.0);
       const double side_off = param("robot_" + side + "laser_side_offset", 0.0);
       const double ang = param("robot_" + side + "laser_angular_offset", 0.0);
-      if (g.rear) {
-        if (off != 0.0 || side_off != 0.0 || ang != 0.0 || g.infer_angles)
+      if (p.rear) {
+        if (off != 0.0 || side_off != 0.0 || ang != 0.0 || p.infer_angles)
           s.sensor_pose = {-off, side_off, wrapAngle(kPi + ang)};
       } else {
         s.sensor_pose = {off, side_off, wrapAngle(ang)};
       }
     }
-    s.valid.resize(s.ranges.size());
-    const float maxr = static_cast<float>(s.max_range);
-    for (std::size_t k = 0; k < s.ranges.size(); ++k) {
-      const float r = s.ranges[k];
-      s.valid[k] = (std::isfinite(r) && r > 0.0f && r < maxr) ? 1 : 0;
+  }
+
+  /// A declared max range (PARAM, default or the line's field) below which a meaningful share of the readings
+  /// lie is wrong: every one of them would become a "no return". Readings beyond the declared max are counted;
+  /// their largest value is the sensor's no-return code (81.83, 81.91, 50.00 in the benchmark logs) when it is
+  /// also the most frequent of them. If the readings strictly between the declared max and that code reach
+  /// 1 % of all positive readings (and at least 10), the max range becomes the code (or, without a code, just
+  /// above the largest reading). Fewer stray readings keep the declaration (they stay no-returns).
+  void checkMaxRanges(std::vector<PendingScan>& scans) {
+    std::map<std::tuple<bool, double, std::string>, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < scans.size(); ++i)
+      groups[{scans[i].rear, scans[i].rec.scan.max_range, scans[i].max_source}].push_back(i);
+    for (const auto& [key, members] : groups) {
+      const double declared = std::get<1>(key);
+      const auto m = static_cast<float>(declared);
+      std::size_t positive = 0, above = 0;
+      std::map<float, std::size_t> beyond;  // reading beyond the declared max -> how often
+      for (const std::size_t i : members)
+        for (const float r : scans[i].rec.scan.ranges) {
+          if (!std::isfinite(r) || !(r > 0.0f)) continue;
+          ++positive;
+          if (r > m) {
+            ++beyond[r];
+            ++above;
+          }
+        }
+      if (beyond.empty()) continue;
+      const auto top = std::prev(beyond.end());
+      std::size_t most_other = 0;
+      for (auto it = beyond.begin(); it != top; ++it) most_other = std::max(most_other, it->second);
+      const bool code = top->second >= 3 && top->second >= most_other;
+      const std::size_t between = above - (code ? top->second : 0);
+      const std::string what = std::get<2>(key) + " = " + num(declared, 6) + " m";
+      if (between == 0) continue;
+      if (between < std::max<std::size_t>(10, (positive + 99) / 100)) {
+        log_.notes.push_back(std::to_string(between) + " readings lie beyond " + what + " (" +
+                             percent(between, positive) + "): kept as no-returns");
+        continue;
+      }
+      double largest_real = 0;
+      for (auto it = beyond.begin(); it != beyond.end(); ++it)
+        if (!(code && it == top)) largest_real = it->first;
+      const double fixed =
+          code ? static_cast<double>(top->first)
+               : static_cast<double>(std::nextafter(top->first, std::numeric_limits<float>::infinity()));
+      log_.warnings.push_back(
+          what + " is contradicted by the readings: " + std::to_string(between) + " of " + std::to_string(positive) +
+          " (" + percent(between, positive) + ") lie between it and " + num(largest_real, 6) + " m; max range set to " +
+          (code ? num(fixed, 6) + " m, the no-return code (" + std::to_string(top->second) + " readings)"
+                : "just above the largest reading (no no-return code found)"));
+      for (const std::size_t i : members) scans[i].rec.scan.max_range = fixed;
     }
   }
 
-  void finish() {
-    for (const auto& g : pending_) complete(log_.scans[g.index], g);
-    bool has_front = false;
-    for (const auto& g : pending_) has_front = has_front || !g.rear;
-    if (!has_front && !raw_scans_.empty()) {
-      // A log with only RAWLASER1 lines (no odometry at all): its scans, without odometry.
-      for (const auto& g : raw_pending_) complete(raw_scans_[g.index], g);
-      for (auto& r : raw_scans_) log_.scans.push_back(std::move(r));
+  /// Degenerate timestamps are repaired so SLAM (temporal updates) and ODOM interpolation keep working; the
+  /// evaluation matches relations by the laser ipc timestamps, so healthy ones are never touched.
+  void checkTimestamps() {
+    auto& scans = log_.scans;
+    auto& odo = log_.odometry;
+    std::vector<double> li, ll, oi, ol;
+    for (const auto& r : scans) {
+      li.push_back(r.scan.timestamp);
+      ll.push_back(r.scan.logger_timestamp);
     }
-    // Max range must be usable: a line with max_range <= 0 and no PARAM gets the default above.
+    for (const auto& o : odo) {
+      oi.push_back(o.timestamp);
+      ol.push_back(o.logger_timestamp);
+    }
+    const ColumnHealth hli = diagnose(li), hll = diagnose(ll), hoi = diagnose(oi), hol = diagnose(ol);
+    if (!hli.degenerate()) {
+      // Reported only: ODOM lines are not what relations are matched by, and replacing their clock would
+      // desynchronise them from the (healthy) laser lines. GMapping's corrected logs have such ODOM lines.
+      if (hoi.degenerate())
+        log_.warnings.push_back(std::string("ODOM ipc ") + (hol.degenerate() ? "and logger " : "") +
+                                "timestamps look degenerate (" + hoi.describe() +
+                                "): kept as read because the laser ipc timestamps are healthy");
+      if (hll.degenerate())
+        log_.warnings.push_back("laser logger timestamps look degenerate (" + hll.describe() +
+                                "): kept as read (the ipc timestamps are the ones used)");
+      if (hol.degenerate() && !hoi.degenerate())
+        log_.warnings.push_back("ODOM logger timestamps look degenerate (" + hol.describe() +
+                                "): kept as read (the ipc timestamps are the ones used)");
+      return;
+    }
+    if (!hll.degenerate() && !hol.degenerate()) {
+      for (auto& r : scans) r.scan.timestamp = r.scan.logger_timestamp;
+      for (auto& o : odo) o.timestamp = o.logger_timestamp;
+      log_.warnings.push_back("laser ipc timestamps are unusable (" + hli.describe() + "): every scan and ODOM " +
+                              "timestamp is its logger timestamp instead (" + formatDouble(hll.first) + " .. " +
+                              formatDouble(hll.last) + " s)");
+      return;
+    }
+    const bool repaired = repairColumn(li);
+    for (std::size_t i = 0; i < scans.size(); ++i) scans[i].scan.timestamp = li[i];
+    if (hoi.degenerate()) {
+      repairColumn(oi);
+      for (std::size_t i = 0; i < odo.size(); ++i) odo[i].timestamp = oi[i];
+    }
+    const bool still_constant = !repaired || diagnose(li).constant;
+    log_.warnings.push_back(
+        "laser ipc timestamps are unusable (" + hli.describe() + ") and so are the logger timestamps (" +
+        (hll.degenerate() ? hll : hol).describe() + "): " +
+        (still_constant ? std::string("left as read, the log holds no usable time (SLAM temporal updates and "
+                                      "ODOM interpolation cannot work)")
+                        : "repaired in place: wraps undone, repeated values spread by line order between "
+                          "the distinct ones (" + formatDouble(li.front()) + " .. " + formatDouble(li.back()) +
+                              " s)"));
+  }
+
+  void finish() {
+    // Which lines give the scans: FLASER / ROBOTLASER1 (and the rear lasers if asked); ROBOTLASER0 and
+    // RAWLASER1 only when the log has no other front laser (beside them they are duplicates).
+    std::vector<PendingScan> scans = std::move(lasers_);
+    bool has_front = std::any_of(scans.begin(), scans.end(), [](const PendingScan& p) { return !p.rear; });
+    bool merged = false;
+    if (!robot0_.empty()) {
+      if (has_front) {
+        log_.skipped_messages["ROBOTLASER0"] += robot0_.size();
+      } else {
+        log_.notes.push_back("ROBOTLASER0 lines read as the front laser (the log has no FLASER or ROBOTLASER1)");
+        for (auto& p : robot0_) scans.push_back(std::move(p));
+        has_front = merged = true;
+      }
+    }
+    if (!raw_.empty()) {
+      if (has_front) {
+        log_.skipped_messages["RAWLASER1"] += raw_.size();
+      } else {
+        log_.notes.push_back("RAWLASER1 lines only: scans without odometry");
+        for (auto& p : raw_) scans.push_back(std::move(p));
+        merged = true;
+      }
+    }
+    if (merged)
+      std::stable_sort(scans.begin(), scans.end(), [](const PendingScan& a, const PendingScan& b) {
+        return a.rec.source_index < b.rec.source_index;
+      });
+    if (poseless_)
+      log_.notes.push_back(std::to_string(poseless_) + " FLASER/RLASER lines without poses: scans without odometry");
+
+    // Units of the FLASER/RLASER geometry PARAMs, from each laser's most common beam count.
+    for (const bool rear : {false, true}) {
+      std::map<std::size_t, std::size_t> beams;
+      for (const auto& p : scans)
+        if (p.infer_angles && p.rear == rear) ++beams[p.rec.scan.ranges.size()];
+      if (beams.empty()) continue;
+      const auto modal = std::max_element(beams.begin(), beams.end(),
+                                          [](const auto& a, const auto& b) { return a.second < b.second; });
+      geometry_[rear ? 1 : 0] = decideGeometry(rear, modal->first);
+    }
+    for (auto& p : scans) complete(p);
+    checkMaxRanges(scans);
+    log_.scans.reserve(scans.size());
+    for (auto& p : scans) {
+      LaserScan& s = p.rec.scan;
+      s.valid.resize(s.ranges.size());
+      const auto maxr = static_cast<float>(s.max_range);
+      for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+        const float r = s.ranges[k];
+        s.valid[k] = (std::isfinite(r) && r > 0.0f && r < maxr) ? 1 : 0;
+      }
+      log_.scans.push_back(std::move(p.rec));
+    }
+    checkTimestamps();
+
+    for (const auto& [type, line] : unknown_)
+      log_.warnings.push_back("unknown message type '" + excerpt(type) + "' (" +
+                              std::to_string(log_.skipped_messages[type]) + " lines from line " +
+                              std::to_string(line) + ") skipped: it has the form of a CARMEN message (`" +
+                              excerpt(type) + " ... ipc_timestamp host logger_timestamp`)");
+    if (log_.odometry.empty() &&
+        std::any_of(log_.scans.begin(), log_.scans.end(), [](const ScanRecord& r) { return r.has_odometry; }))
+      log_.notes.push_back("no ODOM lines: odometry is the robot pose inside the laser lines");
   }
 
   const std::string& name_;
@@ -447,8 +994,11 @@ class Parser {
   CarmenLog& log_;
   std::size_t lineno_ = 0;
   std::vector<std::string_view> tok_;
-  std::vector<PendingGeometry> pending_, raw_pending_;
-  std::vector<ScanRecord> raw_scans_;
+  ParamLayout param_layout_ = ParamLayout::HostLogger;
+  std::vector<PendingScan> lasers_, robot0_, raw_;
+  OldLaserGeometry geometry_[2];           // front, rear
+  std::size_t poseless_ = 0;               // FLASER/RLASER lines without poses
+  std::map<std::string, std::size_t> unknown_;  // unknown but well-formed message type -> first line
 };
 
 CarmenLog parseText(std::string data, const std::string& name, const CarmenReadOptions& options) {

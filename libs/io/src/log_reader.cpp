@@ -125,6 +125,9 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
   info.lines_or_entries = log.lines;
   info.skipped_lines = log.skipped_lines;
   info.skipped = std::move(log.skipped);
+  info.skipped_messages = std::move(log.skipped_messages);
+  info.warnings = std::move(log.warnings);
+  info.notes = std::move(log.notes);
   if (options.odometry == OdometrySource::OdomLines)
     info.odometry_fallbacks = interpolateOdometry(log.scans, log.odometry);
   return std::move(log.scans);

@@ -1,6 +1,7 @@
 #pragma once
 // One entry point for every log format: the SLAM and the tools never care where the data came from.
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct ScanLogInfo {
   std::size_t lines_or_entries = 0;    ///< CARMEN lines / rawlog top-level objects
   std::size_t skipped_lines = 0;       ///< CARMEN malformed lines skipped (skip_bad_lines)
   std::vector<std::string> skipped;    ///< messages of the first skipped lines
+  std::map<std::string, std::size_t> skipped_messages;  ///< CARMEN message types not used -> lines
+  std::vector<std::string> warnings;   ///< CARMEN: what the reader decided against the log's word
+  std::vector<std::string> notes;      ///< CARMEN: which variant was read (PARAM layout, odometry source)
   std::size_t odometry_fallbacks = 0;  ///< OdomLines: scans outside the ODOM time range (laser-line odometry)
   bool rawlog_has_actions = false;     ///< rawlog in the action / sensory-frame layout
 };
