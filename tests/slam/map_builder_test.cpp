@@ -24,7 +24,7 @@ sim::SimLog shortLog() {
 }
 slam::SlamOptions smallOptions() {
   slam::SlamOptions o;
-  o.particles = 6;
+  o.particles = 10;  // 6 left seed 1 at 7 cm mean error with the sharp informed proposal (seeds 2, 3: < 5 cm)
   o.threads = 2;
   return o;
 }
@@ -70,7 +70,7 @@ TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
   const auto pdf = builder.getCurrentPoseEstimation();
   auto particles = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFParticles>(pdf);
   ASSERT_TRUE(particles);
-  EXPECT_EQ(particles->size(), 6u);
+  EXPECT_EQ(particles->size(), static_cast<std::size_t>(smallOptions().particles));
   mrpt::maps::CSimpleMap sm;
   builder.getCurrentlyBuiltMap(sm);
   EXPECT_EQ(sm.size(), builder.getCurrentlyBuiltMapSize());

@@ -24,6 +24,7 @@ struct WeightScene {
   Pose2 prev{6.0, 2.8, 0.02}, u{0.06, 0.0, 0.01};  // small step: motion sigmas 1.6 cm, 0.013 rad
   WeightScene() {
     o.beams.matching_beam_step = 2;
+    o.proposal.fit = ProposalFit::Moments;  // the Riemann sum of the paper's grid (proposal_shape_test: the default fit)
     o.proposal.points_per_axis = 21;  // a grid wide and fine enough for its Riemann sum to converge
     o.proposal.delta_xy = 0.005;
     o.proposal.delta_theta = 0.004;
@@ -98,11 +99,14 @@ TEST(ProposalWeight, FallbackWeightIsAMonteCarloEstimateOfTheSameIntegral) {
   EXPECT_NEAR(plan.log_weight_increment, mc, 0.1);
 }
 
-TEST(ProposalWeight, DefaultNarrowGridStillEstimatesTheIntegral) {
-  // The default 3×3×3 grid (±1 cm, ±0.005 rad) covers only the core of the integrand: its Riemann sum alone
-  // underestimates the integral; the Laplace approximation of the quadratic fit recovers it.
+TEST(ProposalWeight, NarrowGridStillEstimatesTheIntegral) {
+  // The paper's narrow 3×3×3 grid (±1 cm, ±0.005 rad) covers only the core of the integrand: its Riemann sum
+  // alone underestimates the integral; the Laplace approximation of the quadratic fit recovers it.
   WeightScene s;
   s.o.proposal = ProposalOptions{};
+  s.o.proposal.fit = ProposalFit::Moments;
+  s.o.proposal.delta_xy = 0.01;
+  s.o.proposal.delta_theta = 0.005;
   s.o.proposal.laplace_weight = true;
   const OdometryMotionModel motion(s.o.motion);
   const double exact = bruteForceLogIntegral(s, motion);

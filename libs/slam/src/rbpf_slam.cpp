@@ -20,6 +20,13 @@ namespace gridtopo::slam {
 namespace {
 Pose2 toPose(const mrpt::math::TPose2D& p) { return {p.x, p.y, p.phi}; }
 constexpr std::uint64_t kPurposeParticle = 1, kPurposeResample = 2, kPurposeStart = 3, kPurposeScale = 4;
+
+/// The minimum sigmas on the proposal's diagonal (numerical safety).
+void addFloor(GaussianProposal& g, const ProposalOptions& p) {
+  g.cov(0, 0) += p.min_sigma_xy * p.min_sigma_xy;
+  g.cov(1, 1) += p.min_sigma_xy * p.min_sigma_xy;
+  g.cov(2, 2) += p.min_sigma_theta * p.min_sigma_theta;
+}
 }  // namespace
 
 ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
@@ -46,8 +53,7 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
   std::vector<Pose2> xs;
-  std::vector<double> log_tau, log_tau_weight;
-  const double inv_pgain = 1.0 / (o.proposal_gain > 0.0 ? o.proposal_gain : o.likelihood_gain);
+  std::vector<double> log_tau, log_lik;
   xs.reserve(static_cast<std::size_t>(n) * n * n);
   log_tau.reserve(xs.capacity());
   for (int i = 0; i < n; ++i)
@@ -59,24 +65,40 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
                               ? m.score.log_likelihood
                               : scorer.score(x).log_likelihood;
         xs.push_back(x);
+        log_lik.push_back(ll);
         const double lm = motion.logDensity(x, prev, u, has_odometry);
-        log_tau.push_back(ll * inv_pgain + lm);
-        log_tau_weight.push_back(ll * inv_gain + lm);
+        log_tau.push_back(ll * inv_gain + lm);
       }
   plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
+  if (o.proposal.fit == ProposalFit::Quadratic) {
+    LocalQuadratic q = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta,
+                                         o.proposal.min_curvature);
+    if (q.ok) {
+      // Laplace's approximation of τ, centred on the mode the hill climb found (to a millimetre; the fit's own
+      // peak is smoothed over the grid and biased by truncated beams), with the fitted curvature.
+      const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
+      const Pose2 prediction = compose(prev, u);  // the motion prior's mean (the search may start elsewhere)
+      q.b.setZero();
+      q.c = m.score.log_likelihood;
+      // The weight: the integral of the softened target. The shape: the likelihood of beams that register to
+      // beam_sigma, times the motion prior.
+      plan.log_weight_increment = informedGaussian(q, inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
+      const double shape_scale = std::pow(o.matcher.sigma / o.proposal.beam_sigma, 2);
+      plan.gaussian = informedGaussian(q, shape_scale, m.pose, prediction, sg.xy, sg.theta);
+      addFloor(plan.gaussian, o.proposal);
+      return plan;
+    }
+  }
   plan.gaussian = fitProposal(xs, log_tau, m.pose);
-  const double mx = o.proposal.min_sigma_xy * o.proposal.min_sigma_xy;
-  plan.gaussian.cov(0, 0) += mx;
-  plan.gaussian.cov(1, 1) += mx;
-  plan.gaussian.cov(2, 2) += o.proposal.min_sigma_theta * o.proposal.min_sigma_theta;
+  addFloor(plan.gaussian, o.proposal);
   // The weight factor approximates the integral ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx, so that it is
   // commensurate with the weight of a particle whose matching failed (odometry proposal: p(z|m,x)^(1/gain) at a
   // motion sample, a one-sample Monte-Carlo estimate of the same integral). η = Σ τ_j alone lacks the grid
   // volume Δx·Δy·Δθ, and such particles would be discarded in every mixed step.
   plan.log_weight_increment =
       o.proposal.laplace_weight
-          ? logIntegralOnGrid(xs, log_tau_weight, m.pose, o.proposal.delta_xy, o.proposal.delta_theta)
-          : logSumExp(log_tau_weight) + 2.0 * std::log(o.proposal.delta_xy) + std::log(o.proposal.delta_theta);
+          ? logIntegralOnGrid(xs, log_tau, m.pose, o.proposal.delta_xy, o.proposal.delta_theta)
+          : logSumExp(log_tau) + 2.0 * std::log(o.proposal.delta_xy) + std::log(o.proposal.delta_theta);
   return plan;
 }
 

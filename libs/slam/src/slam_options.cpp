@@ -39,7 +39,6 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("threads", o.threads);
   f("resample_threshold", o.resample_threshold);
   f("likelihood_gain", o.likelihood_gain);
-  f("proposal_gain", o.proposal_gain);
   f("linear_update", o.linear_update);
   f("angular_update", o.angular_update);
   f("temporal_update", o.temporal_update);
@@ -89,6 +88,8 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
   f("proposal_laplace_weight", o.proposal.laplace_weight);
   f("proposal_start_spread", o.proposal.start_spread);
+  f("proposal_beam_sigma", o.proposal.beam_sigma);
+  f("proposal_min_curvature", o.proposal.min_curvature);
 }
 
 template <class T>
@@ -127,6 +128,13 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
       throw InputError(file, 0, "[" + section + "] proposal", e.what());
     }
   }
+  if (source.keyExists(section, "proposal_fit")) {
+    const std::string f = iniValueText(source.read_string(section, "proposal_fit", "", false));
+    if (f == "quadratic") proposal.fit = ProposalFit::Quadratic;
+    else if (f == "moments") proposal.fit = ProposalFit::Moments;
+    else throw InputError(file, 0, "[" + section + "] proposal_fit",
+                          "unknown fit '" + f + "' (expected quadratic or moments)");
+  }
   validate(file, section);
 }
 
@@ -138,6 +146,7 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
     else target.write(section, key, str(value));
   });
   target.write(section, "proposal", std::string(toString(proposal.type)));
+  target.write(section, "proposal_fit", std::string(proposal.fit == ProposalFit::Moments ? "moments" : "quadratic"));
   target.write(section, "match_method",
                std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
 }
@@ -153,6 +162,7 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
     out << "\n";
   });
   out << "  proposal = " << toString(proposal.type) << "\n";
+  out << "  proposal_fit = " << (proposal.fit == ProposalFit::Moments ? "moments" : "quadratic") << "\n";
   out << "  match_method = " << (matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb") << "\n";
 }
 
@@ -172,7 +182,8 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   if (!(resample_threshold >= 0.0 && resample_threshold <= 1.0))
     fail("resample_threshold", "must be in [0, 1], got " + str(resample_threshold));
   positive("likelihood_gain", likelihood_gain);
-  nonNegative("proposal_gain", proposal_gain);
+  positive("proposal_beam_sigma", proposal.beam_sigma);
+  nonNegative("proposal_min_curvature", proposal.min_curvature);
   nonNegative("linear_update", linear_update);
   nonNegative("angular_update", angular_update);
   if (!std::isfinite(temporal_update)) fail("temporal_update", "must be finite");

@@ -16,11 +16,23 @@ enum class ProposalType {
   Odometry,  ///< classic SIR: sample the motion model, weight p(z|m,x)
 };
 
+/// How N(μ, Σ) is fitted to the K evaluated poses.
+enum class ProposalFit {
+  /// Least-squares quadratic of ln p(z|m,x) over the K poses (curvature made positive semi-definite), times the
+  /// exact Gaussian motion prior: Σ = (P/gain + Σ_u⁻¹)⁻¹, and ln η by the Laplace integral. Unbiased when the
+  /// grid spans about a map cell, so the fit sees the likelihood's shape through its sub-cell ripple.
+  Quadratic,
+  /// The paper's weighted moments of the K poses (eq. 11-12) and η = Σ τ_j. Σ can never exceed the grid's own
+  /// spread, so along a corridor (flat likelihood) the proposal stays as narrow as the grid.
+  Moments,
+};
+
 struct ProposalOptions {
   ProposalType type = ProposalType::Informed;
+  ProposalFit fit = ProposalFit::Quadratic;
   int points_per_axis = 3;     ///< K = points_per_axis³ poses on a grid around the mode
-  double delta_xy = 0.01;      ///< m, grid spacing in x and y
-  double delta_theta = 0.005;  ///< rad, grid spacing in θ
+  double delta_xy = 0.05;      ///< m, grid spacing in x and y (about one map cell: see ProposalFit)
+  double delta_theta = 0.02;   ///< rad, grid spacing in θ
   double min_sigma_xy = 1e-3;  ///< m, floor on the proposal's standard deviations (numerical safety)
   double min_sigma_theta = 5e-4;
   /// Weight factor ≈ ∫ p(z|m,x) p(x|x_{t-1},u) dx: false = the Riemann sum η·Δx·Δy·Δθ over the grid (the paper's
@@ -32,7 +44,16 @@ struct ProposalOptions {
   /// model, one draw per particle (k = 1: a motion sample, as GMapping starts its search). Where the likelihood
   /// is flat (along a corridor) the mode then keeps that spread, so the particles stay diverse in the directions
   /// the scan cannot observe. Not used for scans without odometry (their prior is no noise model).
-  double start_spread = 0.0;
+  double start_spread = 1.0;
+  /// Quadratic fit: the shape N(μ, Σ) uses the likelihood of a beam whose end point registers to within this
+  /// standard deviation (m): ln p(z|m,x)·(match_sigma / beam_sigma)². match_sigma is wide so that the matcher has
+  /// a basin to climb, and likelihood_gain softens the weights for correlated beams; neither says how precisely a
+  /// scan registers, which is what the proposal's spread must be (a wider spread adds that much noise to every
+  /// pose and map). About the laser's range noise plus the map's sub-cell error.
+  double beam_sigma = 0.01;
+  /// Quadratic fit: a direction whose fitted curvature of ln p(z|m,x) is at most this many nats per grid step²
+  /// (moving one step changes ln p by at most half of it) is unobserved: the proposal takes the motion model there.
+  double min_curvature = 2.0;
 };
 
 struct GaussianProposal {
@@ -45,6 +66,28 @@ struct GaussianProposal {
 /// with wrapped differences, so poses on both sides of ±π are handled.
 GaussianProposal fitProposal(const std::vector<Pose2>& poses, const std::vector<double>& log_tau,
                              const Pose2& reference);
+
+/// ln p(z|m, x̂ + δ) ≈ c + bᵀδ − ½ δᵀ P δ around a mode x̂, δ = (dx, dy, dθ) in m and rad, P positive
+/// semi-definite. Directions in which the fitted likelihood is not (clearly) concave carry no information (P and b
+/// are 0 there).
+struct LocalQuadratic {
+  double c = 0.0;
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  bool ok = false;  ///< false: fewer than 10 poses or a singular design
+};
+
+/// Least-squares quadratic fit of `log_lik` at `poses` (a grid around `mode`, spacing delta_xy, delta_theta).
+/// Eigen-directions whose curvature, in nats per grid step², is at most `min_curvature` count as unobserved.
+LocalQuadratic fitLocalQuadratic(const std::vector<Pose2>& poses, const std::vector<double>& log_lik,
+                                 const Pose2& mode, double delta_xy, double delta_theta, double min_curvature = 0.0);
+
+/// The informed proposal from a local quadratic of ln p(z|m,x) and the Gaussian motion prior N(predicted,
+/// diag(σ_xy², σ_xy², σ_θ²)) (the odometry model is exactly Gaussian in world coordinates):
+/// τ(x) = p(z|m,x)^scale · p(x|x_{t-1},u); mean and covariance of that Gaussian product, and log_eta = ln ∫ τ dx
+/// (Laplace). `scale` = 1/gain.
+GaussianProposal informedGaussian(const LocalQuadratic& q, double scale, const Pose2& mode, const Pose2& predicted,
+                                  double sigma_xy, double sigma_theta);
 
 /// Draws from N(mean, cov) (3×3, positive semi-definite), angle wrapped.
 Pose2 sampleGaussian(const GaussianProposal& g, Rng& rng);

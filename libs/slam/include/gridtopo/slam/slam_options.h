@@ -23,9 +23,6 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   /// The observation log-likelihood is divided by this before it enters τ_j and the weights (GMapping's
   /// softening of the over-confident independent-beam model).
   double likelihood_gain = 10.0;
-  /// If > 0, the gain used for the shape of the informed proposal (N(μ, Σ)) while likelihood_gain still softens
-  /// the weights; 0 = likelihood_gain for both (the paper's single likelihood).
-  double proposal_gain = 0.0;
 
   // Update policy (GMapping's linearUpdate / angularUpdate / temporalUpdate)
   double linear_update = 0.25;    ///< m of travelled distance since the last processed scan
