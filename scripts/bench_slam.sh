@@ -1,134 +1,122 @@
 #!/usr/bin/env bash
-# Benchmark of gridtopo-slam (issue 3): Intel and ACES accuracy (Freiburg relations, gridtopo-eval), wall time,
-# CPU time and peak RSS (/usr/bin/time -v), error vs particle count for the informed and the odometry proposal,
-# Intel with 30 particles over seeds 1-10, with 8 particles over seeds 1-10, ACES with 30 particles over seeds 1-5
-# (config-ini/slam.ini and config-ini/slam-aces.ini).
-# Writes the tables to doc/slam-bench.md and the map pictures to doc/img/. Everything in doc/slam-bench.md from the
-# line "<!-- hand-written below -->" on (the analyses and experiment rounds) is kept; the part above it is replaced.
-# Usage: scripts/bench_slam.sh [--quick]   (--quick: skips the particle sweep and the seed study and writes
-#                                          doc/slam-bench-quick.md instead)
-# Run it on an otherwise idle machine: the timings are wall-clock.
+# Benchmark of gridtopo-slam on the four bundled real logs (Intel, ACES, MIT CSAIL, Freiburg hospital): every log
+# with the one default INI (config-ini/slam.ini), 30 particles, 2 threads, seeds 1..N, for each proposal.
+# Per run: Freiburg relations error (gridtopo-eval), wall and CPU time, peak RSS (GNU time); per log and proposal:
+# mean, worst and per-seed error. Writes doc/slam-bench.md (the generated tables; the analyses live in doc/slam.md)
+# and, for seed 1 of the informed proposal, the maps with their trajectories as doc/img/slam-<log>.png.
+#
+# Usage: scripts/bench_slam.sh [--seeds N] [--logs "intel aces mit-csail fr-clinic"] [--proposals "informed mode-only"]
+#                              [--particles P] [--out DIR] [--doc FILE]
+# Defaults: 10 seeds, the four logs, both proposals, 30 particles, out/bench-slam, doc/slam-bench.md.
+# It takes about (seeds x proposals) x 2.5 minutes on the 2-core machine. Run it on an otherwise idle machine: the
+# timings are wall-clock. Needs python3 and GNU time (Debian packages python3 time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${GRIDTOPO_BUILD_DIR:-build}
 BIN=$BUILD/bin
-OUT=${GRIDTOPO_BENCH_OUT:-out/bench-slam}
-QUICK=${1:-}
-# --quick writes its two rows to a file of its own, so it never replaces the full tables of doc/slam-bench.md.
+SEEDS=10
+LOGS="intel aces mit-csail fr-clinic"
+PROPOSALS="informed mode-only"
+PARTICLES=30
+OUT=out/bench-slam
 DOC=doc/slam-bench.md
-[ "$QUICK" = "--quick" ] && DOC=doc/slam-bench-quick.md
 THREADS=${GRIDTOPO_BENCH_THREADS:-2}
+while [ $# -gt 0 ]; do
+  case $1 in
+    --seeds) SEEDS=$2; shift 2 ;;
+    --logs) LOGS=$2; shift 2 ;;
+    --proposals) PROPOSALS=$2; shift 2 ;;
+    --particles) PARTICLES=$2; shift 2 ;;
+    --out) OUT=$2; shift 2 ;;
+    --doc) DOC=$2; shift 2 ;;
+    -h|--help) sed -n 2,13p "$0"; exit 0 ;;
+    *) echo "bench_slam: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+[ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "bench_slam: needs GNU time (apt-get install time)" >&2; exit 1; }
 mkdir -p "$OUT" doc/img
-MARK='<!-- hand-written below -->'
-FINAL=$DOC
-DOC=$(mktemp)
-trap 'rm -f "$DOC"' EXIT
-[ -x "$BIN/gridtopo-slam" ] && [ -x "$BIN/gridtopo-eval" ] || { echo "build first (scripts/build.sh)"; exit 1; }
-
-# run <name> <log> <relations> <extra slam args...>: prints "trans_mean trans_std rot_mean rot_std wall_s rss_mb cpu_s"
-run() {
-  local name=$1 log=$2 rel=$3
-  shift 3
-  local dir=$OUT/$name
-  /usr/bin/time -v -o "$dir.time" "$BIN/gridtopo-slam" -i "$log" -o "$dir" -c "${INI:-config-ini/slam.ini}" -t "$THREADS" -q "$@" \
-    2> "$dir.log" || { echo "gridtopo-slam failed, see $dir.log" >&2; exit 1; }
-  "$BIN/gridtopo-eval" -r "$rel" -l "$log" -t "$dir/trajectory.txt" -j "$dir.json" > "$dir.eval"
-  python3 - "$dir.json" "$dir.time" <<'PY'
+ROWS=$OUT/runs.tsv
+: > "$ROWS"
+total=0
+for log in $LOGS; do for p in $PROPOSALS; do total=$((total + SEEDS)); done; done
+done_runs=0
+for log in $LOGS; do
+  LOGF=datasets/slam/$log.clf.gz
+  REL=datasets/slam/$log.relations.gz
+  [ -f "$LOGF" ] && [ -f "$REL" ] || { echo "bench_slam: missing $LOGF or $REL" >&2; exit 1; }
+  for p in $PROPOSALS; do
+    for s in $(seq 1 "$SEEDS"); do
+      dir=$OUT/$log-$p-s$s
+      load=$(cut -d" " -f1 /proc/loadavg)
+      if ! /usr/bin/time -v -o "$dir.time" "$BIN/gridtopo-slam" -i "$LOGF" -o "$dir" -c config-ini/slam.ini \
+          -p "$PARTICLES" -s "$s" -t "$THREADS" --proposal "$p" -q 2> "$dir.log"; then
+        echo "bench_slam: gridtopo-slam failed on $log ($p, seed $s), see $dir.log" >&2
+        exit 1
+      fi
+      "$BIN/gridtopo-eval" -r "$REL" -l "$LOGF" -t "$dir/trajectory.txt" -j "$dir.json" > "$dir.eval"
+      python3 - "$log" "$p" "$s" "$dir" "$load" >> "$ROWS" <<'PY'
 import json, re, sys
-j = json.load(open(sys.argv[1]))
-t = open(sys.argv[2]).read()
-wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
-h = float(wall.group(1) or 0); m = float(wall.group(2)); s = float(wall.group(3))
+log, p, s, d, load = sys.argv[1:6]
+j = json.load(open(d + ".json"))
+t = open(d + ".time").read()
+w = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
+wall = 3600 * float(w.group(1) or 0) + 60 * float(w.group(2)) + float(w.group(3))
 rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1)) / 1024
-cpu = float(re.search(r"User time \(seconds\): ([\d.]+)", t).group(1)) + float(re.search(r"System time \(seconds\): ([\d.]+)", t).group(1))
+cpu = float(re.search(r"User time \(seconds\): ([\d.]+)", t).group(1)) + \
+      float(re.search(r"System time \(seconds\): ([\d.]+)", t).group(1))
+steps = sum(1 for l in open(d + "/stats.txt") if not l.startswith("#"))
 tr, ro = j["translational_m"], j["rotational_deg"]
-print("%.4f %.4f %.3f %.3f %.1f %.0f %.1f" % (tr["mean"], tr["std"], ro["mean"], ro["std"], 3600 * h + 60 * m + s, rss, cpu))
+print("\t".join(map(str, [log, p, s, tr["mean"], tr["max"], ro["mean"], wall, cpu, rss, steps, load])))
 PY
-}
+      done_runs=$((done_runs + 1))
+      echo "bench_slam: $done_runs / $total ($log, $p, seed $s): $(tail -1 "$ROWS" | cut -f4 | xargs printf '%.4f') m" >&2
+      if [ "$s" = 1 ] && [ "$p" = informed ]; then cp "$dir/map_trajectory.png" "doc/img/slam-$log.png"; fi
+    done
+  done
+done
 
-INTEL=datasets/slam/intel.clf.gz
-INTEL_REL=datasets/slam/intel.relations.gz
-ACES=datasets/slam/aces.clf.gz
-ACES_REL=datasets/slam/aces.relations.gz
-{
-  echo "# gridtopo-slam benchmark"
-  echo
-  echo "Produced by \`scripts/bench_slam.sh $QUICK\` on $(date -u +%Y-%m-%d) ($(nproc) cores, $THREADS threads," \
-       "commit $(git rev-parse --short HEAD), load average at start: $(cut -d" " -f1-3 /proc/loadavg)). Errors: Freiburg relations metric (gridtopo-eval), mean ± std."
-  echo
-  echo "| log | particles | proposal | translational (m) | rotational (deg) | wall (s) | CPU (s) | load before | peak RSS (MB) |"
-  echo "|---|---|---|---|---|---|---|---|---|"
-  l=$(cut -d" " -f1 /proc/loadavg)
-  read -r tm ts rm rs w m c < <(run intel-30 "$INTEL" "$INTEL_REL" -p 30)
-  echo "| Intel | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $c | $l | $m |"
-  l=$(cut -d" " -f1 /proc/loadavg)
-  read -r tm ts rm rs w m c < <(run aces-30 "$ACES" "$ACES_REL" -p 30)
-  echo "| ACES (slam.ini) | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $c | $l | $m |"
-  l=$(cut -d" " -f1 /proc/loadavg)
-  read -r tm ts rm rs w m c < <(INI=config-ini/slam-aces.ini run aces-30-acesini "$ACES" "$ACES_REL" -p 30)
-  echo "| ACES (slam-aces.ini) | 30 | informed | $tm ± $ts | $rm ± $rs | $w | $c | $l | $m |"
-} > "$DOC"
-cp "$OUT/intel-30/map_trajectory.png" doc/img/slam-intel.png
-cp "$OUT/aces-30-acesini/map_trajectory.png" doc/img/slam-aces.png
-
-if [ "$QUICK" != "--quick" ]; then
-  {
-    echo
-    echo "## Error vs particle count, Intel (seed 1)"
-    echo
-    echo "| particles | informed: trans (m) | informed: rot (deg) | informed: wall (s) | odometry: trans (m) | odometry: rot (deg) | odometry: wall (s) |"
-    echo "|---|---|---|---|---|---|---|"
-    for n in 4 8 15 30 60; do
-      read -r tm ts rm rs w m c < <(run intel-inf-$n "$INTEL" "$INTEL_REL" -p $n --proposal informed)
-      read -r om os orm ors ow omm oc < <(run intel-odo-$n "$INTEL" "$INTEL_REL" -p $n --proposal odometry)
-      echo "| $n | $tm ± $ts | $rm | $w | $om ± $os | $orm | $ow |"
-    done
-    echo
-    echo "## Intel, 30 particles, seeds 1–10 (default INI)"
-    echo
-    echo "| seed | trans (m) | rot (deg) | ≤ 0.040 m | wall (s) | CPU (s) | load before | peak RSS (MB) |"
-    echo "|---|---|---|---|---|---|---|---|"
-    ok=0
-    for s in 1 2 3 4 5 6 7 8 9 10; do
-      l=$(cut -d" " -f1 /proc/loadavg)
-      read -r tm ts rm rs w m c < <(run intel-30-s$s "$INTEL" "$INTEL_REL" -p 30 -s $s)
-      y=$(python3 -c "print('yes' if $tm <= 0.040 else 'no')")
-      [ "$y" = yes ] && ok=$((ok + 1))
-      echo "| $s | $tm ± $ts | $rm | $y | $w | $c | $l | $m |"
-    done
-    echo
-    echo "Seeds with ≤ 0.040 m: $ok / 10."
-    echo
-    echo "## Intel, 8 particles, seeds 1–10 (default INI)"
-    echo
-    echo "| seed | trans (m) | rot (deg) | consistent (≤ 0.08 m) |"
-    echo "|---|---|---|---|"
-    ok=0
-    for s in 1 2 3 4 5 6 7 8 9 10; do
-      read -r tm ts rm rs w m c < <(run intel-8-s$s "$INTEL" "$INTEL_REL" -p 8 -s $s)
-      y=$(python3 -c "print('yes' if $tm <= 0.08 else 'no')")
-      [ "$y" = yes ] && ok=$((ok + 1))
-      echo "| $s | $tm ± $ts | $rm | $y |"
-    done
-    echo
-    echo "Consistent maps: $ok / 10."
-    echo
-    echo "## ACES, 30 particles, seeds 1–5"
-    echo
-    echo "| seed | slam.ini: trans (m) | rot (deg) | slam-aces.ini: trans (m) | rot (deg) | slam-aces.ini ≤ 0.045 m | slam-aces.ini CPU (s) |"
-    echo "|---|---|---|---|---|---|---|"
-    for s in 1 2 3 4 5; do
-      read -r tm ts rm rs w m c < <(run aces-30-s$s "$ACES" "$ACES_REL" -p 30 -s $s)
-      read -r am as arm ars aw amm ac < <(INI=config-ini/slam-aces.ini run aces-30-acesini-s$s "$ACES" "$ACES_REL" -p 30 -s $s)
-      y=$(python3 -c "print('yes' if $am <= 0.045 else 'no')")
-      echo "| $s | $tm ± $ts | $rm | $am ± $as | $arm | $y | $ac |"
-    done
-  } >> "$DOC"
-fi
-# Keep the hand-written part of the existing document.
-if [ -f "$FINAL" ] && grep -qxF "$MARK" "$FINAL"; then
-  { echo; sed -n "/^$MARK\$/,\$p" "$FINAL"; } >> "$DOC"
-fi
-cp "$DOC" "$FINAL"
-echo "bench_slam: wrote $FINAL"
-cat "$FINAL"
+python3 - "$ROWS" "$DOC" "$PARTICLES" "$THREADS" "$(git rev-parse --short HEAD)" "$(date -u +%Y-%m-%d)" <<'PY'
+import collections, statistics, sys
+rows_path, doc, particles, threads, commit, day = sys.argv[1:7]
+names = {"intel": "Intel", "aces": "ACES", "mit-csail": "MIT CSAIL", "fr-clinic": "Freiburg hospital"}
+groups = collections.OrderedDict()
+for line in open(rows_path):
+    log, p, s, tm, tmax, rm, wall, cpu, rss, steps, load = line.rstrip("\n").split("\t")
+    groups.setdefault((log, p), []).append(dict(seed=int(s), t=float(tm), tmax=float(tmax), r=float(rm),
+        wall=float(wall), cpu=float(cpu), rss=float(rss), steps=int(steps)))
+intel_cost = {}
+for (log, p), rs in groups.items():
+    if log == "intel":
+        intel_cost[p] = statistics.median(r["cpu"] / r["steps"] for r in rs) / int(particles)
+out = []
+out.append("# gridtopo-slam benchmark\n")
+out.append(f"Produced by `scripts/bench_slam.sh` on {day} (commit {commit}, {threads} threads, {particles} particles, "
+           "`config-ini/slam.ini` for every log). Error: Freiburg relations metric (`gridtopo-eval`), mean over "
+           "the relations; per log and proposal the mean, the worst seed and each seed. Times are medians over "
+           "the seeds. CPU per step and particle: CPU time / processed scans / particles, relative to Intel's "
+           "with the same proposal. Analyses: [slam.md](slam.md).\n")
+out.append("| log | proposal | seeds | mean trans (m) | worst seed (m) | mean rot (deg) | wall (s) | CPU (s) | "
+           "CPU / step / particle (ms, × Intel) | peak RSS (MB, max) |")
+out.append("|---|---|---|---|---|---|---|---|---|---|")
+for (log, p), rs in groups.items():
+    t = [r["t"] for r in rs]
+    cps = statistics.median(r["cpu"] / r["steps"] for r in rs) / int(particles)
+    rel = f"{cps / intel_cost[p]:.2f}" if p in intel_cost else "–"
+    out.append(f"| {names.get(log, log)} | {p} | {len(rs)} | {statistics.mean(t):.4f} | {max(t):.4f} | "
+               f"{statistics.mean(r['r'] for r in rs):.3f} | {statistics.median(r['wall'] for r in rs):.1f} | "
+               f"{statistics.median(r['cpu'] for r in rs):.1f} | {1000 * cps:.2f} ({rel}) | "
+               f"{max(r['rss'] for r in rs):.0f} |")
+out.append("\n## Per seed (translational error, m)\n")
+seeds = sorted({r["seed"] for rs in groups.values() for r in rs})
+out.append("| log | proposal | " + " | ".join(str(s) for s in seeds) + " |")
+out.append("|---|---|" + "---|" * len(seeds))
+for (log, p), rs in groups.items():
+    by = {r["seed"]: r["t"] for r in rs}
+    out.append(f"| {names.get(log, log)} | {p} | " + " | ".join(f"{by[s]:.4f}" if s in by else "–" for s in seeds) + " |")
+out.append("\nMaps of seed 1 with the informed proposal: " +
+           ", ".join(f"[{names.get(l, l)}](img/slam-{l}.png)" for l in dict.fromkeys(k[0] for k in groups)) + ".\n")
+open(doc, "w").write("\n".join(out))
+print(f"bench_slam: wrote {doc}")
+PY
+cat "$DOC"

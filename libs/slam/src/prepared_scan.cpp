@@ -15,7 +15,12 @@ PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double
     rx = p.sensor.x + cs * lx - ss * ly;
     ry = p.sensor.y + ss * lx + cs * ly;
   };
-  const int step = std::max(1, o.matching_beam_step);
+  int step = o.matching_beam_step;
+  if (step <= 0) {
+    const double inc = std::abs(scan.angle_increment);
+    step = inc > 0.0 ? static_cast<int>(std::lround(o.matching_beam_angle / inc)) : 1;
+  }
+  step = std::max(1, step);
   int hit_count = 0;
   p.map_beams.reserve(scan.size());
   for (std::size_t k = 0; k < scan.size(); ++k) {

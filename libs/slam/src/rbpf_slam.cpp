@@ -287,10 +287,10 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
   st.particles = static_cast<int>(n);
   // Counting distinct tiles hashes every tile pointer of every particle: done every 20 steps only.
   if (stats_.empty() || stats_.size() % 20 == 0) {
-    last_unique_tiles_ = uniqueTiles();
+    last_unique_tiles_ = uniqueTiles(&last_map_bytes_);
   }
   st.unique_tiles = last_unique_tiles_;
-  st.map_bytes = st.unique_tiles * sizeof(GridMap::Tile);
+  st.map_bytes = last_map_bytes_;
   st.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.push_back(st);
   return true;
@@ -315,11 +315,13 @@ std::size_t RbpfSlam::bestParticleIndex() const {
   return best;
 }
 
-std::size_t RbpfSlam::uniqueTiles() const {
+std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
   std::unordered_set<const void*> seen;
+  std::size_t b = 0;
   for (const auto& p : particles_)
     for (const auto& t : p.map.tiles())
-      if (t) seen.insert(t.get());
+      if (t && seen.insert(t.get()).second) b += t->bytes();
+  if (bytes) *bytes = b;
   return seen.size();
 }
 

@@ -44,13 +44,13 @@ void associate(const GridMap& map, const Pose2& x, const PreparedScan& scan, con
     const HitMean* best_hit = nullptr;
     auto consider = [&](const Tile* t, int i) {
       if (t->log_odds[static_cast<std::size_t>(i)] <= occ) return;
-      const HitMean& h = t->hit[static_cast<std::size_t>(i)];
-      if (h.n == 0) return;
-      const double ddx = px - h.x, ddy = py - h.y;
+      const HitMean* h = t->hit(static_cast<std::size_t>(i));
+      if (!h || h->n == 0) return;
+      const double ddx = px - h->x, ddy = py - h->y;
       const double d2 = ddx * ddx + ddy * ddy;
       if (d2 < best) {
         best = d2;
-        best_hit = &h;
+        best_hit = h;
       }
     };
     const int lx = ipx & GridMap::kTileMask, ly = ipy & GridMap::kTileMask;
@@ -67,7 +67,8 @@ void associate(const GridMap& map, const Pose2& x, const PreparedScan& scan, con
           const Tile* t = lookup(ipx + dx, ipy + dy);
           if (!t) continue;
           const int i = GridMap::cellOffset(ipx + dx, ipy + dy);
-          if (free_check && t->log_odds[static_cast<std::size_t>(i)] > occ && t->hit[static_cast<std::size_t>(i)].n) {
+          const HitMean* hm = t->hit(static_cast<std::size_t>(i));
+          if (free_check && t->log_odds[static_cast<std::size_t>(i)] > occ && hm && hm->n) {
             const Tile* ft = lookup(iqx + dx, iqy + dy);
             if (ft && ft->log_odds[static_cast<std::size_t>(GridMap::cellOffset(iqx + dx, iqy + dy))] > occ) continue;
             t = lookup(ipx + dx, ipy + dy);
@@ -138,10 +139,10 @@ const ScanScorer::Slot& ScanScorer::window(int cx, int cy) {
   const std::size_t offset = hits_.size() / 2;
   auto take = [&](const GridMap::Tile* t, int i) {
     if (t->log_odds[static_cast<std::size_t>(i)] <= occ) return;
-    const HitMean& h = t->hit[static_cast<std::size_t>(i)];
-    if (h.n == 0) return;
-    hits_.push_back(h.x);
-    hits_.push_back(h.y);
+    const HitMean* h = t->hit(static_cast<std::size_t>(i));
+    if (!h || h->n == 0) return;
+    hits_.push_back(h->x);
+    hits_.push_back(h->y);
   };
   const int lx = cx & GridMap::kTileMask, ly = cy & GridMap::kTileMask;
   if (lx >= k && ly >= k && lx < GridMap::kTileSize - k && ly < GridMap::kTileSize - k) {

@@ -63,6 +63,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("clear_no_return", o.beams.clear_no_return);
   f("no_return_range", o.beams.no_return_range);
   f("matching_beam_step", o.beams.matching_beam_step);
+  f("matching_beam_angle", o.beams.matching_beam_angle);
   f("match_sigma", o.matcher.sigma);
   f("match_kernel", o.matcher.kernel);
   f("match_null_log_likelihood", o.matcher.null_log_likelihood);
@@ -209,7 +210,8 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   nonNegative("max_usable_range", beams.max_usable_range);
   nonNegative("min_range", beams.min_range);
   nonNegative("no_return_range", beams.no_return_range);
-  if (beams.matching_beam_step < 1) fail("matching_beam_step", "must be >= 1, got " + str(beams.matching_beam_step));
+  if (beams.matching_beam_step < 0) fail("matching_beam_step", "must be >= 0, got " + str(beams.matching_beam_step));
+  positive("matching_beam_angle", beams.matching_beam_angle);
   positive("match_sigma", matcher.sigma);
   if (matcher.kernel < 0 || matcher.kernel > 5) fail("match_kernel", "must be in [0, 5], got " + str(matcher.kernel));
   if (!(matcher.null_log_likelihood < 0.0))

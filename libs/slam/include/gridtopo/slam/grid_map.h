@@ -49,9 +49,18 @@ class GridMap {
   static constexpr int kTileSize = 1 << kTileBits;  ///< cells per tile side
   static constexpr int kTileMask = kTileSize - 1;
   static constexpr int kTileCells = kTileSize * kTileSize;
+  using HitMeans = std::array<HitMean, kTileCells>;
+  /// A tile's hit means exist only once a beam has ended in it: tiles that long beams only cross (most of the
+  /// area of a large building seen with a long-range laser) hold their 1 KiB of log-odds and nothing else.
   struct Tile {
     std::array<float, kTileCells> log_odds{};  ///< row-major (y, x) within the tile
-    std::array<HitMean, kTileCells> hit{};
+    std::unique_ptr<HitMeans> hits;            ///< null until the first hit in the tile
+    Tile() = default;
+    Tile(const Tile& o) : log_odds(o.log_odds), hits(o.hits ? std::make_unique<HitMeans>(*o.hits) : nullptr) {}
+    Tile& operator=(const Tile&) = delete;
+    /// The hit mean of a cell; null when no beam ever ended in this tile.
+    const HitMean* hit(std::size_t i) const { return hits ? &(*hits)[i] : nullptr; }
+    std::size_t bytes() const { return sizeof(Tile) + (hits ? sizeof(HitMeans) : 0); }
   };
   /// Index of a cell within its tile.
   static int cellOffset(int cx, int cy) { return ((cy & kTileMask) << kTileBits) | (cx & kTileMask); }
@@ -79,8 +88,9 @@ class GridMap {
     const Tile* t = tileAt(cx, cy);
     if (!t) return std::nullopt;
     const int i = cellOffset(cx, cy);
-    const HitMean& h = t->hit[static_cast<std::size_t>(i)];
-    return Cell{t->log_odds[static_cast<std::size_t>(i)], h.x, h.y, h.n};
+    const HitMean* h = t->hit(static_cast<std::size_t>(i));
+    return h ? Cell{t->log_odds[static_cast<std::size_t>(i)], h->x, h->y, h->n}
+             : Cell{t->log_odds[static_cast<std::size_t>(i)], 0.0f, 0.0f, 0};
   }
   /// The cell's log-odds, made writable: grows the grid if needed and copies a shared tile first.
   float& mutableLogOdds(int cx, int cy);

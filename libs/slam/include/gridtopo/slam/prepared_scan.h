@@ -18,7 +18,11 @@ struct BeamOptions {
   /// NaN / zero / negative readings carry no information and are ignored.
   bool clear_no_return = true;
   double no_return_range = 5.0;  ///< m
-  int matching_beam_step = 2;    ///< use every n-th hit beam for matching (all beams are inserted)
+  /// Use every n-th hit beam for matching (all beams are inserted). 0 = from matching_beam_angle: the step that
+  /// spaces the matching beams about that angle apart (2 for a 1° laser, 4 for a 0.5° one), so that the cost of a
+  /// step and the scale of the likelihood do not depend on the laser's angular resolution.
+  int matching_beam_step = 2;
+  double matching_beam_angle = 0.0349066;  ///< rad (2°), for matching_beam_step = 0
 };
 
 struct PreparedScan {

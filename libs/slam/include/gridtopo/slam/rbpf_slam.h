@@ -89,8 +89,8 @@ class RbpfSlam {
   const SlamOptions& options() const { return o_; }
   std::size_t scansSeen() const { return scans_.size(); }
   std::size_t stepsProcessed() const { return stats_.size(); }
-  /// Distinct tiles over all particles and their bytes.
-  std::size_t uniqueTiles() const;
+  /// Distinct tiles over all particles, and their bytes (hit means included) in `bytes` if given.
+  std::size_t uniqueTiles(std::size_t* bytes = nullptr) const;
 
  private:
   struct ScanInfo {
@@ -113,7 +113,7 @@ class RbpfSlam {
   GridMap prior_map_;
   std::size_t last_processed_ = 0;  // scan index
   double acc_linear_ = 0.0, acc_angular_ = 0.0;
-  std::size_t last_unique_tiles_ = 0;
+  std::size_t last_unique_tiles_ = 0, last_map_bytes_ = 0;
 };
 
 }  // namespace gridtopo::slam
