@@ -147,7 +147,7 @@ void Session::openLog(const std::string& path, std::size_t max_scans) {
 
 void Session::openMap(const std::string& path, const io::MapReadOptions& options) {
   auto grid = io::readGridMap(path, options);
-  MapLayer m = mapLayerFromGrid(*grid, path);
+  MapLayer m = mapLayerFromGrid(*grid, path, io::mapFileKind(path));
   if (m.empty()) throw InputError(path, "the map is empty");
   map_ = std::move(m);
   ++map_generation_;
@@ -199,7 +199,7 @@ void Session::openTopologyIni(const std::string& path) {
 void Session::openLabelImage(const std::string& path) {
   if (map_.empty()) throw InputError(path, "open the map the labels were painted on first");
   LabelCanvas c;
-  c.reset(map_.grey, freeThresholdFor(map_, topology_options_));
+  c.reset(map_.grey, topology_options_.freeThresholdFor(map_.kind));
   c.load(path);
   canvas_ = std::move(c);
   ++label_generation_;
@@ -346,7 +346,8 @@ void Session::useSlamMap() {
   const auto s = slamSnapshot();
   if (!s) throw std::runtime_error("no SLAM run");
   const auto grid = slam::toOccupancyGrid(s->best_map);
-  map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>");
+  map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>",
+                          io::MapKind::ProbabilisticGrid);
   ++map_generation_;
   topology_.reset();
   ++topo_generation_;
@@ -366,7 +367,7 @@ void Session::runTopology() { setTopology(computeTopology(map_, model_, topology
 
 void Session::startLabelling() {
   if (map_.empty()) throw std::runtime_error("open a map first");
-  canvas_.reset(map_.grey, freeThresholdFor(map_, topology_options_));
+  canvas_.reset(map_.grey, topology_options_.freeThresholdFor(map_.kind));
   ++label_generation_;
 }
 
