@@ -1,7 +1,6 @@
 #include "gridtopo/session/session.h"
 
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <unistd.h>
@@ -23,6 +22,7 @@
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/options_ini.h"
 
 namespace gridtopo::session {
 
@@ -309,9 +309,6 @@ void Session::saveSlamOutputs(const std::string& dir) {
     stats << st.step << ' ' << st.scan_index << ' ' << io::formatDouble(st.timestamp) << ' ' << st.time_s << ' '
           << st.neff << ' ' << (st.resampled ? 1 : 0) << ' ' << st.particles << ' ' << st.failed_matches << ' '
           << st.evaluations << ' ' << st.unique_tiles << ' ' << st.map_bytes << '\n';
-  // A loadable [slam] INI (saveToConfigFile), so `gridtopo-slam -c` and the GUI can rerun with it.
-  mrpt::config::CConfigFileMemory ini;
-  runner_->options().saveToConfigFile(ini, "slam");
   OutputSet out;
   const fs::path d(dir);
   out.write((d / "trajectory.txt").string(), [&](const std::string& p) {
@@ -338,7 +335,9 @@ void Session::saveSlamOutputs(const std::string& dir) {
     fs::remove_all(scratch);
   }
   out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(sm, p); });
-  out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, ini.getContent()); });
+  // A loadable [slam] INI, so `gridtopo-slam -c` and the GUI can rerun with it.
+  out.write((d / "options.ini").string(),
+            [&](const std::string& p) { writeTextFileAtomically(p, slam::slamOptionsIni(runner_->options())); });
   out.commit();
 }
 
