@@ -15,6 +15,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "gridtopo/core/data_dir.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/odometry_track.h"
@@ -180,6 +181,20 @@ void Session::openTopology(const std::string& path) {
 void Session::openModel(const std::string& path) {
   model_ = std::make_shared<const places::PlacesModel>(places::PlacesModel::load(path));
   model_path_ = path;
+  model_is_default_ = false;
+}
+
+std::string Session::openDefaultModel(const std::string& build_time_data_dir) {
+  const std::string path = findDataFile(kDefaultModel, build_time_data_dir);
+  if (path.empty()) return path;
+  openModel(path);
+  model_is_default_ = true;
+  return path;
+}
+
+std::string Session::modelDescription() const {
+  if (!model_) return "no place model";
+  return "place model: " + model_path_ + (model_is_default_ ? " (default)" : "");
 }
 
 void Session::openSlamIni(const std::string& path, const std::string& section) {
