@@ -116,6 +116,7 @@ class GuiApp : public wxApp {
       f->rebuildOptionGrid();
     }
     if (!g_opt.model.empty()) ok = f->openFile(g_opt.model) && ok;
+    else f->openDefaultModel();
     for (const auto& p : g_opt.files) ok = f->openFile(p, g_opt.resolution) && ok;
     if (!ok && scripted) {
       f->exit_code = 1;
@@ -277,7 +278,11 @@ int main(int argc, char** argv) {
         ' ', "0.1");
     TCLAP::UnlabeledMultiArg<std::string> files("files", "files to open", false, "file", cmd);
     TCLAP::ValueArg<std::string> ini("c", "ini", "SLAM INI file ([slam] section, config-ini/slam.ini)", false, "", "file", cmd);
-    TCLAP::ValueArg<std::string> model("m", "model", "place model (gridtopo-train output)", false, "", "file", cmd);
+    TCLAP::ValueArg<std::string> model("m", "model",
+                                       "place model (gridtopo-train output); default: the shipped "
+                                       "models/places_model.yml from $GRIDTOPO_DATA_DIR, beside the executable "
+                                       "(../share/gridtopo/datasets, ../datasets) or the source tree",
+                                       false, "", "file", cmd);
     TCLAP::ValueArg<std::string> tini("", "topology-ini", "topology INI (config-ini/topology.ini)", false, "", "file", cmd);
     TCLAP::ValueArg<double> res("r", "resolution", "metres per pixel of plain map images (no prompt)", false, 0, "m", cmd);
     TCLAP::ValueArg<long> max_scans("", "max-scans", "use only the first n scans of the log", false, 0, "n", cmd);

@@ -17,6 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "gridtopo/core/data_dir.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 
@@ -26,10 +27,13 @@ namespace fs = std::filesystem;
 using session::ViewMode;
 
 namespace {
+// The source tree's datasets/, the last place the shipped data is looked for (gridtopo::dataDirs).
+const char* const kBuildTimeDataDir = GRIDTOPO_SOURCE_DIR "/datasets";
+
 enum Id {
   kSaveSlam = wxID_HIGHEST + 1, kSaveTopology, kSaveLabels, kExportView, kClearRecent,
   kSlamStart, kSlamPlay, kSlamPause, kSlamStep, kSlamRun, kSlamStop, kSlamUseMap, kSlamLoadIni, kSlamSaveIni,
-  kTopoModel, kTopoRun, kStageClassified, kStageRelaxed, kStageCorrected,
+  kTopoModelInfo, kTopoModel, kTopoRun, kStageClassified, kStageRelaxed, kStageCorrected,
   kLabelsStart, kLabelsOpen, kToolNone, kToolBrush, kToolFill, kCodeRoom, kCodeCorridor, kCodeDoorway, kCodeErase,
   kBrushBigger, kBrushSmaller, kUndo,
   kViewSlam, kViewTopology, kViewLabels, kFit,
@@ -108,6 +112,8 @@ void MainFrame::buildMenus() {
   slam->Append(kSlamSaveIni, "Save options as &INI...");
 
   auto* topo = new wxMenu;
+  model_item_ = topo->Append(kTopoModelInfo, s_.modelDescription());  // which model is loaded (not a command)
+  model_item_->Enable(false);
   topo->Append(kTopoModel, "Open place &model...");
   topo->Append(kTopoRun, "&Run labelling + topology\tCtrl+T");
   topo->AppendSeparator();
@@ -473,6 +479,7 @@ bool MainFrame::openFile(const std::string& path, double resolution) {
         break;
       case session::FileKind::Topology: setView(ViewMode::Topology); break;
       case session::FileKind::SlamIni: rebuildOptionGrid(); break;
+      case session::FileKind::Model: showModel(); break;
       default: break;
     }
     canvas_->Refresh(false);
@@ -481,6 +488,26 @@ bool MainFrame::openFile(const std::string& path, double resolution) {
     showError("Cannot open " + fs::path(path).filename().string(), e.what());
     return false;
   }
+}
+
+void MainFrame::openDefaultModel() {
+  try {
+    s_.openDefaultModel(kBuildTimeDataDir);
+  } catch (const std::exception& e) {
+    showError("Cannot open the shipped place model", e.what());
+  }
+  showModel();
+}
+
+void MainFrame::showModel() {
+  model_item_->SetItemLabel(s_.modelDescription());
+  SetStatusText(s_.modelDescription(), 4);
+}
+
+std::string MainFrame::joinedDataDirs() {
+  std::string dirs;
+  for (const auto& d : dataDirs(kBuildTimeDataDir)) dirs += (dirs.empty() ? "" : ", ") + d;
+  return dirs;
 }
 
 void MainFrame::onOpen(wxCommandEvent&) {
@@ -537,7 +564,10 @@ void MainFrame::startTopology() {
     }
   }
   if (s_.map().empty()) return showError("No map", "open a map or run the SLAM first");
-  if (!s_.model()) return showError("No place model", "open a model trained by gridtopo-train (Topology > Open place model)");
+  if (!s_.model())
+    return showError("No place model", "open a model trained by gridtopo-train (Topology > Open place model); the "
+                                       "shipped " + std::string(session::kDefaultModel) + " is in none of: " +
+                                       joinedDataDirs());
   // The worker gets copies: the session is only touched again on the GUI thread when the result arrives.
   const session::MapLayer map = s_.map();
   const auto model = s_.model();

@@ -42,6 +42,8 @@ class MainFrame : public wxFrame {
   void refreshNow();
   void rebuildOptionGrid();
   void showOptionsTab();
+  /// Opens the place model the project ships (session::Session::openDefaultModel) and shows which model is loaded.
+  void openDefaultModel();
 
   /// Command-line test hooks: each step is polled until it returns true.
   std::vector<std::function<bool()>> script;
@@ -64,6 +66,8 @@ class MainFrame : public wxFrame {
   void showError(const std::string& what, const std::string& msg);
   void onOpen(wxCommandEvent&);
   void onDropFiles(const wxArrayString& files);
+  void showModel();  ///< the loaded model in the Topology menu and the status bar
+  static std::string joinedDataDirs();
 
   session::Session s_;
   session::RecentFiles recent_;
@@ -75,6 +79,7 @@ class MainFrame : public wxFrame {
   wxTextCtrl* inspector_ = nullptr;
   wxNotebook* notebook_ = nullptr;
   wxMenu* recent_menu_ = nullptr;
+  wxMenuItem* model_item_ = nullptr;
   wxMenuBar* menubar_ = nullptr;
   wxTimer timer_;
   std::uint64_t drawn_version_ = 0;

@@ -22,6 +22,7 @@
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/rbpf_slam.h"
 
 namespace fs = std::filesystem;
@@ -156,10 +157,8 @@ int main(int argc, char** argv) {
       }
       io::writeSimplemap(sm, p);
     });
-    out.write((dir / "options.ini").string(), [&](const std::string& p) {
-      std::ofstream f(p);
-      o.dumpToTextStream(f);
-    });
+    out.write((dir / "options.ini").string(),
+              [&](const std::string& p) { writeTextFileAtomically(p, slam::slamOptionsIni(o)); });
     out.commit();
     const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr,

@@ -60,9 +60,9 @@ int main(int argc, char** argv) {
     ro.resolution = opt.resolution;
     const auto grid = io::readGridMap(map_arg.getValue(), ro);
     const cv::Mat grey = io::gridToImage(*grid);
+    const io::MapKind kind = io::mapFileKind(map_arg.getValue());
     const places::OccupancyImage occ = topology::occupancyForTopology(
-        grey, grid->getResolution(), map_arg.getValue(), opt.freeThresholdFor(map_arg.getValue()),
-        opt.freeOpeningRadiusFor(map_arg.getValue()));
+        grey, grid->getResolution(), map_arg.getValue(), opt.freeThresholdFor(kind), opt.freeOpeningRadiusFor(kind));
     if (occ.resolution > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)
       std::cerr << "warning: map resolution " << occ.resolution << " m is coarser than the model's lattice ("
                 << model.scan.lattice_spacing << " m); results may differ from training\n";

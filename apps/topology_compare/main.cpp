@@ -70,8 +70,9 @@ int main(int argc, char** argv) {
     const topology::TopologyOptions opt = topology::loadTopologyOptions(ini.getValue());
     const auto grid = io::readGridMap(map_arg.getValue(), io::MapReadOptions{});
     // The map's free cells as thresholded, without the free-space opening: the scored area does not depend on it.
-    const places::OccupancyImage occ = places::occupancyFromGrey(
-        io::gridToImage(*grid), grid->getResolution(), map_arg.getValue(), opt.freeThresholdFor(map_arg.getValue()));
+    const places::OccupancyImage occ =
+        places::occupancyFromGrey(io::gridToImage(*grid), grid->getResolution(), map_arg.getValue(),
+                                  opt.freeThresholdFor(io::mapFileKind(map_arg.getValue())));
     const cv::Mat map_free = occ.cells == places::kFree;
 
     const std::string dir = dir_arg.getValue();

@@ -175,3 +175,46 @@ TEST(RecentFiles, MostRecentFirstWithoutDuplicatesAndPersisted) {
   q.load(tmp / "none");
   EXPECT_TRUE(q.paths().empty());
 }
+
+// The topology tools start with the shipped place model (datasets/models/places_model.yml), found through
+// GRIDTOPO_DATA_DIR, beside the executable, or the build-time data dir as the last resort; the session says which
+// model is loaded.
+TEST(SessionFiles, OpensTheShippedPlaceModelByDefault) {
+  const std::string shipped = GRIDTOPO_DATA_DIR "/models/places_model.yml";
+  guitest::TempDir tmp;
+  unsetenv("GRIDTOPO_DATA_DIR");
+  {
+    session::Session s;
+    EXPECT_FALSE(s.model());
+    EXPECT_EQ(s.modelDescription(), "no place model");
+    // Nothing beside the test binary: the build-time data dir.
+    EXPECT_EQ(s.openDefaultModel(GRIDTOPO_DATA_DIR), shipped);
+    ASSERT_TRUE(s.model());
+    EXPECT_EQ(s.modelPath(), shipped);
+    EXPECT_EQ(s.modelDescription(), "place model: " + shipped + " (default)");
+    // A model the user opens replaces it and is shown as such.
+    guitest::handMadeModel().save(tmp / "mine.yml");
+    s.openModel(tmp / "mine.yml");
+    EXPECT_EQ(s.modelDescription(), "place model: " + (tmp / "mine.yml"));
+  }
+  {
+    // The environment variable comes first.
+    std::filesystem::create_directories(tmp / "data/models");
+    guitest::handMadeModel().save(tmp / "data/models/places_model.yml");
+    setenv("GRIDTOPO_DATA_DIR", (tmp / "data").c_str(), 1);
+    session::Session s;
+    EXPECT_EQ(s.openDefaultModel(GRIDTOPO_DATA_DIR), tmp / "data/models/places_model.yml");
+    ASSERT_TRUE(s.model());
+    EXPECT_EQ(s.model()->notes, "hand-made test model");
+    EXPECT_EQ(s.modelPath(), tmp / "data/models/places_model.yml");
+  }
+  {
+    // No model anywhere: none is loaded, and nothing else changes.
+    setenv("GRIDTOPO_DATA_DIR", (tmp / "nothing").c_str(), 1);
+    session::Session s;
+    EXPECT_EQ(s.openDefaultModel(tmp / "nothing either"), "");
+    EXPECT_FALSE(s.model());
+    EXPECT_EQ(s.modelPath(), "");
+  }
+  unsetenv("GRIDTOPO_DATA_DIR");
+}

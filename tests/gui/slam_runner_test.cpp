@@ -12,6 +12,7 @@
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/places/occupancy.h"
 #include "gridtopo/session/session.h"
 #include "gridtopo/session/slam_runner.h"
 #include "gridtopo/slam/map_export.h"
@@ -183,6 +184,48 @@ TEST(SessionSlam, SavesTheSameFilesAsTheWritersAndSendsTheMapToTopology) {
   EXPECT_EQ(s.map().cols(), static_cast<int>(expected.getSizeX()));
   EXPECT_EQ(s.map().rows(), static_cast<int>(expected.getSizeY()));
   EXPECT_EQ(cv::countNonZero(s.map().grey != io::gridToImage(expected)), 0);
+}
+
+// GUI: SLAM on a log, Topology > use the SLAM map, run. The SLAM map is a probabilistic grid whatever its display
+// name ("<slam map, N scans>"): it is thresholded and opened as the same map read back from map.gridmap.gz.
+TEST(SessionSlam, TheSlamMapIsLabelledAsTheGridmapItIsSavedAs) {
+  guitest::TempDir tmp;
+  guitest::handMadeModel().save(tmp / "model.yml");
+  session::Session s;
+  s.openLog(kIntel, kScans);
+  s.slamOptions() = smallOptions();
+  s.openModel(tmp / "model.yml");
+  s.startSlam();
+  s.runner()->play();
+  ASSERT_TRUE(s.runner()->waitIdle(60s));
+  s.useSlamMap();
+  ASSERT_NO_THROW(s.runTopology());
+  const auto* t = s.topology();
+  ASSERT_NE(t, nullptr);
+  // A sensible share of the map is free and labelled: most cells the grid threshold calls free survive the
+  // one-cell opening, and every free cell of a classified lattice block has a label.
+  const topology::TopologyOptions opt;
+  const int grid_free = cv::countNonZero(s.map().grey >= opt.grid_free_threshold);
+  const auto occ_free = static_cast<int>(places::countFree(t->occ));
+  ASSERT_GT(grid_free, 1000);
+  EXPECT_GT(occ_free, grid_free / 2);
+  EXPECT_LE(occ_free, grid_free);
+  EXPECT_GT(cv::countNonZero(t->topo.labels <= 2), occ_free * 9 / 10);
+  EXPECT_FALSE(t->topo.graph.nodes.empty());
+  // The label painter uses the same free cells (before the opening).
+  s.startLabelling();
+  const auto h = s.canvas().histogram();
+  EXPECT_EQ(h[0], grid_free);
+
+  // The same map, opened as a file, gives the same labels.
+  s.saveSlamOutputs(tmp / "out");
+  session::Session f;
+  f.openModel(tmp / "model.yml");
+  f.openMap(tmp / "out/map.gridmap.gz");
+  ASSERT_EQ(cv::countNonZero(f.map().grey != s.map().grey), 0);
+  f.runTopology();
+  EXPECT_EQ(cv::countNonZero(f.topology()->topo.labels != t->topo.labels), 0);
+  EXPECT_EQ(f.topology()->topo.graph.nodes.size(), t->topo.graph.nodes.size());
 }
 
 TEST(SessionSlam, SelectingAParticleGivesItsPoseWeightAndPath) {

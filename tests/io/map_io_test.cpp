@@ -355,16 +355,16 @@ TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
 }
 
 TEST(MapIo, MapFileKindFollowsTheReader) {
-  using gridtopo::io::MapFileKind;
+  using gridtopo::io::MapKind;
   using gridtopo::io::mapFileKind;
-  EXPECT_EQ(mapFileKind("a/map.gridmap"), MapFileKind::Gridmap);
-  EXPECT_EQ(mapFileKind("a/MAP.GRIDMAP.GZ"), MapFileKind::Gridmap);
-  EXPECT_EQ(mapFileKind("a/map.yaml"), MapFileKind::RosMap);
-  EXPECT_EQ(mapFileKind("a/map.YML"), MapFileKind::RosMap);
+  EXPECT_EQ(mapFileKind("a/map.gridmap"), MapKind::ProbabilisticGrid);
+  EXPECT_EQ(mapFileKind("a/MAP.GRIDMAP.GZ"), MapKind::ProbabilisticGrid);
+  EXPECT_EQ(mapFileKind("a/map.yaml"), MapKind::RosMap);
+  EXPECT_EQ(mapFileKind("a/map.YML"), MapKind::RosMap);
   const fs::path d = tmpDir() / "kind";
   fs::create_directories(d);
   std::ofstream(d / "plan.png") << "x";
-  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapFileKind::PlainImage);
+  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapKind::PlainImage);
   std::ofstream(d / "plan.yaml") << "image: plan.png\n";
-  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapFileKind::RosMap);  // a .yaml beside the image
+  EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapKind::RosMap);  // a .yaml beside the image
 }

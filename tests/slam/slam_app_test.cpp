@@ -66,3 +66,33 @@ TEST(SlamApp, BadIniValuesFailWithFileSectionAndKey) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("/nonexistent.clf"), std::string::npos) << r.output;
 }
+
+// OUT/options.ini is a loadable [slam] section that reproduces the run: `gridtopo-slam -c OUT/options.ini` reads
+// it back (command-line overrides included) and gives the same trajectory and the same options file.
+TEST(SlamApp, OptionsIniOfARunReproducesIt) {
+  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_rerun_a";
+  const fs::path again = fs::temp_directory_path() / "gridtopo_slam_app_rerun_b";
+  fs::remove_all(out);
+  fs::remove_all(again);
+  Result r = run("-i " + kIntel + " -o " + out.string() + " -p 3 -s 11 -t 2 --proposal mode-only -q --max-scans 150");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("-i " + kIntel + " -o " + again.string() + " -c " + (out / "options.ini").string() + " -q --max-scans 150");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto slurp = [](const fs::path& p) {
+    std::ostringstream s;
+    s << std::ifstream(p).rdbuf();
+    return s.str();
+  };
+  const std::string ini = slurp(out / "options.ini");
+  EXPECT_EQ(ini.rfind("[slam]", 0), 0u) << ini;
+  EXPECT_NE(ini.find("particles = 3"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("seed = 11"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("proposal = mode-only"), std::string::npos) << ini;
+  EXPECT_EQ(slurp(again / "options.ini"), ini);
+  // The identical trajectory (written with round-trip precision) and map.
+  EXPECT_EQ(gridtopo::io::readTrajectory((out / "trajectory.txt").string()).size(), 150u);
+  EXPECT_EQ(slurp(again / "trajectory.txt"), slurp(out / "trajectory.txt"));
+  EXPECT_EQ(slurp(again / "map.pgm"), slurp(out / "map.pgm"));
+  fs::remove_all(out);
+  fs::remove_all(again);
+}

@@ -92,10 +92,12 @@ TEST(ReferenceAlignment, EmptyMasksAreClearErrors) {
 
 TEST(TopologyOptions, FreeOpeningKeysAreReadCheckedAndPickedByMapKind) {
   TopologyOptions opt;
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("plan.png"), 0.0);  // no .yaml beside it
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("slam/map.yaml"), 0.05);
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("slam/map.gridmap.gz"), 0.05);
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor("slam/MAP.GRIDMAP"), 0.05);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::PlainImage), 0.0);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::RosMap), 0.05);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::ProbabilisticGrid), 0.05);
+  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::PlainImage), 250);
+  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::RosMap), 250);
+  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::ProbabilisticGrid), 204);
   const std::string ini = testing::TempDir() + "/opening.ini";
   for (const std::string bad : {"grid_free_opening_radius = -0.1", "free_opening_radius = 2", "free_opening_radius = x"}) {
     FILE* f = std::fopen(ini.c_str(), "w");

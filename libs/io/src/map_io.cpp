@@ -268,17 +268,17 @@ std::string yamlBeside(const std::string& path) {
 }
 }  // namespace
 
-MapFileKind mapFileKind(const std::string& path) {
+MapKind mapFileKind(const std::string& path) {
   const std::string l = lower(path);
-  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return MapFileKind::Gridmap;
-  if (endsWith(l, ".yaml") || endsWith(l, ".yml") || !yamlBeside(path).empty()) return MapFileKind::RosMap;
-  return MapFileKind::PlainImage;
+  if (endsWith(l, ".gridmap") || endsWith(l, ".gridmap.gz")) return MapKind::ProbabilisticGrid;
+  if (endsWith(l, ".yaml") || endsWith(l, ".yml") || !yamlBeside(path).empty()) return MapKind::RosMap;
+  return MapKind::PlainImage;
 }
 
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options) {
   const std::string l = lower(path);
   if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path);
-  if (mapFileKind(path) == MapFileKind::Gridmap) return readGridmapFile(path);
+  if (mapFileKind(path) == MapKind::ProbabilisticGrid) return readGridmapFile(path);
   // An image: a ROS YAML with the same stem beside it gives resolution, origin and thresholds.
   if (const std::string yaml = yamlBeside(path); !yaml.empty()) return readRosMap(yaml, path);
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))

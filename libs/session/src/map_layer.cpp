@@ -15,13 +15,14 @@ bool MapLayer::worldToCell(double x, double y, int& row, int& col) const {
   return true;
 }
 
-MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source) {
+MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, io::MapKind kind) {
   MapLayer m;
   m.grey = io::gridToImage(grid);
   m.resolution = grid.getResolution();
   m.origin_x = grid.getXMin();
   m.origin_y = grid.getYMin();
   m.source = source;
+  m.kind = kind;
   return m;
 }
 
@@ -29,6 +30,7 @@ MapLayer mapLayerFromSlam(const slam::GridMap& map) {
   MapLayer m;
   m.resolution = map.resolution();
   m.source = "<slam>";
+  m.kind = io::MapKind::ProbabilisticGrid;
   int x0, y0, x1, y1;
   map.cellBounds(x0, y0, x1, y1);
   if (x1 <= x0 || y1 <= y0) return m;

@@ -1,7 +1,6 @@
 #include "gridtopo/session/session.h"
 
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <unistd.h>
@@ -16,6 +15,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "gridtopo/core/data_dir.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/odometry_track.h"
@@ -23,6 +23,7 @@
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/options_ini.h"
 
 namespace gridtopo::session {
 
@@ -147,7 +148,7 @@ void Session::openLog(const std::string& path, std::size_t max_scans) {
 
 void Session::openMap(const std::string& path, const io::MapReadOptions& options) {
   auto grid = io::readGridMap(path, options);
-  MapLayer m = mapLayerFromGrid(*grid, path);
+  MapLayer m = mapLayerFromGrid(*grid, path, io::mapFileKind(path));
   if (m.empty()) throw InputError(path, "the map is empty");
   map_ = std::move(m);
   ++map_generation_;
@@ -180,6 +181,20 @@ void Session::openTopology(const std::string& path) {
 void Session::openModel(const std::string& path) {
   model_ = std::make_shared<const places::PlacesModel>(places::PlacesModel::load(path));
   model_path_ = path;
+  model_is_default_ = false;
+}
+
+std::string Session::openDefaultModel(const std::string& build_time_data_dir) {
+  const std::string path = findDataFile(kDefaultModel, build_time_data_dir);
+  if (path.empty()) return path;
+  openModel(path);
+  model_is_default_ = true;
+  return path;
+}
+
+std::string Session::modelDescription() const {
+  if (!model_) return "no place model";
+  return "place model: " + model_path_ + (model_is_default_ ? " (default)" : "");
 }
 
 void Session::openSlamIni(const std::string& path, const std::string& section) {
@@ -199,7 +214,7 @@ void Session::openTopologyIni(const std::string& path) {
 void Session::openLabelImage(const std::string& path) {
   if (map_.empty()) throw InputError(path, "open the map the labels were painted on first");
   LabelCanvas c;
-  c.reset(map_.grey, freeThresholdFor(map_, topology_options_));
+  c.reset(map_.grey, topology_options_.freeThresholdFor(map_.kind));
   c.load(path);
   canvas_ = std::move(c);
   ++label_generation_;
@@ -309,9 +324,6 @@ void Session::saveSlamOutputs(const std::string& dir) {
     stats << st.step << ' ' << st.scan_index << ' ' << io::formatDouble(st.timestamp) << ' ' << st.time_s << ' '
           << st.neff << ' ' << (st.resampled ? 1 : 0) << ' ' << st.particles << ' ' << st.failed_matches << ' '
           << st.evaluations << ' ' << st.unique_tiles << ' ' << st.map_bytes << '\n';
-  // A loadable [slam] INI (saveToConfigFile), so `gridtopo-slam -c` and the GUI can rerun with it.
-  mrpt::config::CConfigFileMemory ini;
-  runner_->options().saveToConfigFile(ini, "slam");
   OutputSet out;
   const fs::path d(dir);
   out.write((d / "trajectory.txt").string(), [&](const std::string& p) {
@@ -338,7 +350,9 @@ void Session::saveSlamOutputs(const std::string& dir) {
     fs::remove_all(scratch);
   }
   out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(sm, p); });
-  out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, ini.getContent()); });
+  // A loadable [slam] INI, so `gridtopo-slam -c` and the GUI can rerun with it.
+  out.write((d / "options.ini").string(),
+            [&](const std::string& p) { writeTextFileAtomically(p, slam::slamOptionsIni(runner_->options())); });
   out.commit();
 }
 
@@ -346,7 +360,8 @@ void Session::useSlamMap() {
   const auto s = slamSnapshot();
   if (!s) throw std::runtime_error("no SLAM run");
   const auto grid = slam::toOccupancyGrid(s->best_map);
-  map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>");
+  map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>",
+                          io::MapKind::ProbabilisticGrid);
   ++map_generation_;
   topology_.reset();
   ++topo_generation_;
@@ -366,7 +381,7 @@ void Session::runTopology() { setTopology(computeTopology(map_, model_, topology
 
 void Session::startLabelling() {
   if (map_.empty()) throw std::runtime_error("open a map first");
-  canvas_.reset(map_.grey, freeThresholdFor(map_, topology_options_));
+  canvas_.reset(map_.grey, topology_options_.freeThresholdFor(map_.kind));
   ++label_generation_;
 }
 

@@ -30,14 +30,6 @@ const cv::Mat& TopologyData::labels(LabelStage s) const {
   return none;
 }
 
-int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& options) {
-  return map.source == "<slam>" ? options.grid_free_threshold : options.freeThresholdFor(map.source);
-}
-
-double freeOpeningRadiusFor(const MapLayer& map, const topology::TopologyOptions& options) {
-  return map.source == "<slam>" ? options.grid_free_opening_radius : options.freeOpeningRadiusFor(map.source);
-}
-
 TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::PlacesModel> model,
                              const topology::TopologyOptions& options,
                              const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
@@ -47,8 +39,8 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   TopologyData t;
   t.map = map;
   t.model = model;
-  t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, freeThresholdFor(map, options),
-                                        freeOpeningRadiusFor(map, options));
+  t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, options.freeThresholdFor(map.kind),
+                                        options.freeOpeningRadiusFor(map.kind));
   // places::labelPlaces(), step by step, keeping the scans and the features.
   places::ScanSimulationOptions scan = model->scan;
   scan.threads = options.threads;

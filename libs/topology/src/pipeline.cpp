@@ -111,12 +111,12 @@ TopologyOptions loadTopologyOptions(const std::string& ini_path) {
   return opt;
 }
 
-int TopologyOptions::freeThresholdFor(const std::string& map_path) const {
-  return io::mapFileKind(map_path) == io::MapFileKind::Gridmap ? grid_free_threshold : free_threshold;
+int TopologyOptions::freeThresholdFor(io::MapKind kind) const {
+  return kind == io::MapKind::ProbabilisticGrid ? grid_free_threshold : free_threshold;
 }
 
-double TopologyOptions::freeOpeningRadiusFor(const std::string& map_path) const {
-  return io::mapFileKind(map_path) == io::MapFileKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
+double TopologyOptions::freeOpeningRadiusFor(io::MapKind kind) const {
+  return kind == io::MapKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
 }
 
 places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,

@@ -7,6 +7,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "gridtopo/io/map_kind.h"
+
 namespace gridtopo::io {
 
 struct MapReadOptions {
@@ -22,10 +24,10 @@ struct MapReadOptions {
 /// Throws gridtopo::InputError naming the file (and YAML key) on bad input.
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options = {});
 
-/// How readGridMap reads `path` (extension case-insensitive): an MRPT probabilistic grid (.gridmap, .gridmap.gz),
-/// a ROS map (.yaml / .yml, or an image with a .yaml / .yml of the same stem beside it), or a plain image.
-enum class MapFileKind { PlainImage, RosMap, Gridmap };
-MapFileKind mapFileKind(const std::string& path);
+/// The kind of the map file `path` as readGridMap reads it (extension case-insensitive): a probabilistic grid
+/// (.gridmap, .gridmap.gz), a ROS map (.yaml / .yml, or an image with a .yaml / .yml of the same stem beside it),
+/// or a plain image.
+MapKind mapFileKind(const std::string& path);
 
 /// Grey image of a grid (CV_8UC1, 255 = free, 0 = occupied, value = round(255 * p_free)); row 0 is the
 /// map's top (largest y), so it has the size and orientation of the image the map was read from.

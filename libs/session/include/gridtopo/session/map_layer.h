@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "gridtopo/io/map_kind.h"
 #include "gridtopo/slam/grid_map.h"
 
 namespace gridtopo::session {
@@ -17,7 +18,10 @@ struct MapLayer {
   double resolution = 0.05;  ///< m per cell
   double origin_x = 0.0;     ///< world x of the image's left edge (m)
   double origin_y = 0.0;     ///< world y of the image's bottom edge (m)
-  std::string source;        ///< file it came from, or "<slam>"
+  std::string source;        ///< file it came from, or a name for display ("<slam map, N scans>")
+  /// How the grey levels read as free space (topology::TopologyOptions::freeThresholdFor): set from the file
+  /// (io::mapFileKind) or by whoever built the map, never guessed from `source`.
+  io::MapKind kind = io::MapKind::PlainImage;
 
   bool empty() const { return grey.empty(); }
   int rows() const { return grey.rows; }
@@ -34,10 +38,12 @@ struct MapLayer {
   double occupancy(int row, int col) const { return 1.0 - grey.at<unsigned char>(row, col) / 255.0; }
 };
 
-/// From an MRPT grid (as read by io::readGridMap): the exact image io::gridToImage() gives.
-MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source);
+/// From an MRPT grid (as read by io::readGridMap, or built by the SLAM: io::MapKind::ProbabilisticGrid): the exact
+/// image io::gridToImage() gives.
+MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, io::MapKind kind);
 
-/// Fast conversion of the SLAM particle map for live display: covers the allocated tiles, unknown = 128.
+/// Fast conversion of the SLAM particle map for live display (a probabilistic grid): covers the allocated tiles,
+/// unknown = 128.
 MapLayer mapLayerFromSlam(const slam::GridMap& map);
 
 /// A `cols` x `rows` map made of copies of `src` side by side (benchmarks: a big map with real content).

@@ -26,6 +26,9 @@
 
 namespace gridtopo::session {
 
+/// The place model shipped with the project, relative to its data folder (datasets/ in the source tree).
+inline constexpr const char* kDefaultModel = "models/places_model.yml";
+
 enum class FileKind { Unknown, Log, Map, Trajectory, Relations, Topology, Model, SlamIni, TopologyIni };
 const char* toString(FileKind k);
 /// Kind of a file from its name, and from its first bytes where names are ambiguous (.yml/.yaml: ROS map vs
@@ -82,6 +85,10 @@ class Session {
   void openRelations(const std::string& path);
   void openTopology(const std::string& path);  ///< needs the map it was computed on to be open for labels
   void openModel(const std::string& path);
+  /// Opens the place model the project ships (kDefaultModel) from the first folder of gridtopo::dataDirs() that
+  /// has it ($GRIDTOPO_DATA_DIR, beside the executable, `build_time_data_dir` last). Returns its path, or "" with
+  /// nothing changed when none has it; a model that cannot be read throws as openModel does.
+  std::string openDefaultModel(const std::string& build_time_data_dir = "");
   void openSlamIni(const std::string& path, const std::string& section = "slam");
   void openTopologyIni(const std::string& path);
   void openLabelImage(const std::string& path);  ///< into the label canvas (starts one on the current map)
@@ -98,6 +105,8 @@ class Session {
   const std::string& relationsPath() const { return relations_path_; }
   const std::shared_ptr<const places::PlacesModel>& model() const { return model_; }
   const std::string& modelPath() const { return model_path_; }
+  /// Which model is loaded: "place model: PATH" (" (default)" after openDefaultModel), or "no place model".
+  std::string modelDescription() const;
 
   // ---- SLAM
   slam::SlamOptions& slamOptions() { return slam_options_; }
@@ -165,6 +174,7 @@ class Session {
   std::string relations_path_;
   std::shared_ptr<const places::PlacesModel> model_;
   std::string model_path_;
+  bool model_is_default_ = false;
   slam::SlamOptions slam_options_;
   std::string slam_ini_path_;
   topology::TopologyOptions topology_options_;

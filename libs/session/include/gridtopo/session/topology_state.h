@@ -37,7 +37,8 @@ struct TopologyData {
   const cv::Mat& labels(LabelStage s) const;
 };
 
-/// Runs labelling + topology on `map` (thresholded as gridtopo-topology does). `progress(stage, done, total)`.
+/// Runs labelling + topology on `map` (thresholded and opened for its kind, MapLayer::kind, as gridtopo-topology
+/// does for a file of that kind). `progress(stage, done, total)`.
 /// Throws gridtopo::InputError for a map without free cells.
 TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::PlacesModel> model,
                              const topology::TopologyOptions& options,
@@ -90,13 +91,6 @@ cv::Point2d nodeWorld(const TopologyData& t, const topology::GraphNode& n);
 /// World coordinates of a node's anchor: a cell of its region (the centroid when it lies inside the region). The graph
 /// is drawn through anchors so that, e.g., a corridor ring's node sits on the corridor, not in the courtyard.
 cv::Point2d nodeAnchorWorld(const TopologyData& t, const topology::GraphNode& n);
-
-/// The grey level from which a cell of `map` counts as free: the probabilistic-grid threshold for a map the SLAM
-/// built ("<slam>") or a .gridmap(.gz), the image threshold otherwise (topology::TopologyOptions::freeThresholdFor).
-int freeThresholdFor(const MapLayer& map, const topology::TopologyOptions& options);
-/// The free-space opening radius for a map layer: the grid radius for the map that the GUI's SLAM built ("<slam>"),
-/// topology::TopologyOptions::freeOpeningRadiusFor otherwise.
-double freeOpeningRadiusFor(const MapLayer& map, const topology::TopologyOptions& options);
 
 /// Writes the files gridtopo-topology writes (topology.graphml/.json/.dot, overlay.png, labels.png,
 /// labels_before_correction.png, segmentation.png, segmentation_colour.png, options.ini) into `dir`, all or

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "gridtopo/io/map_kind.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
@@ -42,13 +43,14 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
 
-  /// The free threshold for a map file (io::mapFileKind): grid_free_threshold for .gridmap(.gz), free_threshold otherwise
-  /// (plain images and ROS YAML maps, whose readers already give 0 / 205 / 254-255 greys).
-  int freeThresholdFor(const std::string& map_path) const;
+  /// The free threshold for a map of kind `kind` (a file's: io::mapFileKind): grid_free_threshold for probabilistic
+  /// grids (.gridmap(.gz), the SLAM's map), free_threshold otherwise (plain images and ROS YAML maps, whose readers
+  /// already give 0 / 205 / 254-255 greys).
+  int freeThresholdFor(io::MapKind kind) const;
 
-  /// The free-space opening radius for a map file: grid_free_opening_radius for a ROS .yaml (or an image with a
-  /// .yaml beside it) and .gridmap(.gz), free_opening_radius for plain images.
-  double freeOpeningRadiusFor(const std::string& map_path) const;
+  /// The free-space opening radius for a map of kind `kind`: free_opening_radius for plain images,
+  /// grid_free_opening_radius for ROS maps and probabilistic grids.
+  double freeOpeningRadiusFor(io::MapKind kind) const;
 };
 
 /// Reads a topology INI (config-ini/topology.ini: [topology], [relaxation], [correction]); an empty path gives the
