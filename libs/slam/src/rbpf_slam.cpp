@@ -71,20 +71,25 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
       }
   plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
   if (o.proposal.fit == ProposalFit::Quadratic) {
-    LocalQuadratic q = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta,
-                                         o.proposal.min_curvature);
-    if (q.ok) {
+    // Every concave direction for the weight (the best local model of the integrand); the shape keeps only the
+    // directions the scan clearly observes.
+    LocalQuadratic q = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta);
+    LocalQuadratic observed = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta,
+                                                o.proposal.min_curvature);
+    if (q.ok && observed.ok) {
       // Laplace's approximation of τ, centred on the mode the hill climb found (to a millimetre; the fit's own
       // peak is smoothed over the grid and biased by truncated beams), with the fitted curvature.
       const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
       const Pose2 prediction = compose(prev, u);  // the motion prior's mean (the search may start elsewhere)
       q.b.setZero();
       q.c = m.score.log_likelihood;
+      observed.b.setZero();
+      observed.c = m.score.log_likelihood;
       // The weight: the integral of the softened target. The shape: the likelihood of beams that register to
       // beam_sigma, times the motion prior.
       plan.log_weight_increment = informedGaussian(q, inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
       const double shape_scale = std::pow(o.matcher.sigma / o.proposal.beam_sigma, 2);
-      plan.gaussian = informedGaussian(q, shape_scale, m.pose, prediction, sg.xy, sg.theta);
+      plan.gaussian = informedGaussian(observed, shape_scale, m.pose, prediction, sg.xy, sg.theta);
       addFloor(plan.gaussian, o.proposal);
       return plan;
     }
