@@ -41,32 +41,48 @@ GaussianProposal fitProposal(const std::vector<Pose2>& poses, const std::vector<
   return g;
 }
 
-double logIntegralOnGrid(const std::vector<Pose2>& poses, const std::vector<double>& log_f, const Pose2& reference,
-                         double delta_xy, double delta_theta) {
-  const double riemann = logSumExp(log_f) + 2.0 * std::log(delta_xy) + std::log(delta_theta);
+namespace {
+/// Least-squares quadratic v ≈ m + a0 + gᵀu + ½ uᵀHu over the poses, in grid units u = (x, y, θ) offsets from
+/// `reference` / spacing (well conditioned). Returns false when it cannot be fitted (fewer than 10 poses, a
+/// non-finite maximum, a rank-deficient design); `m` is the maximum of `values`, subtracted before the fit.
+bool fitQuadraticInGridUnits(const std::vector<Pose2>& poses, const std::vector<double>& values,
+                             const Pose2& reference, double delta_xy, double delta_theta, double& m, double& a0,
+                             Eigen::Vector3d& g, Eigen::Matrix3d& H) {
   const std::size_t n = poses.size();
-  if (n < 10) return riemann;
-  const double m = *std::max_element(log_f.begin(), log_f.end());
-  if (!std::isfinite(m)) return riemann;
-  // Least-squares quadratic ln f ≈ c + gᵀu + ½ uᵀAu in grid units u = (x, y, θ) offsets / spacing.
+  if (n < 10) return false;
+  m = *std::max_element(values.begin(), values.end());
+  if (!std::isfinite(m)) return false;
   Eigen::MatrixXd J(n, 10);
-  Eigen::VectorXd b(n);
+  Eigen::VectorXd r(n);
   for (std::size_t j = 0; j < n; ++j) {
     const double u0 = (poses[j].x - reference.x) / delta_xy, u1 = (poses[j].y - reference.y) / delta_xy;
     const double u2 = wrapAngle(poses[j].theta - reference.theta) / delta_theta;
     J.row(static_cast<Eigen::Index>(j)) << 1.0, u0, u1, u2, 0.5 * u0 * u0, 0.5 * u1 * u1, 0.5 * u2 * u2, u0 * u1,
         u0 * u2, u1 * u2;
-    b(static_cast<Eigen::Index>(j)) = log_f[j] - m;
+    r(static_cast<Eigen::Index>(j)) = values[j] - m;
   }
-  const Eigen::VectorXd q = J.colPivHouseholderQr().solve(b);
+  const auto qr = J.colPivHouseholderQr();
+  if (qr.rank() < 10) return false;
+  const Eigen::VectorXd a = qr.solve(r);
+  a0 = a(0);
+  g = {a(1), a(2), a(3)};
+  H << a(4), a(7), a(8), a(7), a(5), a(9), a(8), a(9), a(6);
+  return true;
+}
+}  // namespace
+
+double logIntegralOnGrid(const std::vector<Pose2>& poses, const std::vector<double>& log_f, const Pose2& reference,
+                         double delta_xy, double delta_theta) {
+  const double riemann = logSumExp(log_f) + 2.0 * std::log(delta_xy) + std::log(delta_theta);
+  double m = 0.0, a0 = 0.0;
+  Eigen::Vector3d g;
   Eigen::Matrix3d A;
-  A << q(4), q(7), q(8), q(7), q(5), q(9), q(8), q(9), q(6);
-  const Eigen::Vector3d g(q(1), q(2), q(3));
+  if (!fitQuadraticInGridUnits(poses, log_f, reference, delta_xy, delta_theta, m, a0, g, A)) return riemann;
   Eigen::LLT<Eigen::Matrix3d> llt(-A);
   if (llt.info() != Eigen::Success) return riemann;
   const Eigen::Vector3d ustar = llt.solve(g);  // the quadratic's maximum: u* = (-A)^-1 g
   if (!(ustar.cwiseAbs().maxCoeff() <= 2.0)) return riemann;  // mode far outside the grid: do not extrapolate
-  const double peak = m + q(0) + 0.5 * g.dot(ustar);
+  const double peak = m + a0 + 0.5 * g.dot(ustar);
   double log_det = 0.0;
   for (int i = 0; i < 3; ++i) log_det += 2.0 * std::log(llt.matrixL()(i, i));
   constexpr double kLog2Pi = 1.8378770664093453;
@@ -78,26 +94,10 @@ double logIntegralOnGrid(const std::vector<Pose2>& poses, const std::vector<doub
 LocalQuadratic fitLocalQuadratic(const std::vector<Pose2>& poses, const std::vector<double>& log_lik,
                                  const Pose2& mode, double delta_xy, double delta_theta, double min_curvature) {
   LocalQuadratic q;
-  const std::size_t n = poses.size();
-  if (n < 10) return q;
-  // Fit in grid units u = δ / spacing (well conditioned), then convert.
-  const double m = *std::max_element(log_lik.begin(), log_lik.end());
-  if (!std::isfinite(m)) return q;
-  Eigen::MatrixXd J(n, 10);
-  Eigen::VectorXd r(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const double u0 = (poses[j].x - mode.x) / delta_xy, u1 = (poses[j].y - mode.y) / delta_xy;
-    const double u2 = wrapAngle(poses[j].theta - mode.theta) / delta_theta;
-    J.row(static_cast<Eigen::Index>(j)) << 1.0, u0, u1, u2, 0.5 * u0 * u0, 0.5 * u1 * u1, 0.5 * u2 * u2, u0 * u1,
-        u0 * u2, u1 * u2;
-    r(static_cast<Eigen::Index>(j)) = log_lik[j] - m;
-  }
-  const auto qr = J.colPivHouseholderQr();
-  if (qr.rank() < 10) return q;
-  const Eigen::VectorXd a = qr.solve(r);
+  double m = 0.0, a0 = 0.0;
+  Eigen::Vector3d g;
   Eigen::Matrix3d H;  // Hessian of ln L in grid units
-  H << a(4), a(7), a(8), a(7), a(5), a(9), a(8), a(9), a(6);
-  Eigen::Vector3d g(a(1), a(2), a(3));
+  if (!fitQuadraticInGridUnits(poses, log_lik, mode, delta_xy, delta_theta, m, a0, g, H)) return q;
   // Curvature −H made positive semi-definite, and degenerate directions removed (Zhang, Kaess, Singh, "On
   // degeneracy of optimization-based state estimation problems", ICRA 2016): a direction along which moving one
   // grid step changes ln p by less than ½·min_curvature (a corridor's axis, where only the sub-cell ripple of the
@@ -116,7 +116,7 @@ LocalQuadratic fitLocalQuadratic(const std::vector<Pose2>& poses, const std::vec
   const Eigen::Vector3d s(1.0 / delta_xy, 1.0 / delta_xy, 1.0 / delta_theta);  // δ → u
   q.P = s.asDiagonal() * Pu * s.asDiagonal();
   q.b = s.asDiagonal() * bu;
-  q.c = m + a(0);
+  q.c = m + a0;
   q.ok = true;
   return q;
 }
