@@ -6,10 +6,12 @@
 # and, for seed 1 of the informed proposal, the maps with their trajectories as doc/img/slam-<log>.png.
 #
 # Usage: scripts/bench_slam.sh [--seeds N] [--logs "intel aces mit-csail fr-clinic"] [--proposals "informed mode-only"]
-#                              [--particles P] [--out DIR] [--doc FILE]
+#                              [--particles P] [--out DIR] [--doc FILE] [--resume]
+# --resume keeps the runs already recorded in DIR/runs.tsv (same particles and build assumed) and runs only the
+# missing ones, so a long benchmark can be done in parts; the table covers every recorded run.
 # Defaults: 10 seeds, the four logs, both proposals, 30 particles, out/bench-slam, doc/slam-bench.md.
 # It takes about (seeds x proposals) x 2.5 minutes on the 2-core machine. Run it on an otherwise idle machine: the
-# timings are wall-clock. Needs python3 and GNU time (Debian packages python3 time).
+# timings are wall-clock. Needs python3 and GNU time (Debian packages python3 time); imagemagick to scale the pictures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${GRIDTOPO_BUILD_DIR:-build}
@@ -21,6 +23,7 @@ PARTICLES=30
 OUT=out/bench-slam
 DOC=doc/slam-bench.md
 THREADS=${GRIDTOPO_BENCH_THREADS:-2}
+RESUME=0
 while [ $# -gt 0 ]; do
   case $1 in
     --seeds) SEEDS=$2; shift 2 ;;
@@ -29,7 +32,8 @@ while [ $# -gt 0 ]; do
     --particles) PARTICLES=$2; shift 2 ;;
     --out) OUT=$2; shift 2 ;;
     --doc) DOC=$2; shift 2 ;;
-    -h|--help) sed -n 2,13p "$0"; exit 0 ;;
+    --resume) RESUME=1; shift ;;
+    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
     *) echo "bench_slam: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -37,7 +41,7 @@ done
 [ -x /usr/bin/time ] || { echo "bench_slam: needs GNU time (apt-get install time)" >&2; exit 1; }
 mkdir -p "$OUT" doc/img
 ROWS=$OUT/runs.tsv
-: > "$ROWS"
+[ "$RESUME" = 1 ] && [ -f "$ROWS" ] || : > "$ROWS"
 total=0
 for log in $LOGS; do for p in $PROPOSALS; do total=$((total + SEEDS)); done; done
 done_runs=0
@@ -48,6 +52,7 @@ for log in $LOGS; do
   for p in $PROPOSALS; do
     for s in $(seq 1 "$SEEDS"); do
       dir=$OUT/$log-$p-s$s
+      if grep -q "^$log	$p	$s	" "$ROWS"; then done_runs=$((done_runs + 1)); continue; fi
       load=$(cut -d" " -f1 /proc/loadavg)
       if ! /usr/bin/time -v -o "$dir.time" "$BIN/gridtopo-slam" -i "$LOGF" -o "$dir" -c config-ini/slam.ini \
           -p "$PARTICLES" -s "$s" -t "$THREADS" --proposal "$p" -q 2> "$dir.log"; then
@@ -71,7 +76,11 @@ print("\t".join(map(str, [log, p, s, tr["mean"], tr["max"], ro["mean"], wall, cp
 PY
       done_runs=$((done_runs + 1))
       echo "bench_slam: $done_runs / $total ($log, $p, seed $s): $(tail -1 "$ROWS" | cut -f4 | xargs printf '%.4f') m" >&2
-      if [ "$s" = 1 ] && [ "$p" = informed ]; then cp "$dir/map_trajectory.png" "doc/img/slam-$log.png"; fi
+      if [ "$s" = 1 ] && [ "$p" = informed ]; then
+        # At most 1200 px wide or high for the documentation (the hospital's map is 8 641 × 4 134 cells).
+        if command -v convert > /dev/null; then convert "$dir/map_trajectory.png" -resize '1200x1200>' "doc/img/slam-$log.png"
+        else cp "$dir/map_trajectory.png" "doc/img/slam-$log.png"; echo "bench_slam: no ImageMagick, picture kept full size" >&2; fi
+      fi
     done
   done
 done
