@@ -163,9 +163,10 @@ TEST(ProposalShape, SpreadShrinksWhenTheScanConstrainsMore) {
 }
 
 TEST(ProposalShape, WeightIsTheLaplaceIntegralOfTheTarget) {
-  // η must approximate ∫ τ dx (so matched and failed particles stay commensurate, see proposal_weight_test):
-  // compare with the brute-force integral on the corridor, where the target is far from a narrow grid.
-  const Scene s = corridorScene();
+  // proposal_weight = integral: η must approximate ∫ τ dx (the paper's weight): compare with the brute-force
+  // integral on the corridor, where the target is far from a narrow grid.
+  Scene s = corridorScene();
+  s.o.proposal.weight = ProposalWeight::Integral;
   const OdometryMotionModel motion(s.o.motion);
   const auto sg = motion.sigmas(s.u, true);
   const Pose2 c = compose(s.prev, s.u);
@@ -189,6 +190,18 @@ TEST(ProposalShape, WeightIsTheLaplaceIntegralOfTheTarget) {
   std::printf("exact %.3f laplace %.3f riemann(narrow grid) %.3f\n", exact, plan.log_weight_increment, moments.log_weight_increment);
   EXPECT_NEAR(plan.log_weight_increment, exact, 0.6);
   EXPECT_GT(std::abs(moments.log_weight_increment - exact), 3.0);
+}
+
+TEST(ProposalShape, DefaultWeightIsTheSoftenedLikelihoodAtTheMode) {
+  const Scene s = corridorScene();
+  const OdometryMotionModel motion(s.o.motion);
+  const ProposalPlan plan = planProposal(s.map, s.prev, s.u, true, s.scan, s.o, motion);
+  ASSERT_TRUE(plan.matched);
+  // The mean sits on the mode across the corridor: the likelihood there is the weight (GMapping's weighting).
+  const Pose2 mode{plan.gaussian.mean.x, plan.gaussian.mean.y, plan.gaussian.mean.theta};
+  const double at_mean = scoreScan(s.map, mode, s.scan, s.o.matcher).log_likelihood / s.o.likelihood_gain;
+  EXPECT_LE(at_mean, plan.log_weight_increment + 1e-9);  // the mode is the best the climb found
+  EXPECT_GT(plan.log_weight_increment, -0.5 * static_cast<double>(s.scan.size()) / s.o.likelihood_gain);
 }
 
 TEST(ProposalShape, LocalQuadraticRecoversAKnownGaussianAndIgnoresFlatDirections) {

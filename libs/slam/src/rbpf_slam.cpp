@@ -85,9 +85,12 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
       q.c = m.score.log_likelihood;
       observed.b.setZero();
       observed.c = m.score.log_likelihood;
-      // The weight: the integral of the softened target. The shape: the likelihood of beams that register to
-      // beam_sigma, times the motion prior.
-      plan.log_weight_increment = informedGaussian(q, inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
+      // The weight: the softened likelihood at the mode, or the integral of the softened target. The shape: the
+      // likelihood of beams that register to beam_sigma, times the motion prior.
+      plan.log_weight_increment =
+          o.proposal.weight == ProposalWeight::Mode
+              ? m.score.log_likelihood * inv_gain
+              : informedGaussian(q, inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
       const double shape_scale = std::pow(o.matcher.sigma / o.proposal.beam_sigma, 2);
       plan.gaussian = informedGaussian(observed, shape_scale, m.pose, prediction, sg.xy, sg.theta);
       addFloor(plan.gaussian, o.proposal);

@@ -136,6 +136,13 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
     else throw InputError(file, 0, "[" + section + "] proposal_fit",
                           "unknown fit '" + f + "' (expected quadratic or moments)");
   }
+  if (source.keyExists(section, "proposal_weight")) {
+    const std::string w = iniValueText(source.read_string(section, "proposal_weight", "", false));
+    if (w == "mode") proposal.weight = ProposalWeight::Mode;
+    else if (w == "integral") proposal.weight = ProposalWeight::Integral;
+    else throw InputError(file, 0, "[" + section + "] proposal_weight",
+                          "unknown weight '" + w + "' (expected mode or integral)");
+  }
   validate(file, section);
 }
 
@@ -148,6 +155,7 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
   });
   target.write(section, "proposal", std::string(toString(proposal.type)));
   target.write(section, "proposal_fit", std::string(proposal.fit == ProposalFit::Moments ? "moments" : "quadratic"));
+  target.write(section, "proposal_weight", std::string(proposal.weight == ProposalWeight::Integral ? "integral" : "mode"));
   target.write(section, "match_method",
                std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
 }
@@ -164,6 +172,7 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
   });
   out << "  proposal = " << toString(proposal.type) << "\n";
   out << "  proposal_fit = " << (proposal.fit == ProposalFit::Moments ? "moments" : "quadratic") << "\n";
+  out << "  proposal_weight = " << (proposal.weight == ProposalWeight::Integral ? "integral" : "mode") << "\n";
   out << "  match_method = " << (matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb") << "\n";
 }
 
