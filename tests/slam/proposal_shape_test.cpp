@@ -141,7 +141,8 @@ TEST(ProposalShape, SpreadShrinksWhenTheScanConstrainsMore) {
   const Scene corridor = corridorScene();
   const Scene room = roomScene();
   const OdometryMotionModel motion(corridor.o.motion);
-  const ProposalPlan pc = planProposal(corridor.map, corridor.prev, corridor.u, true, corridor.scan, corridor.o, motion);
+  const ProposalPlan pc =
+      planProposal(corridor.map, corridor.prev, corridor.u, true, corridor.scan, corridor.o, motion);
   const ProposalPlan pr = planProposal(room.map, room.prev, room.u, true, room.scan, room.o, motion);
   ASSERT_TRUE(pc.matched);
   ASSERT_TRUE(pr.matched);
@@ -187,7 +188,8 @@ TEST(ProposalShape, WeightIsTheLaplaceIntegralOfTheTarget) {
   m.proposal.delta_xy = 0.01;
   m.proposal.delta_theta = 0.005;
   const ProposalPlan moments = planProposal(s.map, s.prev, s.u, true, s.scan, m, motion);
-  std::printf("exact %.3f laplace %.3f riemann(narrow grid) %.3f\n", exact, plan.log_weight_increment, moments.log_weight_increment);
+  std::printf("exact %.3f laplace %.3f riemann(narrow grid) %.3f\n", exact, plan.log_weight_increment,
+              moments.log_weight_increment);
   EXPECT_NEAR(plan.log_weight_increment, exact, 0.6);
   EXPECT_GT(std::abs(moments.log_weight_increment - exact), 3.0);
 }

@@ -114,35 +114,29 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
       throw InputError(file, 0, "[" + section + "] " + key, e.message());
     }
   });
-  if (source.keyExists(section, "match_method")) {
-    const std::string m = iniValueText(source.read_string(section, "match_method", "", false));
-    if (m == "gauss-newton") matcher.method = MatchMethod::GaussNewton;
-    else if (m == "hill-climb") matcher.method = MatchMethod::HillClimb;
-    else throw InputError(file, 0, "[" + section + "] match_method",
-                          "unknown method '" + m + "' (expected gauss-newton or hill-climb)");
-  }
-  if (source.keyExists(section, "proposal")) {
-    const std::string p = iniValueText(source.read_string(section, "proposal", "", false));
-    try {
-      proposal.type = proposalFromString(p);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(file, 0, "[" + section + "] proposal", e.what());
+  // Keys whose value is one of a few words: the word's enum value, or an error naming the words.
+  auto readChoice = [&](const char* key, auto& target,
+                        std::initializer_list<std::pair<const char*, std::decay_t<decltype(target)>>> words) {
+    if (!source.keyExists(section, key)) return;
+    const std::string v = iniValueText(source.read_string(section, key, "", false));
+    std::string expected;
+    for (const auto& [word, value] : words) {
+      if (v == word) {
+        target = value;
+        return;
+      }
+      expected += (expected.empty() ? "" : ", ") + std::string(word);
     }
-  }
-  if (source.keyExists(section, "proposal_fit")) {
-    const std::string f = iniValueText(source.read_string(section, "proposal_fit", "", false));
-    if (f == "quadratic") proposal.fit = ProposalFit::Quadratic;
-    else if (f == "moments") proposal.fit = ProposalFit::Moments;
-    else throw InputError(file, 0, "[" + section + "] proposal_fit",
-                          "unknown fit '" + f + "' (expected quadratic or moments)");
-  }
-  if (source.keyExists(section, "proposal_weight")) {
-    const std::string w = iniValueText(source.read_string(section, "proposal_weight", "", false));
-    if (w == "mode") proposal.weight = ProposalWeight::Mode;
-    else if (w == "integral") proposal.weight = ProposalWeight::Integral;
-    else throw InputError(file, 0, "[" + section + "] proposal_weight",
-                          "unknown weight '" + w + "' (expected mode or integral)");
-  }
+    throw InputError(file, 0, "[" + section + "] " + key, "unknown value '" + v + "' (expected " + expected + ")");
+  };
+  readChoice("match_method", matcher.method,
+             {{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}});
+  readChoice("proposal", proposal.type,
+             {{"informed", ProposalType::Informed}, {"mode-only", ProposalType::ModeOnly},
+              {"odometry", ProposalType::Odometry}});
+  readChoice("proposal_fit", proposal.fit, {{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}});
+  readChoice("proposal_weight", proposal.weight,
+             {{"mode", ProposalWeight::Mode}, {"integral", ProposalWeight::Integral}});
   validate(file, section);
 }
 
@@ -155,7 +149,8 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
   });
   target.write(section, "proposal", std::string(toString(proposal.type)));
   target.write(section, "proposal_fit", std::string(proposal.fit == ProposalFit::Moments ? "moments" : "quadratic"));
-  target.write(section, "proposal_weight", std::string(proposal.weight == ProposalWeight::Integral ? "integral" : "mode"));
+  target.write(section, "proposal_weight",
+               std::string(proposal.weight == ProposalWeight::Integral ? "integral" : "mode"));
   target.write(section, "match_method",
                std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
 }
