@@ -49,54 +49,55 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
-  // Informed proposal: K poses on a grid around the mode, τ_j = p(z|m,x_j)·p(x_j|x_{t-1},u).
+  // Informed proposal: ln p(z|m,x_j) at K poses on a grid around the mode.
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
   std::vector<Pose2> xs;
-  std::vector<double> log_tau, log_lik;
+  std::vector<double> log_lik;
   xs.reserve(static_cast<std::size_t>(n) * n * n);
-  log_tau.reserve(xs.capacity());
+  log_lik.reserve(xs.capacity());
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) {
         const Pose2 x{m.pose.x + (i - half) * o.proposal.delta_xy, m.pose.y + (j - half) * o.proposal.delta_xy,
                       wrapAngle(m.pose.theta + (k - half) * o.proposal.delta_theta)};
-        const double ll = (i == n / 2 && j == n / 2 && k == n / 2 && (n % 2) == 1)
-                              ? m.score.log_likelihood
-                              : scorer.score(x).log_likelihood;
         xs.push_back(x);
-        log_lik.push_back(ll);
-        const double lm = motion.logDensity(x, prev, u, has_odometry);
-        log_tau.push_back(ll * inv_gain + lm);
+        log_lik.push_back((i == n / 2 && j == n / 2 && k == n / 2 && (n % 2) == 1) ? m.score.log_likelihood
+                                                                                    : scorer.score(x).log_likelihood);
       }
   plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
   if (o.proposal.fit == ProposalFit::Quadratic) {
-    // Every concave direction for the weight (the best local model of the integrand); the shape keeps only the
-    // directions the scan clearly observes.
-    LocalQuadratic q = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta);
-    LocalQuadratic observed = fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta,
-                                                o.proposal.min_curvature);
-    if (q.ok && observed.ok) {
-      // Laplace's approximation of τ, centred on the mode the hill climb found (to a millimetre; the fit's own
-      // peak is smoothed over the grid and biased by truncated beams), with the fitted curvature.
-      const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
-      const Pose2 prediction = compose(prev, u);  // the motion prior's mean (the search may start elsewhere)
+    // Laplace's approximation of τ, centred on the mode the hill climb found (to a millimetre; the fit's own peak
+    // is smoothed over the grid and biased by truncated beams), with the curvature fitted over the K poses.
+    auto fitAtMode = [&](double min_curvature) {
+      LocalQuadratic q =
+          fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta, min_curvature);
       q.b.setZero();
       q.c = m.score.log_likelihood;
-      observed.b.setZero();
-      observed.c = m.score.log_likelihood;
-      // The weight: the softened likelihood at the mode, or the integral of the softened target. The shape: the
-      // likelihood of beams that register to beam_sigma, times the motion prior.
+      return q;
+    };
+    // The shape keeps only the directions the scan clearly observes.
+    const LocalQuadratic observed = fitAtMode(o.proposal.min_curvature);
+    if (observed.ok) {
+      const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
+      const Pose2 prediction = compose(prev, u);  // the motion prior's mean (the search may start elsewhere)
+      // The weight: the softened likelihood at the mode, or the integral of the softened target with every concave
+      // direction (the best local model of the integrand). The shape: the likelihood of beams that register to
+      // beam_sigma, times the motion prior.
       plan.log_weight_increment =
           o.proposal.weight == ProposalWeight::Mode
               ? m.score.log_likelihood * inv_gain
-              : informedGaussian(q, inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
+              : informedGaussian(fitAtMode(0.0), inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
       const double shape_scale = std::pow(o.matcher.sigma / o.proposal.beam_sigma, 2);
       plan.gaussian = informedGaussian(observed, shape_scale, m.pose, prediction, sg.xy, sg.theta);
       addFloor(plan.gaussian, o.proposal);
       return plan;
     }
   }
+  // The paper's moments: τ_j = p(z|m,x_j)^(1/gain)·p(x_j|x_{t-1},u).
+  std::vector<double> log_tau(xs.size());
+  for (std::size_t j = 0; j < xs.size(); ++j)
+    log_tau[j] = log_lik[j] * inv_gain + motion.logDensity(xs[j], prev, u, has_odometry);
   plan.gaussian = fitProposal(xs, log_tau, m.pose);
   addFloor(plan.gaussian, o.proposal);
   // The weight factor approximates the integral ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx, so that it is
