@@ -15,6 +15,7 @@
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/rbpf_slam.h"
+#include <mrpt/config/CConfigFile.h>
 #include <opencv2/imgcodecs.hpp>
 
 using namespace gridtopo;
@@ -206,9 +207,14 @@ Result runCorridorLoop(std::uint64_t seed, double scale_error, const slam::SlamO
   return res;
 }
 
-// The default options, two threads.
+// The default options, two threads; GRIDTOPO_TEST_INI names an INI whose [slam] section overrides them (to check
+// other settings by hand).
 slam::SlamOptions corridorOptions() {
   slam::SlamOptions o;
+  if (const char* ini = std::getenv("GRIDTOPO_TEST_INI")) {
+    mrpt::config::CConfigFile cfg(ini);
+    o.loadFromConfigFile(cfg, "slam");
+  }
   o.threads = 2;
   return o;
 }

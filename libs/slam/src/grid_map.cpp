@@ -98,8 +98,13 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
     const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
     int err = dx + dy;
-    while (x != x1 || y != y1) {
-      addLogOdds(tileOf(x, y)->log_odds[static_cast<std::size_t>(cellOffset(x, y))], o.log_odds_free, o);
+    // A line of max(dx, -dy) steps; a hit near a surface seen at a grazing angle clears only its first part.
+    const int steps = std::max(dx, -dy);
+    const int free_steps =
+        beams[k].hit && beams[k].free_fraction < 1.0 ? static_cast<int>(beams[k].free_fraction * steps) : steps;
+    for (int step = 0; x != x1 || y != y1; ++step) {
+      if (step < free_steps)
+        addLogOdds(tileOf(x, y)->log_odds[static_cast<std::size_t>(cellOffset(x, y))], o.log_odds_free, o);
       const int e2 = 2 * err;
       if (e2 >= dy) {
         err += dy;

@@ -1,8 +1,53 @@
 #include "gridtopo/slam/prepared_scan.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace gridtopo::slam {
+
+namespace {
+
+/// Unit normal of a total-least-squares line through the hit end points of beams lo..hi, or (0, 0) when fewer
+/// than three are hits or their RMS distance to the line exceeds kNormalMaxRms.
+void surfaceNormal(const std::vector<double>& hx, const std::vector<double>& hy, const std::vector<char>& is_hit,
+                   std::size_t lo, std::size_t hi, double& nx, double& ny) {
+  nx = ny = 0.0;
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (std::size_t j = lo; j <= hi; ++j)
+    if (is_hit[j]) {
+      sx += hx[j];
+      sy += hy[j];
+      ++n;
+    }
+  if (n < 3) return;
+  const double mx = sx / n, my = sy / n;
+  double cxx = 0, cxy = 0, cyy = 0;
+  for (std::size_t j = lo; j <= hi; ++j)
+    if (is_hit[j]) {
+      const double dx = hx[j] - mx, dy = hy[j] - my;
+      cxx += dx * dx;
+      cxy += dx * dy;
+      cyy += dy * dy;
+    }
+  // The smaller eigenvalue of the scatter matrix is the sum of squared distances to the best line; its
+  // eigenvector is the line's normal.
+  const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
+  const double lmin = 0.5 * tr - std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+  if (!(lmin / n <= kNormalMaxRms * kNormalMaxRms)) return;
+  double vx = cxy, vy = lmin - cxx;  // (C - lmin I) v = 0, first row
+  if (std::abs(vx) + std::abs(vy) < 1e-15) {
+    vx = lmin - cyy;  // second row
+    vy = cxy;
+  }
+  const double len = std::hypot(vx, vy);
+  if (!(len > 0.0)) return;
+  nx = vx / len;
+  ny = vy / len;
+}
+
+}  // namespace
 
 PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double resolution) {
   PreparedScan p;
@@ -21,12 +66,16 @@ PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double
     step = inc > 0.0 ? static_cast<int>(std::lround(o.matching_beam_angle / inc)) : 1;
   }
   step = std::max(1, step);
-  int hit_count = 0;
-  p.map_beams.reserve(scan.size());
-  for (std::size_t k = 0; k < scan.size(); ++k) {
+
+  // Pass 1: the beams to insert, and every hit's end point (robot frame) for the normals.
+  const std::size_t n = scan.size();
+  std::vector<double> hx(n), hy(n), len_of(n);
+  std::vector<char> is_hit(n, 0);
+  std::vector<std::size_t> map_index(n, 0);
+  p.map_beams.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
     const double r = scan.ranges[k];
     const double a = scan.beamAngle(k);
-    const double ca = std::cos(a), sa = std::sin(a);
     double len;
     bool hit;
     if (scan.valid[k] && std::isfinite(r) && r >= o.min_range) {
@@ -39,17 +88,58 @@ PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double
       continue;
     }
     MapBeam b{};
-    toRobot(len * ca, len * sa, b.ex, b.ey);
+    toRobot(len * std::cos(a), len * std::sin(a), b.ex, b.ey);
     b.hit = hit;
     p.map_beams.push_back(b);
-    if (hit && (hit_count++ % step) == 0) {
-      double fxr, fyr;
-      toRobot((len - resolution) * ca, (len - resolution) * sa, fxr, fyr);
-      p.ex.push_back(b.ex);
-      p.ey.push_back(b.ey);
-      p.fx.push_back(fxr);
-      p.fy.push_back(fyr);
+    if (hit) {
+      map_index[k] = p.map_beams.size() - 1;
+      hx[k] = b.ex;
+      hy[k] = b.ey;
+      len_of[k] = len;
+      is_hit[k] = 1;
     }
+  }
+
+  // Pass 2: every step-th matchable hit is a matching end point, with its surface normal.
+  const double match_below = usable - o.matching_range_margin;
+  const double min_sin_incidence = std::sin(o.matching_min_incidence);
+  int hit_count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool matchable = is_hit[k] && len_of[k] < match_below;
+    if (!matchable && !(is_hit[k] && o.surface_clearance > 0.0)) continue;
+    // The window of beams: k ± w, widened until its outermost hits are kNormalSpan apart (a wall seen square on at
+    // 1 m gives end points 2 cm apart per degree, too close for a normal at the range noise) or w reaches the cap.
+    std::size_t lo = k, hi = k;
+    for (int w = 1; w <= kNormalMaxNeighbours; ++w) {
+      if (lo > 0) --lo;
+      if (hi + 1 < n) ++hi;
+      std::size_t a = lo, b = hi;
+      while (a < k && !is_hit[a]) ++a;
+      while (b > k && !is_hit[b]) --b;
+      if (w >= 2 && std::hypot(hx[b] - hx[a], hy[b] - hy[a]) >= kNormalSpan) break;
+    }
+    double nx = 0.0, ny = 0.0;
+    surfaceNormal(hx, hy, is_hit, lo, hi, nx, ny);
+    // The angle between beam and surface: sin = |cos(beam, normal)|.
+    const bool has_normal = nx != 0.0 || ny != 0.0;
+    const double bx = hx[k] - p.sensor.x, by = hy[k] - p.sensor.y;
+    const double sin_incidence = has_normal ? std::abs(bx * nx + by * ny) / std::hypot(bx, by) : 1.0;
+    if (o.surface_clearance > 0.0 && has_normal) {
+      const double keep = std::min(len_of[k], o.surface_clearance / std::max(sin_incidence, 1e-6));
+      p.map_beams[map_index[k]].free_fraction = (len_of[k] - keep) / len_of[k];
+    }
+    if (!matchable) continue;
+    if (o.matching_min_incidence > 0.0 && has_normal && sin_incidence < min_sin_incidence) continue;
+    if ((hit_count++ % step) != 0) continue;
+    const double a = scan.beamAngle(k), back = len_of[k] - resolution;
+    double fxr, fyr;
+    toRobot(back * std::cos(a), back * std::sin(a), fxr, fyr);
+    p.ex.push_back(hx[k]);
+    p.ey.push_back(hy[k]);
+    p.fx.push_back(fxr);
+    p.fy.push_back(fyr);
+    p.nx.push_back(nx);
+    p.ny.push_back(ny);
   }
   return p;
 }

@@ -87,7 +87,13 @@ void associate(const GridMap& map, const Pose2& x, const PreparedScan& scan, con
 ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan, const ScanMatcherOptions& o) {
   const double inv2s2 = 1.0 / (2.0 * o.sigma * o.sigma);
   ScanScore out;
-  associate(map, x, scan, o, [&](std::size_t, double, double, bool found, double d2, double, double) {
+  const bool plane = o.residual == MatchResidual::Plane;
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  associate(map, x, scan, o, [&](std::size_t b, double px, double py, bool found, double d2, double mx, double my) {
+    if (found && plane && (scan.nx[b] != 0.0 || scan.ny[b] != 0.0)) {
+      const double r = (px - mx) * (c * scan.nx[b] - s * scan.ny[b]) + (py - my) * (s * scan.nx[b] + c * scan.ny[b]);
+      d2 = r * r;
+    }
     if (found) {
       ++out.matched;
       out.log_likelihood += std::max(-d2 * inv2s2, o.null_log_likelihood);
@@ -191,6 +197,9 @@ bool ScanScorer::scoreImpl(const Pose2& x, double stop_at, ScanScore& out) {
   const double* ex = scan_.ex.data();
   const double* ey = scan_.ey.data();
   const double null_ll = o_.null_log_likelihood;
+  const bool plane = o_.residual == MatchResidual::Plane;
+  const double* nx = scan_.nx.data();
+  const double* ny = scan_.ny.data();
   const double inv_res = 1.0 / map_.resolution();
   auto cellIndex = [inv_res](double w) {  // GridMap::cellIndex with the scale hoisted out of the loop
     const double v = w * inv_res;
@@ -212,10 +221,19 @@ bool ScanScorer::scoreImpl(const Pose2& x, double stop_at, ScanScore& out) {
     }
     const double* h = hits_.data() + 2 * static_cast<std::size_t>(w.offset);
     double best = std::numeric_limits<double>::infinity();
+    std::uint32_t best_j = 0;
     for (std::uint32_t j = 0; j < w.count; ++j) {
       const double ddx = px - h[2 * j], ddy = py - h[2 * j + 1];
       const double d2 = ddx * ddx + ddy * ddy;
-      if (d2 < best) best = d2;
+      if (d2 < best) {
+        best = d2;
+        best_j = j;
+      }
+    }
+    if (plane && (nx[b] != 0.0 || ny[b] != 0.0)) {
+      // Same arithmetic as scoreScan's.
+      const double r = (px - h[2 * best_j]) * (c * nx[b] - s * ny[b]) + (py - h[2 * best_j + 1]) * (s * nx[b] + c * ny[b]);
+      best = r * r;
     }
     ++out.matched;
     out.log_likelihood += std::max(-best * inv2s2, null_ll);
@@ -389,6 +407,8 @@ MatchResult matchScan(ScanScorer& scorer, const Pose2& start, const MatchPrior* 
         sub.ey.push_back(scan.ey[b]);
         sub.fx.push_back(scan.fx[b]);
         sub.fy.push_back(scan.fy[b]);
+        sub.nx.push_back(scan.nx[b]);
+        sub.ny.push_back(scan.ny[b]);
       }
       ScanScorer sub_scorer(map, sub, o);
       MatchResult c;

@@ -64,6 +64,9 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("no_return_range", o.beams.no_return_range);
   f("matching_beam_step", o.beams.matching_beam_step);
   f("matching_beam_angle", o.beams.matching_beam_angle);
+  f("matching_range_margin", o.beams.matching_range_margin);
+  f("matching_min_incidence", o.beams.matching_min_incidence);
+  f("map_surface_clearance", o.beams.surface_clearance);
   f("match_sigma", o.matcher.sigma);
   f("match_kernel", o.matcher.kernel);
   f("match_null_log_likelihood", o.matcher.null_log_likelihood);
@@ -131,6 +134,7 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
   };
   readChoice("match_method", matcher.method,
              {{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}});
+  readChoice("match_residual", matcher.residual, {{"point", MatchResidual::Point}, {"plane", MatchResidual::Plane}});
   readChoice("proposal", proposal.type,
              {{"informed", ProposalType::Informed}, {"mode-only", ProposalType::ModeOnly},
               {"odometry", ProposalType::Odometry}});
@@ -153,6 +157,7 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
                std::string(proposal.weight == ProposalWeight::Integral ? "integral" : "mode"));
   target.write(section, "match_method",
                std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
+  target.write(section, "match_residual", std::string(matcher.residual == MatchResidual::Plane ? "plane" : "point"));
 }
 
 void SlamOptions::dumpToTextStream(std::ostream& out) const {
@@ -169,6 +174,7 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
   out << "  proposal_fit = " << (proposal.fit == ProposalFit::Moments ? "moments" : "quadratic") << "\n";
   out << "  proposal_weight = " << (proposal.weight == ProposalWeight::Integral ? "integral" : "mode") << "\n";
   out << "  match_method = " << (matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb") << "\n";
+  out << "  match_residual = " << (matcher.residual == MatchResidual::Plane ? "plane" : "point") << "\n";
 }
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
@@ -216,6 +222,10 @@ void SlamOptions::validate(const std::string& file, const std::string& section) 
   nonNegative("no_return_range", beams.no_return_range);
   if (beams.matching_beam_step < 0) fail("matching_beam_step", "must be >= 0, got " + str(beams.matching_beam_step));
   positive("matching_beam_angle", beams.matching_beam_angle);
+  nonNegative("matching_range_margin", beams.matching_range_margin);
+  nonNegative("map_surface_clearance", beams.surface_clearance);
+  if (!(beams.matching_min_incidence >= 0.0 && beams.matching_min_incidence < 1.5))
+    fail("matching_min_incidence", "must be in [0, 1.5) rad, got " + str(beams.matching_min_incidence));
   positive("match_sigma", matcher.sigma);
   if (matcher.kernel < 0 || matcher.kernel > 5) fail("match_kernel", "must be in [0, 5], got " + str(matcher.kernel));
   if (!(matcher.null_log_likelihood < 0.0))

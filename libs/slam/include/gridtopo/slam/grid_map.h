@@ -41,6 +41,9 @@ struct MapUpdateOptions {
 struct MapBeam {
   double ex, ey;  ///< end point in the robot frame (metres)
   bool hit;       ///< true: obstacle at the end; false: free space up to the end (no return / clipped)
+  /// A hit marks free only the cells of the first free_fraction of its traced line (the rest lies too close to
+  /// the surface it hit: see BeamOptions::surface_clearance).
+  double free_fraction = 1.0;
 };
 
 class GridMap {

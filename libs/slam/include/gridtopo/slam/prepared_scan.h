@@ -23,6 +23,23 @@ struct BeamOptions {
   /// step and the scale of the likelihood do not depend on the laser's angular resolution.
   int matching_beam_step = 2;
   double matching_beam_angle = 0.0349066;  ///< rad (2°), for matching_beam_step = 0
+  /// Hits within this distance (m) of the usable range (the smaller of max_usable_range and the sensor's max
+  /// range) are inserted but not matched. The previous scans mapped the walls only up to that range from poses a
+  /// step behind, so beams ending near it fall past the mapped frontier at the true pose and onto mapped walls
+  /// at poses behind it: along a corridor they pull every match backwards. 0 = match every hit.
+  double matching_range_margin = 0.0;
+  /// Hits whose beam meets the surface (its normal estimated from the neighbouring beams) at less than this angle
+  /// (rad) are inserted but not matched. Along a wall seen at a grazing angle consecutive scans' end points lie
+  /// metres apart, so the wall's cells there hold few hit means with gaps wider than the correspondence window:
+  /// such a beam finds its correspondence only where an earlier scan's beam ended, which favours the poses that
+  /// repeat an earlier scan's geometry (zero motion along a corridor). 0 = match them all.
+  double matching_min_incidence = 0.0;
+  /// A hit does not clear the cells of its beam that lie within this distance (m) of the surface it hit, i.e. the
+  /// last surface_clearance / sin(incidence) metres of the beam (the surface's normal estimated from the
+  /// neighbouring beams; hits without one clear up to their end). A beam meeting a wall at 5 degrees otherwise runs
+  /// through the wall's row of cells for the last 0.6 m and wears away the wall that earlier scans mapped there.
+  /// 0 = clear every cell up to the hit.
+  double surface_clearance = 0.0;
 };
 
 struct PreparedScan {
@@ -31,8 +48,19 @@ struct PreparedScan {
   /// Matching end points in the robot frame, and the same points moved one cell back along the beam
   /// (the cell in front of an obstacle must be free: GMapping's test against matching a wall from behind).
   std::vector<double> ex, ey, fx, fy;
+  /// Unit normal (robot frame) of the surface at each matching end point, from a line fitted to the end points of
+  /// the neighbouring beams (see kNormalSpan); (0, 0) where they do not lie on one line (corners, clutter,
+  /// isolated returns).
+  std::vector<double> nx, ny;
   std::size_t size() const { return ex.size(); }
 };
+
+/// The surface normal at an end point comes from the end points of the beams k ± w around it, w from 2 up to this
+/// cap, the first w whose outermost hits are kNormalSpan (m) apart.
+constexpr int kNormalMaxNeighbours = 12;
+constexpr double kNormalSpan = 0.2;
+/// The neighbours' RMS distance to the fitted line (m) up to which they count as one surface.
+constexpr double kNormalMaxRms = 0.02;
 
 PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double resolution);
 

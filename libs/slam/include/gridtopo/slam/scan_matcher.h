@@ -20,7 +20,18 @@ enum class MatchMethod {
   GaussNewton,  ///< Gauss-Newton on the end point-to-hit-mean distances, then a short hill-climbing polish
 };
 
+/// What a beam's distance d to its correspondence measures.
+enum class MatchResidual {
+  Point,  ///< end point to hit mean (GMapping)
+  /// The same, projected on the surface normal at the end point (estimated from the neighbouring beams; point
+  /// where there is none). Hit means are sparse along a wall seen at a grazing angle, and point distances along it
+  /// favour poses that put the end points where the previous scans' end points fell: a pull towards zero motion
+  /// along corridors.
+  Plane,
+};
+
 struct ScanMatcherOptions {
+  MatchResidual residual = MatchResidual::Point;
   MatchMethod method = MatchMethod::HillClimb;  // Gauss-Newton is experimental (slower to converge here)
   int gn_iterations = 8;              ///< Gauss-Newton iterations (re-association at each)
   int gn_kernel = 2;                  ///< correspondence window half size (cells) during Gauss-Newton
