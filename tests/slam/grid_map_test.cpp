@@ -73,3 +73,33 @@ TEST(GridMap, CopiesShareTilesUntilWritten) {
     if (a.tiles()[i]) shared += a.tiles()[i].get() == b.tiles()[i].get();
   EXPECT_EQ(shared, tiles - 1);
 }
+
+TEST(GridMap, TileCopiesShareHitMeansUntilHit) {
+  GridMap a(0.05);
+  MapUpdateOptions o;
+  a.insertScan({0, 0, 0}, {}, {{1.0, 0.0, true}}, o);  // hit in cell (20, 0)
+  const GridMap::Tile* ta = a.tileAt(20, 0);
+  ASSERT_TRUE(ta && ta->hits);
+  const HitMean before = *ta->hit(GridMap::cellOffset(20, 0));
+  GridMap b = a;
+  // A beam that only crosses the tile (free space) copies its log-odds; the hit means stay shared.
+  b.insertScan({0, 0.01, 0}, {}, {{1.2, 0.0, false}}, o);
+  const GridMap::Tile* tb = b.tileAt(20, 0);
+  ASSERT_NE(ta, tb);
+  EXPECT_EQ(ta->hits.get(), tb->hits.get());
+  EXPECT_EQ(ta->log_odds[GridMap::cellOffset(20, 0)], o.log_odds_hit);
+  EXPECT_LT(tb->log_odds[GridMap::cellOffset(20, 0)], o.log_odds_hit);
+  // A hit in b's tile copies the hit means first; a keeps its own.
+  b.insertScan({0, 0, 0}, {}, {{1.01, 0.01, true}}, o);
+  EXPECT_NE(a.tileAt(20, 0)->hits.get(), b.tileAt(20, 0)->hits.get());
+  const HitMean* ha = a.tileAt(20, 0)->hit(GridMap::cellOffset(20, 0));
+  EXPECT_EQ(ha->n, 1u);
+  EXPECT_EQ(ha->x, before.x);
+  EXPECT_EQ(ha->y, before.y);
+  EXPECT_EQ(b.cell(20, 0)->hits, 2u);
+  // The hits of a tile nobody else holds are written in place.
+  const GridMap::HitMeans* own = b.tileAt(20, 0)->hits.get();
+  b.insertScan({0, 0, 0}, {}, {{1.02, 0.0, true}}, o);
+  EXPECT_EQ(b.tileAt(20, 0)->hits.get(), own);
+  EXPECT_EQ(b.cell(20, 0)->hits, 3u);
+}

@@ -48,6 +48,15 @@ GridMap::Tile* GridMap::writableTile(int cx, int cy) {
   return slot.get();
 }
 
+GridMap::HitMeans& GridMap::Tile::mutableHits() {
+  if (!hits) {
+    hits = std::make_shared<HitMeans>();
+  } else if (hits.use_count() > 1) {
+    hits = std::make_shared<HitMeans>(*hits);  // copy on write
+  }
+  return *hits;
+}
+
 float& GridMap::mutableLogOdds(int cx, int cy) {
   return writableTile(cx, cy)->log_odds[static_cast<std::size_t>(cellOffset(cx, cy))];
 }
@@ -114,8 +123,7 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     const auto i = static_cast<std::size_t>(cellOffset(x1, y1));
     if (beams[k].hit) {
       addLogOdds(t->log_odds[i], o.log_odds_hit, o);
-      if (!t->hits) t->hits = std::make_unique<HitMeans>();
-      HitMean& h = (*t->hits)[i];
+      HitMean& h = t->mutableHits()[i];
       ++h.n;
       const float inv = 1.0f / static_cast<float>(h.n);
       h.x += (static_cast<float>(ends[k][0]) - h.x) * inv;

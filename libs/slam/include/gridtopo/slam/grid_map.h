@@ -52,15 +52,19 @@ class GridMap {
   using HitMeans = std::array<HitMean, kTileCells>;
   /// A tile's hit means exist only once a beam has ended in it: tiles that long beams only cross (most of the
   /// area of a large building seen with a long-range laser) hold their 1 KiB of log-odds and nothing else.
+  /// The hit means are shared between the copies of a tile and copied on their own first write: a beam that
+  /// only crosses a tile changes its log-odds, so the copy a particle makes then shares the parent's 3 KiB of
+  /// hit means (most tiles a scan writes are crossed, not hit).
   struct Tile {
     std::array<float, kTileCells> log_odds{};  ///< row-major (y, x) within the tile
-    std::unique_ptr<HitMeans> hits;            ///< null until the first hit in the tile
+    std::shared_ptr<HitMeans> hits;            ///< null until the first hit in the tile; shared between copies
     Tile() = default;
-    Tile(const Tile& o) : log_odds(o.log_odds), hits(o.hits ? std::make_unique<HitMeans>(*o.hits) : nullptr) {}
+    Tile(const Tile& o) = default;  // shares the hit means
     Tile& operator=(const Tile&) = delete;
     /// The hit mean of a cell; null when no beam ever ended in this tile.
     const HitMean* hit(std::size_t i) const { return hits ? &(*hits)[i] : nullptr; }
-    std::size_t bytes() const { return sizeof(Tile) + (hits ? sizeof(HitMeans) : 0); }
+    /// The hit means made writable: allocated at the first hit, copied first when another tile shares them.
+    HitMeans& mutableHits();
   };
   /// Index of a cell within its tile.
   static int cellOffset(int cx, int cy) { return ((cy & kTileMask) << kTileBits) | (cx & kTileMask); }
