@@ -335,14 +335,20 @@ std::size_t RbpfSlam::bestParticleIndex() const {
 }
 
 std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
-  std::unordered_set<const void*> seen, seen_hits;
+  std::unordered_set<const void*> seen_blocks, seen, seen_hits;
   std::size_t b = 0;
-  for (const auto& p : particles_)
-    for (const auto& t : p.map.tiles())
-      if (t && seen.insert(t.get()).second) {
-        b += sizeof(GridMap::Tile);
-        if (t->hits && seen_hits.insert(t->hits.get()).second) b += sizeof(GridMap::HitMeans);
-      }
+  for (const auto& p : particles_) {
+    b += p.map.blocks().size() * sizeof(CowPtr<GridMap::Block>);
+    for (const auto& blk : p.map.blocks()) {
+      if (!blk || !seen_blocks.insert(blk.get()).second) continue;
+      b += sizeof(GridMap::Block);
+      for (const auto& t : blk->tiles)
+        if (t && seen.insert(t.get()).second) {
+          b += sizeof(GridMap::Tile);
+          if (t->hits && seen_hits.insert(t->hits.get()).second) b += sizeof(GridMap::HitMeans);
+        }
+    }
+  }
   if (bytes) *bytes = b;
   return seen.size();
 }
