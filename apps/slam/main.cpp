@@ -13,6 +13,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
@@ -44,6 +47,14 @@ long peakRssKb() {
   while (std::getline(f, line))
     if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
   return 0;
+}
+
+/// Gives the pages of freed heap memory back to the system (glibc keeps them otherwise: the particles' tiles
+/// are small blocks spread over the heap, and the export's large buffers are fresh mappings).
+void releaseFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace
@@ -102,7 +113,8 @@ int main(int argc, char** argv) {
     if (records.empty()) throw InputError(input.getValue(), "the log holds no laser scans");
     const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    slam::RbpfSlam filter(o);
+    auto filter_owner = std::make_unique<slam::RbpfSlam>(o);
+    slam::RbpfSlam& filter = *filter_owner;
     ProgressBar bar(records.size(), "slam", "scans", quiet.getValue() ? 0 : -1);
     std::ostringstream stats;
     stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
@@ -123,7 +135,17 @@ int main(int argc, char** argv) {
     // Outputs: all or nothing.
     const fs::path dir(output.getValue());
     const auto traj = filter.trajectory();
-    const auto grid = slam::toOccupancyGrid(filter.bestParticle().map);
+    const std::size_t steps = filter.stepsProcessed();
+    const slam::TrajectoryNodePtr best_node = filter.bestParticle().node;
+    // The export needs only the best particle: the other particles' maps are freed before the map (and its
+    // pictures, 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
+    auto grid = [&] {
+      const slam::GridMap best_map = filter.bestParticle().map;  // shares the tiles
+      filter_owner.reset();
+      releaseFreedMemory();
+      return slam::toOccupancyGrid(best_map);
+    }();
+    releaseFreedMemory();
     OutputSet out;
     out.write((dir / "trajectory.txt").string(), [&](const std::string& p) {
       io::writeTrajectory(p, traj, {"gridtopo-slam " + input.getValue(), "one pose per laser scan, best particle"});
@@ -147,7 +169,7 @@ int main(int argc, char** argv) {
     }
     out.write((dir / "map.simplemap").string(), [&](const std::string& p) {
       mrpt::maps::CSimpleMap sm;
-      for (const slam::TrajectoryNode* n : slam::pathOf(filter.bestParticle().node)) {
+      for (const slam::TrajectoryNode* n : slam::pathOf(best_node)) {
         auto sf = mrpt::obs::CSensoryFrame::Create();
         auto obs = io::toMrptScan(records[n->scan_index].scan);
         sf->insert(obs);
@@ -164,7 +186,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "gridtopo-slam: %zu scans, %zu processed, read %.2f s, slam %.2f s, total %.2f s, peak RSS %ld MB, "
                  "output in %s\n",
-                 records.size(), filter.stepsProcessed(), t_read, t_slam, t_total, peakRssKb() / 1024,
+                 records.size(), steps, t_read, t_slam, t_total, peakRssKb() / 1024,
                  dir.string().c_str());
     return 0;
   } catch (const TCLAP::ArgException& e) {

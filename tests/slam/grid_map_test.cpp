@@ -42,34 +42,90 @@ TEST(GridMap, GrowsInEveryDirection) {
   EXPECT_LT(m.cell(m.cellIndex(-110.0), m.cellIndex(200.02))->log_odds, 0);
 }
 
+namespace {
+/// Tiles of a held by b at the same place.
+std::size_t sharedTiles(const GridMap& a, const GridMap& b) {
+  std::size_t n = 0;
+  a.forEachTile([&](int tx, int ty, const GridMap::Tile& t) {
+    n += b.tileAt(tx * GridMap::kTileSize, ty * GridMap::kTileSize) == &t;
+  });
+  return n;
+}
+std::size_t sharedBlocks(const GridMap& a, const GridMap& b) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.blocks().size(); ++i)
+    if (a.blocks()[i]) n += a.blocks()[i].get() == b.blocks()[i].get();
+  return n;
+}
+std::size_t blockCount(const GridMap& a) {
+  std::size_t n = 0;
+  for (const auto& b : a.blocks()) n += static_cast<bool>(b);
+  return n;
+}
+}  // namespace
+
 TEST(GridMap, CopiesShareTilesUntilWritten) {
   GridMap a(0.05);
   MapUpdateOptions o;
   std::vector<MapBeam> beams;
   for (int k = 0; k < 180; ++k) beams.push_back({5 * std::cos(k * 0.035), 5 * std::sin(k * 0.035), true});
   a.insertScan({0, 0, 0}, {}, beams, o);
-  const std::size_t tiles = a.tileCount();
+  const std::size_t tiles = a.tileCount(), blocks = blockCount(a);
   ASSERT_GT(tiles, 20u);
+  ASSERT_GT(blocks, 1u);
   GridMap b = a;  // a particle copy at resampling
-  std::size_t shared = 0;
-  for (std::size_t i = 0; i < a.tiles().size(); ++i)
-    if (a.tiles()[i]) shared += a.tiles()[i].get() == b.tiles()[i].get();
-  EXPECT_EQ(shared, tiles);  // nothing copied
-  // Writing one cell of b copies exactly one tile; a is unchanged.
+  EXPECT_EQ(sharedTiles(a, b), tiles);  // nothing copied
+  EXPECT_EQ(sharedBlocks(a, b), blocks);
+  // Writing one cell of b copies exactly one tile and its block (8 x 8 tiles); a is unchanged.
   const float before = a.cell(10, 10)->log_odds;
   b.mutableLogOdds(10, 10) = 3.0f;
   EXPECT_FLOAT_EQ(a.cell(10, 10)->log_odds, before);
   EXPECT_FLOAT_EQ(b.cell(10, 10)->log_odds, 3.0f);
-  shared = 0;
-  for (std::size_t i = 0; i < a.tiles().size(); ++i)
-    if (a.tiles()[i]) shared += a.tiles()[i].get() == b.tiles()[i].get();
-  EXPECT_EQ(shared, tiles - 1);
-  // A second write to the same tile does not copy again.
-  const auto* tile = b.tiles()[0].get();
-  (void)tile;
+  EXPECT_EQ(sharedTiles(a, b), tiles - 1);
+  EXPECT_EQ(sharedBlocks(a, b), blocks - 1);
+  // A second write to the same tile, or to another tile of the same block, copies only that other tile.
   b.mutableLogOdds(11, 10) = 2.0f;
-  shared = 0;
-  for (std::size_t i = 0; i < a.tiles().size(); ++i)
-    if (a.tiles()[i]) shared += a.tiles()[i].get() == b.tiles()[i].get();
-  EXPECT_EQ(shared, tiles - 1);
+  EXPECT_EQ(sharedTiles(a, b), tiles - 1);
+  b.mutableLogOdds(10 + GridMap::kTileSize, 10) = 2.0f;
+  EXPECT_EQ(sharedTiles(a, b), tiles - 2);
+  EXPECT_EQ(sharedBlocks(a, b), blocks - 1);
+  // Writing a's copy of the block now copies nothing that b still needs: b's cells keep their values.
+  a.mutableLogOdds(10, 10) = -1.0f;
+  EXPECT_FLOAT_EQ(b.cell(10, 10)->log_odds, 3.0f);
+  EXPECT_FLOAT_EQ(a.cell(10, 10)->log_odds, -1.0f);
+  // The tiles die with their last map.
+  GridMap c = b;
+  b = GridMap(0.05);
+  EXPECT_FLOAT_EQ(c.cell(10, 10)->log_odds, 3.0f);
+  EXPECT_EQ(sharedTiles(a, c), tiles - 2);
+}
+
+TEST(GridMap, TileCopiesShareHitMeansUntilHit) {
+  GridMap a(0.05);
+  MapUpdateOptions o;
+  a.insertScan({0, 0, 0}, {}, {{1.0, 0.0, true}}, o);  // hit in cell (20, 0)
+  const GridMap::Tile* ta = a.tileAt(20, 0);
+  ASSERT_TRUE(ta && ta->hits);
+  const HitMean before = *ta->hit(GridMap::cellOffset(20, 0));
+  GridMap b = a;
+  // A beam that only crosses the tile (free space) copies its log-odds; the hit means stay shared.
+  b.insertScan({0, 0.01, 0}, {}, {{1.2, 0.0, false}}, o);
+  const GridMap::Tile* tb = b.tileAt(20, 0);
+  ASSERT_NE(ta, tb);
+  EXPECT_EQ(ta->hits.get(), tb->hits.get());
+  EXPECT_EQ(ta->log_odds[GridMap::cellOffset(20, 0)], o.log_odds_hit);
+  EXPECT_LT(tb->log_odds[GridMap::cellOffset(20, 0)], o.log_odds_hit);
+  // A hit in b's tile copies the hit means first; a keeps its own.
+  b.insertScan({0, 0, 0}, {}, {{1.01, 0.01, true}}, o);
+  EXPECT_NE(a.tileAt(20, 0)->hits.get(), b.tileAt(20, 0)->hits.get());
+  const HitMean* ha = a.tileAt(20, 0)->hit(GridMap::cellOffset(20, 0));
+  EXPECT_EQ(ha->n, 1u);
+  EXPECT_EQ(ha->x, before.x);
+  EXPECT_EQ(ha->y, before.y);
+  EXPECT_EQ(b.cell(20, 0)->hits, 2u);
+  // The hits of a tile nobody else holds are written in place.
+  const GridMap::HitMeans* own = b.tileAt(20, 0)->hits.get();
+  b.insertScan({0, 0, 0}, {}, {{1.02, 0.0, true}}, o);
+  EXPECT_EQ(b.tileAt(20, 0)->hits.get(), own);
+  EXPECT_EQ(b.cell(20, 0)->hits, 3u);
 }

@@ -8,44 +8,51 @@ namespace gridtopo::slam {
 
 GridMap::GridMap(double resolution) : res_(resolution), inv_res_(1.0 / resolution) {}
 
-void GridMap::ensureTileRange(int tx_min, int ty_min, int tx_max, int ty_max) {
-  if (ntx_ > 0 && tx_min >= tx0_ && ty_min >= ty0_ && tx_max < tx0_ + ntx_ && ty_max < ty0_ + nty_) return;
-  int nx0 = tx_min, ny0 = ty_min, nx1 = tx_max, ny1 = ty_max;
-  if (ntx_ > 0) {
-    nx0 = std::min(nx0, tx0_);
-    ny0 = std::min(ny0, ty0_);
-    nx1 = std::max(nx1, tx0_ + ntx_ - 1);
-    ny1 = std::max(ny1, ty0_ + nty_ - 1);
+void GridMap::ensureBlockRange(int bx_min, int by_min, int bx_max, int by_max) {
+  if (nbx_ > 0 && bx_min >= bx0_ && by_min >= by0_ && bx_max < bx0_ + nbx_ && by_max < by0_ + nby_) return;
+  int nx0 = bx_min, ny0 = by_min, nx1 = bx_max, ny1 = by_max;
+  if (nbx_ > 0) {
+    nx0 = std::min(nx0, bx0_);
+    ny0 = std::min(ny0, by0_);
+    nx1 = std::max(nx1, bx0_ + nbx_ - 1);
+    ny1 = std::max(ny1, by0_ + nby_ - 1);
   }
   // Grow with a margin so that exploring does not reallocate at every scan.
-  constexpr int kMargin = 8;
-  if (nx0 < tx0_ || ntx_ == 0) nx0 -= kMargin;
-  if (ny0 < ty0_ || nty_ == 0) ny0 -= kMargin;
-  if (ntx_ == 0 || nx1 >= tx0_ + ntx_) nx1 += kMargin;
-  if (nty_ == 0 || ny1 >= ty0_ + nty_) ny1 += kMargin;
-  const int nntx = nx1 - nx0 + 1, nnty = ny1 - ny0 + 1;
-  std::vector<std::shared_ptr<Tile>> nt(static_cast<std::size_t>(nntx) * nnty);
-  for (int ty = 0; ty < nty_; ++ty)
-    for (int tx = 0; tx < ntx_; ++tx)
-      nt[static_cast<std::size_t>(ty + ty0_ - ny0) * nntx + (tx + tx0_ - nx0)] =
-          std::move(tiles_[static_cast<std::size_t>(ty) * ntx_ + tx]);
-  tiles_ = std::move(nt);
-  tx0_ = nx0;
-  ty0_ = ny0;
-  ntx_ = nntx;
-  nty_ = nnty;
+  constexpr int kMargin = 2;
+  if (nx0 < bx0_ || nbx_ == 0) nx0 -= kMargin;
+  if (ny0 < by0_ || nby_ == 0) ny0 -= kMargin;
+  if (nbx_ == 0 || nx1 >= bx0_ + nbx_) nx1 += kMargin;
+  if (nby_ == 0 || ny1 >= by0_ + nby_) ny1 += kMargin;
+  const int nnbx = nx1 - nx0 + 1, nnby = ny1 - ny0 + 1;
+  std::vector<CowPtr<Block>> nb(static_cast<std::size_t>(nnbx) * nnby);
+  for (int by = 0; by < nby_; ++by)
+    for (int bx = 0; bx < nbx_; ++bx)
+      nb[static_cast<std::size_t>(by + by0_ - ny0) * nnbx + (bx + bx0_ - nx0)] =
+          std::move(blocks_[static_cast<std::size_t>(by) * nbx_ + bx]);
+  blocks_ = std::move(nb);
+  bx0_ = nx0;
+  by0_ = ny0;
+  nbx_ = nnbx;
+  nby_ = nnby;
 }
 
 GridMap::Tile* GridMap::writableTile(int cx, int cy) {
-  const int tx = cx >> kTileBits, ty = cy >> kTileBits;
-  ensureTileRange(tx, ty, tx, ty);
-  auto& slot = tiles_[static_cast<std::size_t>(ty - ty0_) * ntx_ + (tx - tx0_)];
-  if (!slot) {
-    slot = std::make_shared<Tile>();
-  } else if (slot.use_count() > 1) {
-    slot = std::make_shared<Tile>(*slot);  // copy on write
+  const int bx = cx >> kBlockCellBits, by = cy >> kBlockCellBits;
+  ensureBlockRange(bx, by, bx, by);
+  auto& bslot = blocks_[static_cast<std::size_t>(by - by0_) * nbx_ + (bx - bx0_)];
+  if (!bslot) bslot = CowPtr<Block>(new Block());
+  auto& slot = bslot.makeUnique().tiles[static_cast<std::size_t>(tileInBlock(cx, cy))];  // copy on write
+  if (!slot) slot = CowPtr<Tile>(new Tile());
+  return &slot.makeUnique();  // copy on write
+}
+
+GridMap::HitMeans& GridMap::Tile::mutableHits() {
+  if (!hits) {
+    hits = std::make_shared<HitMeans>();
+  } else if (hits.use_count() > 1) {
+    hits = std::make_shared<HitMeans>(*hits);  // copy on write
   }
-  return slot.get();
+  return *hits;
 }
 
 float& GridMap::mutableLogOdds(int cx, int cy) {
@@ -76,7 +83,7 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     miny = std::min(miny, ey);
     maxy = std::max(maxy, ey);
   }
-  ensureTileRange(minx >> kTileBits, miny >> kTileBits, maxx >> kTileBits, maxy >> kTileBits);
+  ensureBlockRange(minx >> kBlockCellBits, miny >> kBlockCellBits, maxx >> kBlockCellBits, maxy >> kBlockCellBits);
 
   // Cache of the last writable tile (consecutive cells of a beam mostly share a tile).
   int cached_tx = 0x7fffffff, cached_ty = 0x7fffffff;
@@ -119,8 +126,7 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     const auto i = static_cast<std::size_t>(cellOffset(x1, y1));
     if (beams[k].hit) {
       addLogOdds(t->log_odds[i], o.log_odds_hit, o);
-      if (!t->hits) t->hits = std::make_unique<HitMeans>();
-      HitMean& h = (*t->hits)[i];
+      HitMean& h = t->mutableHits()[i];
       ++h.n;
       const float inv = 1.0f / static_cast<float>(h.n);
       h.x += (static_cast<float>(ends[k][0]) - h.x) * inv;
@@ -133,14 +139,12 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
 
 void GridMap::cellBounds(int& min_cx, int& min_cy, int& max_cx, int& max_cy) const {
   int a = 0x7fffffff, b = 0x7fffffff, cmax = -0x7fffffff, d = -0x7fffffff;
-  for (int ty = 0; ty < nty_; ++ty)
-    for (int tx = 0; tx < ntx_; ++tx)
-      if (tiles_[static_cast<std::size_t>(ty) * ntx_ + tx]) {
-        a = std::min(a, tx + tx0_);
-        b = std::min(b, ty + ty0_);
-        cmax = std::max(cmax, tx + tx0_ + 1);
-        d = std::max(d, ty + ty0_ + 1);
-      }
+  forEachTile([&](int tx, int ty, const Tile&) {
+    a = std::min(a, tx);
+    b = std::min(b, ty);
+    cmax = std::max(cmax, tx + 1);
+    d = std::max(d, ty + 1);
+  });
   if (cmax < a) {
     min_cx = min_cy = max_cx = max_cy = 0;
     return;
@@ -153,7 +157,7 @@ void GridMap::cellBounds(int& min_cx, int& min_cy, int& max_cx, int& max_cy) con
 
 std::size_t GridMap::tileCount() const {
   std::size_t n = 0;
-  for (const auto& t : tiles_) n += t != nullptr;
+  forEachTile([&](int, int, const Tile&) { ++n; });
   return n;
 }
 

@@ -308,10 +308,20 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
 void RbpfSlam::resample(const std::vector<double>& w) {
   Rng rng(o_.seed, stats_.size(), 0, kPurposeResample);
   const std::vector<std::size_t> keep = lowVarianceResample(w, rng);
+  // The last copy of a particle takes its state over (moved, not copied): copying every survivor while the old
+  // set still lives would hold two sets of tile-pointer arrays (the hospital's map spans 10^5 tile slots per
+  // particle) at once. Copies share the map tiles and the trajectory.
+  std::vector<std::size_t> last_use(particles_.size(), keep.size());
+  for (std::size_t k = 0; k < keep.size(); ++k) last_use[keep[k]] = k;
   std::vector<Particle> next;
   next.reserve(keep.size());
-  for (std::size_t i : keep) {
-    next.push_back(particles_[i]);  // shares the map tiles and the trajectory
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    const std::size_t i = keep[k];
+    if (last_use[i] == k) {
+      next.push_back(std::move(particles_[i]));
+    } else {
+      next.push_back(particles_[i]);
+    }
     next.back().log_weight = 0.0;
   }
   particles_ = std::move(next);
@@ -325,11 +335,20 @@ std::size_t RbpfSlam::bestParticleIndex() const {
 }
 
 std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
-  std::unordered_set<const void*> seen;
+  std::unordered_set<const void*> seen_blocks, seen, seen_hits;
   std::size_t b = 0;
-  for (const auto& p : particles_)
-    for (const auto& t : p.map.tiles())
-      if (t && seen.insert(t.get()).second) b += t->bytes();
+  for (const auto& p : particles_) {
+    b += p.map.blocks().size() * sizeof(CowPtr<GridMap::Block>);
+    for (const auto& blk : p.map.blocks()) {
+      if (!blk || !seen_blocks.insert(blk.get()).second) continue;
+      b += sizeof(GridMap::Block);
+      for (const auto& t : blk->tiles)
+        if (t && seen.insert(t.get()).second) {
+          b += sizeof(GridMap::Tile);
+          if (t->hits && seen_hits.insert(t->hits.get()).second) b += sizeof(GridMap::HitMeans);
+        }
+    }
+  }
   if (bytes) *bytes = b;
   return seen.size();
 }

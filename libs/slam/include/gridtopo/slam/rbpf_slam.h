@@ -89,7 +89,8 @@ class RbpfSlam {
   const SlamOptions& options() const { return o_; }
   std::size_t scansSeen() const { return scans_.size(); }
   std::size_t stepsProcessed() const { return stats_.size(); }
-  /// Distinct tiles over all particles, and their bytes (hit means included) in `bytes` if given.
+  /// Distinct tiles over all particles, and in `bytes` if given the bytes of the maps: every particle's block
+  /// pointers, the distinct blocks, tiles and hit-mean arrays (each counted once however many share it).
   std::size_t uniqueTiles(std::size_t* bytes = nullptr) const;
 
  private:
