@@ -41,7 +41,11 @@ struct ScanMatcherOptions {
   double sigma = 0.05;                ///< m, std-dev of the end point-to-obstacle distance
   int kernel = 1;                     ///< window half size in cells for the correspondence search
   double null_log_likelihood = -2.0;  ///< per-beam log-likelihood floor (no correspondence / outlier)
-  float occupied_log_odds = 0.0f;     ///< a cell is occupied when its log-odds exceeds this
+  /// A cell with hit means is a correspondence candidate while its log-odds exceeds this. Below 0 so that walls
+  /// crossed by many grazing free rays (their cells' log-odds worn below 0 while they still hold hit means) stay
+  /// matchable: with 0 the end points ahead of the true pose in a long corridor lose their correspondences and the
+  /// filter falls behind (doc/slam.md, "Long corridors").
+  float occupied_log_odds = -2.0f;
   /// GMapping's test: a correspondence counts only if the cell one step back along the beam is not occupied
   /// (avoids matching a wall from behind). It rejects grazing beams on walls two cells thick, which biases
   /// the match by up to half a cell, so it is off by default.
