@@ -468,6 +468,11 @@ bool MainFrame::openFile(const std::string& path, double resolution) {
     }
     rebuildRecentMenu();
     SetStatusText(std::string("opened ") + session::toString(kind) + " " + path, 4);
+    if (kind == session::FileKind::Log && !s_.logWarnings().empty()) {  // non-modal: the status bar says them
+      std::string text = "opened " + path + ", reader warning(s):";
+      for (const auto& w : s_.logWarnings()) text += " " + w + ";";
+      SetStatusText(text, 4);
+    }
     switch (kind) {
       case session::FileKind::Log:
         plots_->clear();

@@ -107,7 +107,12 @@ int main(int argc, char** argv) {
 
     const auto t0 = std::chrono::steady_clock::now();
     if (!fs::exists(input.getValue())) throw InputError(input.getValue(), "no such file");
-    std::vector<io::ScanRecord> records = io::readScanLog(input.getValue());
+    io::ScanLogInfo info;
+    std::vector<io::ScanRecord> records = io::readScanLog(input.getValue(), {}, info);
+    // What the reader decided against the log's word is always said; which variant it read, unless quiet.
+    for (const auto& w : info.warnings) std::cerr << "gridtopo-slam: warning: " << input.getValue() << ": " << w << "\n";
+    if (!quiet.getValue())
+      for (const auto& n : info.notes) std::cerr << "gridtopo-slam: note: " << input.getValue() << ": " << n << "\n";
     if (max_scans.getValue() >= 0 && static_cast<std::size_t>(max_scans.getValue()) < records.size())
       records.resize(static_cast<std::size_t>(max_scans.getValue()));
     if (records.empty()) throw InputError(input.getValue(), "the log holds no laser scans");

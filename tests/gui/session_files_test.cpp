@@ -218,3 +218,21 @@ TEST(SessionFiles, OpensTheShippedPlaceModelByDefault) {
   }
   unsetenv("GRIDTOPO_DATA_DIR");
 }
+
+// The reader's warnings about an opened log are kept for the GUI to show (it puts them in the status bar).
+TEST(SessionFiles, KeepsTheReadersWarningsAboutALog) {
+  guitest::TempDir tmp;
+  std::string log = "PARAM laser_front_laser_fov 3.14159 nohost 0\n";
+  for (int i = 0; i < 3; ++i) {
+    log += "FLASER 181";
+    for (int k = 0; k < 181; ++k) log += " 3.0";
+    log += " 0 0 0 0 0 0 " + std::to_string(100 + i) + " nohost " + std::to_string(100 + i) + "\n";
+  }
+  write(tmp / "fov.clf", log);
+  session::Session s;
+  ASSERT_EQ(s.open(tmp / "fov.clf"), FileKind::Log);
+  ASSERT_EQ(s.logWarnings().size(), 1u);
+  EXPECT_NE(s.logWarnings()[0].find("laser_front_laser_fov 3.14159 read as radians"), std::string::npos);
+  s.open(GRIDTOPO_DATA_DIR "/slam/intel.clf.gz");
+  EXPECT_TRUE(s.logWarnings().empty());  // a log the reader takes at its word
+}

@@ -96,3 +96,24 @@ TEST(SlamApp, OptionsIniOfARunReproducesIt) {
   fs::remove_all(out);
   fs::remove_all(again);
 }
+
+// The reader's decisions against the log's word reach the user of gridtopo-slam, even with -q.
+TEST(SlamApp, PrintsTheReadersWarnings) {
+  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_app_warn";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream log(dir / "fov_radians.clf");
+  log << "PARAM laser_front_laser_fov 3.14159 nohost 0\n";
+  for (int i = 0; i < 5; ++i) {  // old FLASER lines: 181 readings, odometry x y theta twice, timestamps
+    log << "FLASER 181";
+    for (int k = 0; k < 181; ++k) log << " 3.0";
+    log << " 0 0 0 0 0 0 " << 100 + i << " nohost " << 100 + i << "\n";
+  }
+  log.close();
+  const Result r = run("-i " + (dir / "fov_radians.clf").string() + " -o " + (dir / "out").string() + " -p 2 -t 1 -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("gridtopo-slam: warning: " + (dir / "fov_radians.clf").string() +
+                          ": PARAM laser_front_laser_fov 3.14159 read as radians (180 deg)"),
+            std::string::npos)
+      << r.output;
+}

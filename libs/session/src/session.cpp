@@ -136,10 +136,12 @@ FileKind Session::open(const std::string& path, const io::MapReadOptions& map_op
 }
 
 void Session::openLog(const std::string& path, std::size_t max_scans) {
-  auto scans = io::readScanLog(path);
+  io::ScanLogInfo info;
+  auto scans = io::readScanLog(path, {}, info);
   if (max_scans && scans.size() > max_scans) scans.resize(max_scans);
   if (scans.empty()) throw InputError(path, "the log holds no laser scans");
   runner_.reset();
+  log_warnings_ = std::move(info.warnings);
   scans_ = std::make_shared<const std::vector<io::ScanRecord>>(std::move(scans));
   log_path_ = path;
   relations_cache_key_ = ~0ull;

@@ -100,6 +100,8 @@ class Session {
   bool hasLog() const { return scans_ != nullptr; }
   const std::vector<io::ScanRecord>& scans() const { return *scans_; }
   const std::string& logPath() const { return log_path_; }
+  /// What the reader decided against the open log's word (CARMEN: units of PARAMs, contradicted max range, ...).
+  const std::vector<std::string>& logWarnings() const { return log_warnings_; }
   const std::vector<NamedTrajectory>& trajectories() const { return trajectories_; }
   const std::vector<eval::Relation>& relations() const { return relations_; }
   const std::string& relationsPath() const { return relations_path_; }
@@ -169,6 +171,7 @@ class Session {
   MapLayer map_;
   std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
   std::string log_path_;
+  std::vector<std::string> log_warnings_;
   std::vector<NamedTrajectory> trajectories_;
   std::vector<eval::Relation> relations_;
   std::string relations_path_;
