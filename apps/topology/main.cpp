@@ -74,9 +74,8 @@ int main(int argc, char** argv) {
                                            else bar.update(85, stage);
                                          });
     bar.update(90, "regions");
-    const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt.correction, opt.segmentation,
-                                              cv::Point2d(grid->getXMin(), grid->getYMin()), opt.seg_rules,
-                                              opt.corridor_split, opt.blob_vote, &lab.lattice, lab.probs);
+    const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt, &lab,
+                                              cv::Point2d(grid->getXMin(), grid->getYMin()));
     bar.update(100, "exports");
     bar.finish();
 

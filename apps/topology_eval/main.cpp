@@ -206,9 +206,7 @@ int main(int argc, char** argv) {
       }
       const auto lab = places::labelFromFeatures(lmaps[i].occ, samples[i].lattice, samples[i].features, model,
                                                  topo.relaxation, topo.threads);
-      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo.correction, topo.segmentation,
-                                                    {0, 0}, topo.seg_rules, topology::CorridorSplitOptions{}, topo.blob_vote,
-                                                    &lab.lattice, lab.probs);
+      const auto topo_res = topology::buildTopology(lab.labels, lmaps[i].occ.resolution, topo, &lab);
       topology::ConfusionMatrix before, after, corrected, voted, blob_voted, oracle, oracle_keep, blob_oracle;
       before.add(lmaps[i].codes, lab.labels_initial);
       after.add(lmaps[i].codes, lab.labels);
@@ -286,9 +284,7 @@ int main(int argc, char** argv) {
           if (occ.cells.size() != gt.size()) throw InputError(path, "map and ground truth differ in size");
           const auto t0 = std::chrono::steady_clock::now();
           const auto l = places::labelPlaces(occ, model, topo.relaxation, topo.threads, path);
-          const auto t = topology::buildTopology(l.labels, occ.resolution, topo.correction, topo.segmentation, {0, 0},
-                                                  topo.seg_rules, topology::CorridorSplitOptions{}, topo.blob_vote,
-                                                  &l.lattice, l.probs);
+          const auto t = topology::buildTopology(l.labels, occ.resolution, topo, &l);
           const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           SegRun run{fs::path(path).stem().string(), topology::scoreSegmentation(t.segmentation, gt), secs};
           std::cerr << "  " << run.map << ": segments " << run.score.segments << " rooms " << run.score.rooms

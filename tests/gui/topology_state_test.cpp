@@ -36,7 +36,7 @@ TEST(TopologyState, SameLabelsAndGraphAsTheLibraryPipeline) {
   const topology::TopologyOptions opt;
   const auto occ = places::occupancyFromGrey(guitest::floorPlan(), 0.05);
   const auto lab = places::labelPlaces(occ, model, opt.relaxation, opt.threads);
-  const auto topo = topology::buildTopology(lab.labels, 0.05, opt.correction);
+  const auto topo = topology::buildTopology(lab.labels, 0.05, opt, &lab);
   EXPECT_EQ(cv::countNonZero(t->labelling.labels_initial != lab.labels_initial), 0);
   EXPECT_EQ(cv::countNonZero(t->labelling.labels != lab.labels), 0);
   EXPECT_EQ(cv::countNonZero(t->topo.labels != topo.labels), 0);

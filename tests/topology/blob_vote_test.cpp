@@ -162,17 +162,18 @@ TEST(BlobVote, VoteInBlobsBeforeCorrection) {
   EXPECT_EQ(cv::countNonZero(voteInGeometricBlobs(l, 0.05, o, lat, probs) != l), 0);
   // In buildTopology: step 7b runs before the correction rules, and needs the probabilities.
   o.min_share = 0.5;
-  const TopologyResult t = buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{},
-                                         CorridorSplitOptions{}, o, &lat, probs);
+  TopologyOptions topo;
+  topo.blob_vote = o;
+  places::LabellingResult labelling;  // what the blob vote reads of it: the lattice and the relaxed probabilities
+  labelling.lattice = lat;
+  labelling.probs = probs;
+  const TopologyResult t = buildTopology(l, 0.05, topo, &labelling);
   EXPECT_EQ(t.labels_blob_vote.at<unsigned char>(20, 60), R);
   EXPECT_EQ(t.labels.at<unsigned char>(20, 60), R);
   EXPECT_EQ(t.regions.regions.size(), 7u);  // three rooms, three doors, the corridor
-  EXPECT_THROW(
-      buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{}, CorridorSplitOptions{}, o),
-      std::invalid_argument);
-  o.enabled = false;
-  const TopologyResult off =
-      buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{}, CorridorSplitOptions{}, o);
+  EXPECT_THROW(buildTopology(l, 0.05, topo), std::invalid_argument);
+  topo.blob_vote.enabled = false;
+  const TopologyResult off = buildTopology(l, 0.05, topo);
   EXPECT_TRUE(off.labels_blob_vote.empty());
   EXPECT_EQ(off.labels.at<unsigned char>(20, 60), C);
 }

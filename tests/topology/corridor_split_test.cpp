@@ -89,10 +89,10 @@ TEST(CorridorSplit, OtherRegionsSegmentationAndLabelsAreUnchanged) {
   corridor(l, {250, 50}, {250, 450});
   cv::rectangle(l, cv::Rect(300, 300, 150, 150), cv::Scalar(kRoom), cv::FILLED);  // a room in a corner
   cv::rectangle(l, cv::Rect(340, 268, 30, 32), cv::Scalar(kDoor), cv::FILLED);     // its door onto the corridor
-  CorridorSplitOptions off;
-  off.enabled = false;
-  const TopologyResult a = buildTopology(l, kRes, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{}, off);
-  const TopologyResult b = buildTopology(l, kRes, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{});
+  TopologyOptions off;
+  off.corridor_split.enabled = false;
+  const TopologyResult a = buildTopology(l, kRes, off);
+  const TopologyResult b = buildTopology(l, kRes, TopologyOptions{});
   EXPECT_EQ(cv::countNonZero(a.labels != b.labels), 0);
   EXPECT_EQ(cv::countNonZero(a.segmentation != b.segmentation), 0);
   EXPECT_EQ(countLabel(a.regions, kCorridor), 1);

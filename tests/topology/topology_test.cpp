@@ -158,11 +158,11 @@ TEST(Segmentation, SegmentVoteGivesEachSegmentOneLabel) {
   // The floor plan's left room is 60 % room, 40 % corridor (a confusion inside the room); a doorway keeps its label.
   cv::Mat l = floorPlan();
   l(cv::Rect(20, 10, 80, 32)).setTo(C);
-  TopologyResult plain = buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, SegmentationRules{});
-  SegmentationRules o;
-  o.segment_vote = true;
-  o.merge_contact = 1.0;  // the corridor-labelled strip touches the room along 4 m: one segment
-  const TopologyResult voted = buildTopology(l, 0.05, CorrectionOptions{}, "regions", {0, 0}, o);
+  TopologyResult plain = buildTopology(l, 0.05, TopologyOptions{});
+  TopologyOptions o;
+  o.seg_rules.segment_vote = true;
+  o.seg_rules.merge_contact = 1.0;  // the corridor-labelled strip touches the room along 4 m: one segment
+  const TopologyResult voted = buildTopology(l, 0.05, o);
   EXPECT_EQ(voted.labels.at<unsigned char>(20, 60), R);  // the strip became room
   EXPECT_EQ(voted.labels_corrected.at<unsigned char>(20, 60), C);
   EXPECT_EQ(voted.labels.at<unsigned char>(95, 60), D);  // the door stays a door

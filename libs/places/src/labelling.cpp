@@ -73,13 +73,14 @@ LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& latt
 
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads, const std::string& source,
-                            const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
+                            const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
+                            bool keep_scans_and_features) {
   if (countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
   ScanSimulationOptions scan = model.scan;
   scan.threads = threads;
   auto t0 = std::chrono::steady_clock::now();
   const Lattice lattice = buildLattice(occ, scan.lattice_spacing);
-  const SimulatedScans scans = simulateScans(occ, lattice.samples, scan, [&](std::size_t d, std::size_t n) {
+  SimulatedScans scans = simulateScans(occ, lattice.samples, scan, [&](std::size_t d, std::size_t n) {
     if (progress) progress("scans", d, n);
   });
   const double ts = since(t0);
@@ -91,6 +92,10 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
   if (progress) progress("features", 1, 1);
   LabellingResult res = labelFromFeatures(occ, lattice, features, model, relax, threads);
   res.seconds_scans = ts, res.seconds_features = tf;
+  if (keep_scans_and_features) {
+    res.scans = std::move(scans);
+    res.features = std::move(features);
+  }
   return res;
 }
 

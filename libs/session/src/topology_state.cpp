@@ -41,24 +41,13 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   t.model = model;
   t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, options.freeThresholdFor(map.kind),
                                         options.freeOpeningRadiusFor(map.kind));
-  // places::labelPlaces(), step by step, keeping the scans and the features.
-  places::ScanSimulationOptions scan = model->scan;
-  scan.threads = options.threads;
-  const places::Lattice lattice = places::buildLattice(t.occ, scan.lattice_spacing);
-  t.scans = places::simulateScans(t.occ, lattice.samples, scan, [&](std::size_t d, std::size_t n) {
-    if (progress) progress("scans", d, n);
-  });
-  if (progress) progress("features", 0, 1);
-  t.features = places::extractFeatures(t.scans, model->features, options.threads);
-  if (model->features.context_radius > 0)  // as places::labelPlaces does
-    t.features = places::addContextFeatures(lattice, t.features, model->features.context_radius, t.occ.resolution);
-  if (progress) progress("classify", 0, 1);
-  t.labelling = places::labelFromFeatures(t.occ, lattice, t.features, *model, options.relaxation, options.threads);
+  // The apps' two calls, keeping the scans and the features for the cell inspector.
+  t.labelling = places::labelPlaces(t.occ, *model, options.relaxation, options.threads, map.source, progress, true);
+  t.scans = std::move(t.labelling.scans);
+  t.features = std::move(t.labelling.features);
   t.has_labelling = true;
   if (progress) progress("regions", 0, 1);
-  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options.correction, options.segmentation,
-                                   {0, 0}, options.seg_rules, options.corridor_split, options.blob_vote,
-                                   &t.labelling.lattice, t.labelling.probs);
+  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options, &t.labelling);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("done", 1, 1);
   return t;

@@ -130,29 +130,27 @@ places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resoluti
   return occ;
 }
 
-TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation, cv::Point2d origin, const SegmentationRules& seg_rules,
-                             const CorridorSplitOptions& corridor, const BlobVoteOptions& blob_vote,
-                             const places::Lattice* lattice, const cv::Mat& lattice_probs) {
+TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
+                             const places::LabellingResult* labelling, cv::Point2d origin) {
   TopologyResult r;
   cv::Mat input = labels;
-  if (blob_vote.enabled) {
-    if (!lattice || lattice_probs.empty())
-      throw std::invalid_argument("buildTopology: the blob vote needs the lattice and its relaxed probabilities");
-    r.labels_blob_vote = voteInGeometricBlobs(labels, resolution, blob_vote, *lattice, lattice_probs);
+  if (o.blob_vote.enabled) {
+    if (!labelling || labelling->probs.empty())
+      throw std::invalid_argument("buildTopology: the blob vote needs the labelling (lattice, relaxed probabilities)");
+    r.labels_blob_vote = voteInGeometricBlobs(labels, resolution, o.blob_vote, labelling->lattice, labelling->probs);
     input = r.labels_blob_vote;
   }
-  r.labels = correctRegions(input, resolution, correction, &r.correction);
+  r.labels = correctRegions(input, resolution, o.correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
-  r.segmentation = segmentation == "doorways" ? doorwaySegmentation(r.regions)
-                                              : roomSegmentation(r.regions, seg_rules.merge_contact, resolution);
-  if (seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, seg_rules);
+  r.segmentation = o.segmentation == "doorways" ? doorwaySegmentation(r.regions)
+                                                : roomSegmentation(r.regions, o.seg_rules.merge_contact, resolution);
+  if (o.seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, o.seg_rules);
   r.labels_corrected = r.labels;
-  if (seg_rules.segment_vote) {
+  if (o.seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
-  r.regions = splitCorridors(r.regions, resolution, corridor);
+  r.regions = splitCorridors(r.regions, resolution, o.corridor_split);
   r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }

@@ -8,6 +8,7 @@
 #include "gridtopo/places/model.h"
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/places/relaxation.h"
+#include "gridtopo/places/scan_simulation.h"
 
 namespace gridtopo::places {
 
@@ -20,12 +21,19 @@ struct LabellingResult {
   RelaxationResult relaxation;
   cv::Mat labels_initial, labels;  ///< CV_8U per map cell: 0 room, 1 corridor, 2 doorway, kNoLabel not free
   double seconds_scans = 0, seconds_features = 0, seconds_classify = 0, seconds_relax = 0;
+  /// The simulated scans and the features of the lattice samples: filled only when labelPlaces is asked to keep
+  /// them (the GUI inspects them per cell).
+  SimulatedScans scans;
+  cv::Mat features;  ///< CV_32F samples x features
 };
 
+/// Steps 1-5 of the method, the one call every app and the GUI make: lattice, simulated scans, features, the
+/// decision list, relaxation. `keep_scans_and_features`: also return the scans and features (for inspection).
 /// Throws gridtopo::InputError (naming `source`) if the map has no free cell.
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads = 2, const std::string& source = "<map>",
-                            const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
+                            const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
+                            bool keep_scans_and_features = false);
 
 /// Classifies precomputed features (as from computeSamples) and relaxes: used by training/evaluation.
 LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,

@@ -73,15 +73,14 @@ struct TopologyResult {
 places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
                                             int free_threshold, double opening_radius);
 
-/// Builds regions, graph and segmentation from per-cell labels (e.g. LabellingResult::labels). The segmentation is
-/// made from the 8-connected regions; the returned regions and graph then have corridors split into pieces at
-/// their junctions (`corridor`, see corridor_split.h). With `blob_vote.enabled`, the room / corridor labels are
-/// first voted in geometric blobs (step 7b), which needs the relaxed lattice probabilities: `lattice` and
-/// `lattice_probs` (LabellingResult::lattice / probs); throws std::invalid_argument without them.
-TopologyResult buildTopology(const cv::Mat& labels, double resolution, const CorrectionOptions& correction,
-                             const std::string& segmentation = "regions", cv::Point2d origin = {0, 0},
-                             const SegmentationRules& seg_rules = {}, const CorridorSplitOptions& corridor = {},
-                             const BlobVoteOptions& blob_vote = {}, const places::Lattice* lattice = nullptr,
-                             const cv::Mat& lattice_probs = cv::Mat());
+/// Steps 6-8 of the method, the one call every app and the GUI make after labelling: builds regions, graph and
+/// segmentation from per-cell labels (e.g. LabellingResult::labels) with the run's options (`o.correction`,
+/// `o.segmentation`, `o.seg_rules`, `o.corridor_split`, `o.blob_vote`). The segmentation is made from the
+/// 8-connected regions; the returned regions and graph then have corridors split into pieces at their junctions
+/// (corridor_split.h). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
+/// (step 7b), which needs the labelling the labels come from (its lattice and relaxed probabilities): throws
+/// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
+TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
+                             const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0});
 
 }  // namespace gridtopo::topology
