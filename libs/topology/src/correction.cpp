@@ -95,12 +95,14 @@ cv::Mat correctRegions(const cv::Mat& labels_in, double resolution, const Correc
     std::vector<int> new_label(n, -1);
     bool changed = false;
     // R1, smallest regions first so a small region merges into a large neighbour rather than another small one
-    // that changes at the same time; a region whose best neighbour is changing this pass waits.
+    // that changes at the same time; a region whose best neighbour is changing this pass waits. Between two small
+    // regions of equal size the one with the higher id waits (else both change and they swap labels forever).
     for (std::size_t i = 0; i < n; ++i) {
       const Region& r = rm.regions[i];
       if (r.area_m2 >= min_area[r.label] || best_nb[i] == 0) continue;
       const Region& nb = rm.region(best_nb[i]);
-      if (nb.area_m2 < min_area[nb.label] && nb.cells < r.cells) continue;
+      if (nb.area_m2 < min_area[nb.label] && (nb.cells < r.cells || (nb.cells == r.cells && nb.id < r.id)))
+        continue;
       if (nb.label == r.label) continue;
       new_label[i] = nb.label;
       ++st.small_merged;
