@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/corrected_log.h"
@@ -68,23 +69,14 @@ int run(int argc, char** argv) {
                                       "file", cmd);
   TCLAP::SwitchArg skip_bad("", "skip-bad-lines", "skip (and count) malformed lines of CARMEN logs", cmd);
   cmd.setExceptionHandling(false);
-  try {
-    cmd.parse(argc, argv);
-  } catch (const TCLAP::ExitException& e) {
-    return e.getExitStatus();
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "gridtopo-eval: " << e.argId() << ": " << e.error() << "\n(see gridtopo-eval --help)\n";
-    return 2;
-  }
+  cmd.parse(argc, argv);
 
   const int sources = trajectory.isSet() + gfs.isSet() + baseline.getValue();
   if (sources != 1) {
-    std::cerr << "gridtopo-eval: give exactly one estimate: --trajectory, --gfs or --baseline-odometry\n";
-    return 2;
+    throw UsageError("give exactly one estimate: --trajectory, --gfs or --baseline-odometry");
   }
   if ((gfs.isSet() || baseline.getValue()) && !log.isSet()) {
-    std::cerr << "gridtopo-eval: --gfs and --baseline-odometry need the raw log (--log)\n";
-    return 2;
+    throw UsageError("--gfs and --baseline-odometry need the raw log (--log)");
   }
 
   eval::RelationsMetricOptions opt;
@@ -100,15 +92,13 @@ int run(int argc, char** argv) {
   try {
     if (odometry.isSet()) opt.odometry = eval::odometrySourceFromString(odometry.getValue());
   } catch (const std::invalid_argument& e) {
-    std::cerr << "gridtopo-eval: --odometry: " << e.what() << "\n";
-    return 2;
+    throw UsageError(std::string("--odometry: ") + e.what());
   }
   if (interpolate.getValue()) opt.interpolate_odometry = true;
   if (interpolate_estimate.getValue()) opt.interpolate_estimate = true;
   if (max_gap.isSet()) {
     if (!(max_gap.getValue() >= 0.0)) {
-      std::cerr << "gridtopo-eval: --max-gap must be >= 0\n";
-      return 2;
+      throw UsageError("--max-gap must be >= 0");
     }
     opt.max_time_gap = max_gap.getValue();
   }
@@ -116,14 +106,12 @@ int run(int argc, char** argv) {
   try {
     copt.match = eval::correctedTimeMatchFromString(gfs_match.getValue());
   } catch (const std::invalid_argument& e) {
-    std::cerr << "gridtopo-eval: --gfs-match: " << e.what() << "\n";
-    return 2;
+    throw UsageError(std::string("--gfs-match: ") + e.what());
   }
   if (gfs_pose.getValue() == "laser") {
     copt.pose = eval::CorrectedPose::Laser;
   } else if (gfs_pose.getValue() != "robot") {
-    std::cerr << "gridtopo-eval: --gfs-pose must be robot or laser\n";
-    return 2;
+    throw UsageError("--gfs-pose must be robot or laser");
   }
 
   io::CarmenReadOptions ropt;
@@ -206,14 +194,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const InputError& e) {
-    std::cerr << "gridtopo-eval: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "gridtopo-eval: error: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return gridtopo::runApp("gridtopo-eval", [&] { return run(argc, argv); }); }

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
@@ -120,7 +121,7 @@ void printSummary(std::ostream& os, const std::string& input, const io::ScanLogI
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-import", [&]() -> int {
     TCLAP::CmdLine cmd(
         "gridtopo-import: converts a CARMEN log (.clf/.log, plain or .gz) or an MRPT rawlog into an MRPT rawlog "
         "in the action/sensory-frame layout (what rbpf-slam / icp-slam read) or the observation-only layout, "
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
                               cmd);
     TCLAP::SwitchArg rear_arg("", "rear-laser", "CARMEN: also import RLASER (rear laser) scans", cmd);
     TCLAP::SwitchArg quiet_arg("q", "quiet", "no summary, no progress bar", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     io::LogReadOptions ropt;
@@ -240,15 +242,5 @@ int main(int argc, char** argv) {
     }
     outputs.commit();
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "gridtopo-import: error: " << e.error() << " (argument " << e.argId() << ")\n"
-              << "try 'gridtopo-import --help'\n";
-    return 1;
-  } catch (const InputError& e) {
-    std::cerr << "gridtopo-import: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "gridtopo-import: error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

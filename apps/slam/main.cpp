@@ -17,6 +17,7 @@
 #include <malloc.h>
 #endif
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
@@ -60,7 +61,7 @@ void releaseFreedMemory() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-slam", [&]() -> int {
     TCLAP::CmdLine cmd(
         "RBPF grid SLAM with the informed proposal (Grisetti, Stachniss, Burgard 2007). Reads a CARMEN log "
         "(.clf/.log, optionally .gz) or an MRPT rawlog (either layout) and writes the map (PNG, PGM+YAML, "
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
                                           false, "", "name", cmd);
     TCLAP::ValueArg<long> max_scans("", "max-scans", "process only the first n scans", false, -1, "n", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     slam::SlamOptions o;
@@ -194,12 +196,5 @@ int main(int argc, char** argv) {
                  records.size(), steps, t_read, t_slam, t_total, peakRssKb() / 1024,
                  dir.string().c_str());
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "gridtopo-slam: " << e.argId() << ": " << e.error() << "\n";
-  } catch (const InputError& e) {
-    std::cerr << "gridtopo-slam: error: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    std::cerr << "gridtopo-slam: error: " << e.what() << "\n";
-  }
-  return 1;
+  });
 }

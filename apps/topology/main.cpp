@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
@@ -24,7 +25,7 @@ using namespace gridtopo;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-topology", [&]() -> int {
     TCLAP::CmdLine cmd(
         "Label the places of an occupancy map (room / corridor / doorway; Mozos et al.), build regions and the "
         "topological graph, and write them to an output directory: topology.graphml, topology.json, topology.dot, "
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<int> threads("", "threads", "worker threads (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<std::string> out("o", "output", "output directory", true, "", "dir", cmd);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     topology::TopologyOptions opt = topology::loadTopologyOptions(ini.getValue());
@@ -111,10 +113,5 @@ int main(int argc, char** argv) {
               << " segments; " << secs << " s (scans " << lab.seconds_scans << ", features " << lab.seconds_features
               << ", classify " << lab.seconds_classify << ", relax " << lab.seconds_relax << ")\n";
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "error: " << e.error() << " (" << e.argId() << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-  }
-  return 1;
+  });
 }

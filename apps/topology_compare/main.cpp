@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/io/map_io.h"
@@ -38,7 +39,7 @@ std::string pct(double v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-topology-compare", [&]() -> int {
     TCLAP::CmdLine cmd(
         "Score a gridtopo-topology output directory (labels.png, segmentation.png) against a labelled reference map "
         "of the same building in another frame: the reference is aligned to the map (affine ECC on the free "
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> errors("", "errors",
                                         "write a PNG of the label errors (wrong cells in the predicted label's colour)",
                                         false, "", "png", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     const topology::TopologyOptions opt = topology::loadTopologyOptions(ini.getValue());
@@ -129,10 +131,5 @@ int main(int argc, char** argv) {
               << s.segmentation.segments << " segments, " << s.segmentation.rooms << " rooms, recall "
               << pct(s.segmentation.recall) << " %, precision " << pct(s.segmentation.precision) << " %\n";
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "error: " << e.error() << " (" << e.argId() << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-  }
-  return 1;
+  });
 }

@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
@@ -102,7 +103,7 @@ struct SegRun {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-topology-eval", [&]() -> int {
     TCLAP::CmdLine cmd(
         "Evaluate place labelling and room segmentation on the labelled maps of datasets/places: leave-one-map-out "
         "cell accuracy (before/after relaxation, after region correction) and segmentation precision/recall on the "
@@ -132,6 +133,7 @@ int main(int argc, char** argv) {
                                       "rescale the fold models' prior correction to this weight (trained with the "
                                       "training INI's prior_weight)", false, -1, "w", cmd);
     TCLAP::SwitchArg no_seg("", "no-segmentation", "skip the room-segmentation benchmark", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     const topology::TopologyOptions topo = topology::loadTopologyOptions(ini.getValue());
@@ -389,10 +391,5 @@ int main(int argc, char** argv) {
     if (!md_arg.getValue().empty()) writeTextFileAtomically(md_arg.getValue(), md.str());
     std::cerr << md.str();
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "error: " << e.error() << " (" << e.argId() << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-  }
-  return 1;
+  });
 }

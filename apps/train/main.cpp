@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/places/training.h"
@@ -15,7 +16,7 @@ using namespace gridtopo;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  try {
+  return gridtopo::runApp("gridtopo-train", [&]() -> int {
     TCLAP::CmdLine cmd(
         "Train the semantic place classifier of gridtopo (Mozos et al.: AdaBoost on simulated scans, decision list "
         "room/corridor/doorway, relaxation compatibilities) from labelled maps (pixel codes room 77, corridor 115, "
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> out("o", "output", "model file to write (.yml / .json)", false,
                                      "datasets/models/places_model.yml", "file", cmd);
     TCLAP::SwitchArg list("", "list-features", "print the features (name: formula) and exit", cmd);
+    cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
     if (list.getValue()) {
       for (const auto& d : places::featureDescriptions()) std::cout << d << "\n";
@@ -80,10 +82,5 @@ int main(int argc, char** argv) {
     std::cerr << "wrote " << out.getValue() << " (decision list " << places::orderName(model.order) << ", "
               << model.first.stumps.size() << " + " << model.second.stumps.size() << " stumps)\n";
     return 0;
-  } catch (const TCLAP::ArgException& e) {
-    std::cerr << "error: " << e.error() << " (" << e.argId() << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-  }
-  return 1;
+  });
 }
