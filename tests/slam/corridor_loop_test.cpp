@@ -266,7 +266,10 @@ TEST(CorridorLoop, PreviousProposalDoesNotClose) {
 // (before it became -2) the path fell 2.0-2.1 m behind on seeds 1 and 3 and the corridor's end was mapped twice
 // (2.4 / 2.5 m after the closure): the cells of the walls, crossed by many grazing free rays, fell below log-odds 0
 // while holding hit means, and the end points ahead of the true pose lost their correspondences
-// (corridor_likelihood_test; doc/slam.md "Long corridors"). About 7 s.
+// (corridor_likelihood_test; doc/slam.md "Long corridors"). Not solved for every seed: on seeds 4-8 (checked by hand,
+// GRIDTOPO_TEST_SEED with the test above) the default closes 3 of 5 (seeds 4 and 7 fall 2.4-2.8 m behind), threshold
+// 0 closes 1 (2 more within 0.5-0.7 m). Nearby settings flip single seeds (proposal_min_curvature 1 fails seeds 1 and 2,
+// 0 fails seed 2, 0.5 passes), so this test guards the three seeds, not the class. About 7 s.
 TEST(CorridorLoop, ClosesAfterTheFeaturelessCorridor) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
