@@ -61,8 +61,8 @@ TEST(ThreadPool, ResultsDoNotDependOnTheThreadCount) {
 TEST(ThreadPool, WorkersShareTheItems) {
   // Each item waits (up to 100 ms) until three distinct threads are running items of the loop: with 3 threads the
   // pool must run items on all of them, the caller being one. A worker thread that starts only after a loop began
-  // sits that loop out (it takes the current generation as seen), so the check allows a few loops for the workers
-  // to come up.
+  // joins it; the check still allows a few loops in case a worker thread takes longer than the items' 100 ms to
+  // start on a loaded machine.
   ThreadPool pool(3);
   const auto caller = std::this_thread::get_id();
   std::size_t best = 0;

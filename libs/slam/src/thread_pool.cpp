@@ -39,7 +39,9 @@ void ThreadPool::runItems() {
 
 void ThreadPool::workerLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
-  std::size_t seen = generation_;
+  // 0, not generation_: a worker that starts after the first loop began joins it (runItems does nothing once a
+  // loop is over).
+  std::size_t seen = 0;
   for (;;) {
     wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
     if (stop_) return;
