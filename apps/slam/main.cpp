@@ -28,6 +28,7 @@
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_outputs.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo;
@@ -153,42 +154,14 @@ int main(int argc, char** argv) {
       return slam::toOccupancyGrid(best_map);
     }();
     releaseFreedMemory();
-    OutputSet out;
-    out.write((dir / "trajectory.txt").string(), [&](const std::string& p) {
-      io::writeTrajectory(p, traj, {"gridtopo-slam " + input.getValue(), "one pose per laser scan, best particle"});
-    });
-    out.write((dir / "stats.txt").string(), [&](const std::string& p) { std::ofstream(p) << stats.str(); });
-    out.write((dir / "map.png").string(), [&](const std::string& p) { io::writeMapPng(grid, p); });
-    out.write((dir / "map_trajectory.png").string(), [&](const std::string& p) {
-      if (!cv::imwrite(p, slam::renderMap(grid, traj))) throw std::runtime_error("cannot write " + p);
-    });
-    out.write((dir / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(grid, p); });
-    {
-      // ROS map_server pair: written side by side in a scratch directory, then moved in with the others.
-      const fs::path scratch = fs::temp_directory_path() / ("gridtopo-slam-" + std::to_string(::getpid()));
-      fs::create_directories(scratch);
-      io::writeRosMap(grid, (scratch / "map").string());
-      for (const char* ext : {".pgm", ".yaml"})
-        out.write((dir / (std::string("map") + ext)).string(),
-                  [&](const std::string& p) { fs::copy_file(scratch / (std::string("map") + ext), p,
-                                                            fs::copy_options::overwrite_existing); });
-      fs::remove_all(scratch);
-    }
-    out.write((dir / "map.simplemap").string(), [&](const std::string& p) {
-      mrpt::maps::CSimpleMap sm;
-      for (const slam::TrajectoryNode* n : slam::pathOf(best_node)) {
-        auto sf = mrpt::obs::CSensoryFrame::Create();
-        auto obs = io::toMrptScan(records[n->scan_index].scan);
-        sf->insert(obs);
-        sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
-                      mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
-                  sf);
-      }
-      io::writeSimplemap(sm, p);
-    });
-    out.write((dir / "options.ini").string(),
-              [&](const std::string& p) { writeTextFileAtomically(p, slam::slamOptionsIni(o)); });
-    out.commit();
+    slam::SlamOutputs outputs;
+    outputs.grid = std::move(grid);
+    outputs.trajectory = traj;
+    outputs.trajectory_header = {"gridtopo-slam " + input.getValue(), "one pose per laser scan, best particle"};
+    outputs.simplemap = slam::simpleMapOf(best_node, records);
+    outputs.stats = stats.str();
+    outputs.options_ini = slam::slamOptionsIni(o);
+    slam::writeSlamOutputs(dir.string(), outputs);
     const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr,
                  "gridtopo-slam: %zu scans, %zu processed, read %.2f s, slam %.2f s, total %.2f s, peak RSS %ld MB, "

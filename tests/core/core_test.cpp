@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
@@ -60,6 +62,40 @@ TEST(OutputSet, FailedRunLeavesNothing) {
     EXPECT_STREQ(e.what(), "boom");
   }
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// A commit that cannot complete (here: a directory where a file must go) leaves the outputs of an earlier run as
+// they were, and no new or temporary file: before, the files renamed ahead of the failing one stayed.
+TEST(OutputSet, FailedCommitKeepsThePreviousOutputs) {
+  const auto dir = freshDir("commit");
+  std::ofstream(dir / "a.txt") << "old A";
+  fs::create_directories(dir / "b.txt");
+  {
+    OutputSet set;
+    set.write((dir / "a.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "new A"; });
+    set.write((dir / "b.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "B"; });
+    set.write((dir / "c.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "C"; });
+    EXPECT_THROW(set.commit(), std::runtime_error);
+  }
+  std::ifstream a(dir / "a.txt");
+  std::string text((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "old A");
+  EXPECT_FALSE(fs::exists(dir / "c.txt"));
+  std::size_t entries = 0;
+  for (auto it = fs::directory_iterator(dir); it != fs::directory_iterator(); ++it) ++entries;
+  EXPECT_EQ(entries, 2u);  // a.txt and the directory b.txt
+}
+
+TEST(OutputSet, ReplacesThePreviousOutputs) {
+  const auto dir = freshDir("replace");
+  std::ofstream(dir / "a.txt") << "old";
+  OutputSet set;
+  set.write((dir / "a.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "new"; });
+  set.commit();
+  std::ifstream a(dir / "a.txt");
+  std::string text((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "new");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // no backup left
 }
 
 TEST(OutputSet, MissingTemporaryIsAnError) {

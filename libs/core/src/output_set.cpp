@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -50,7 +51,33 @@ void OutputSet::commit() {
     if (!fs::exists(temps_[i]))
       throw std::runtime_error("output " + finals_[i] + " was not written (temporary file missing)");
   }
-  for (std::size_t i = 0; i < temps_.size(); ++i) fs::rename(temps_[i], finals_[i]);
+  // A final path that is a directory cannot be replaced: say so before anything moves.
+  for (const auto& f : finals_)
+    if (fs::is_directory(f)) throw std::runtime_error("output " + f + " is a directory");
+  // Existing files are first moved aside, so that a rename failing half-way can put every final path back as it
+  // was: the set lands whole or not at all.
+  std::vector<std::string> backups(finals_.size());
+  std::size_t moved_aside = 0, renamed = 0;
+  try {
+    for (; moved_aside < finals_.size(); ++moved_aside) {
+      const std::string& f = finals_[moved_aside];
+      if (!fs::exists(fs::symlink_status(f))) continue;
+      backups[moved_aside] = temps_[moved_aside] + ".previous";
+      fs::rename(f, backups[moved_aside]);
+    }
+    for (; renamed < temps_.size(); ++renamed) fs::rename(temps_[renamed], finals_[renamed]);
+  } catch (...) {
+    std::error_code ec;
+    for (std::size_t i = 0; i < renamed; ++i) fs::rename(finals_[i], temps_[i], ec);  // the destructor removes them
+    for (std::size_t i = 0; i < moved_aside; ++i)
+      if (!backups[i].empty()) fs::rename(backups[i], finals_[i], ec);
+    throw;
+  }
+  for (const auto& b : backups)
+    if (!b.empty()) {
+      std::error_code ec;
+      fs::remove(b, ec);
+    }
   committed_ = true;
 }
 

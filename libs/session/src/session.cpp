@@ -24,6 +24,7 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
+#include "gridtopo/slam/slam_outputs.h"
 
 namespace gridtopo::session {
 
@@ -308,17 +309,13 @@ void Session::saveSlamOutputs(const std::string& dir) {
   if (s->state == RunState::Running) throw std::runtime_error("pause the run before saving");
   if (s->trajectory.empty() || s->trajectory_scans != s->scans_fed)
     throw std::runtime_error("the run has no complete trajectory yet (process at least one scan)");
-  // The files and formats of gridtopo-slam (apps/slam/main.cpp), from the snapshot.
-  const auto grid = slam::toOccupancyGrid(s->best_map);
-  mrpt::maps::CSimpleMap sm;
-  const auto& sc = runner_->scans();
-  for (const slam::TrajectoryNode* n : slam::pathOf(s->particles[s->best].node)) {
-    auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(io::toMrptScan(sc[n->scan_index].scan));
-    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
-                  mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
-              sf);
-  }
+  // The files and formats of gridtopo-slam, from the snapshot.
+  slam::SlamOutputs outputs;
+  outputs.grid = slam::toOccupancyGrid(s->best_map);
+  outputs.trajectory = s->trajectory;
+  outputs.trajectory_header = {"gridtopo-gui " + log_path_, "one pose per laser scan, best particle (" +
+                                                                std::to_string(s->scans_fed) + " scans)"};
+  outputs.simplemap = slam::simpleMapOf(s->particles[s->best].node, runner_->scans());
   std::ostringstream stats;
   stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles "
            "map_bytes\n";
@@ -326,36 +323,10 @@ void Session::saveSlamOutputs(const std::string& dir) {
     stats << st.step << ' ' << st.scan_index << ' ' << io::formatDouble(st.timestamp) << ' ' << st.time_s << ' '
           << st.neff << ' ' << (st.resampled ? 1 : 0) << ' ' << st.particles << ' ' << st.failed_matches << ' '
           << st.evaluations << ' ' << st.unique_tiles << ' ' << st.map_bytes << '\n';
-  OutputSet out;
-  const fs::path d(dir);
-  out.write((d / "trajectory.txt").string(), [&](const std::string& p) {
-    io::writeTrajectory(p, s->trajectory,
-                        {"gridtopo-gui " + log_path_, "one pose per laser scan, best particle (" +
-                                                         std::to_string(s->scans_fed) + " scans)"});
-  });
-  out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, stats.str()); });
-  out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(grid, p); });
-  out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
-    if (!cv::imwrite(p, slam::renderMap(grid, s->trajectory))) throw std::runtime_error("cannot write " + p);
-  });
-  out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(grid, p); });
-  {
-    // The ROS pair names its image inside the YAML: written side by side in a scratch directory, then moved in
-    // with the others (as gridtopo-slam does).
-    const fs::path scratch = fs::temp_directory_path() / ("gridtopo-gui-" + std::to_string(::getpid()));
-    fs::create_directories(scratch);
-    io::writeRosMap(grid, (scratch / "map").string());
-    for (const char* ext : {".pgm", ".yaml"})
-      out.write((d / (std::string("map") + ext)).string(), [&](const std::string& p) {
-        fs::copy_file(scratch / (std::string("map") + ext), p, fs::copy_options::overwrite_existing);
-      });
-    fs::remove_all(scratch);
-  }
-  out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(sm, p); });
+  outputs.stats = stats.str();
   // A loadable [slam] INI, so `gridtopo-slam -c` and the GUI can rerun with it.
-  out.write((d / "options.ini").string(),
-            [&](const std::string& p) { writeTextFileAtomically(p, slam::slamOptionsIni(runner_->options())); });
-  out.commit();
+  outputs.options_ini = slam::slamOptionsIni(runner_->options());
+  slam::writeSlamOutputs(dir, outputs);
 }
 
 void Session::useSlamMap() {

@@ -1,0 +1,32 @@
+#pragma once
+// The output set of a SLAM run, written by one function for gridtopo-slam and the GUI: map.png,
+// map_trajectory.png, map.pgm + map.yaml (ROS map_server), map.gridmap.gz (MRPT), map.simplemap, trajectory.txt,
+// stats.txt, options.ini; all or nothing (gridtopo::OutputSet).
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/maps/CSimpleMap.h>
+
+#include <string>
+#include <vector>
+
+#include "gridtopo/io/scan_record.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/trajectory_tree.h"
+
+namespace gridtopo::slam {
+
+/// The processed scans along the path that ends at `leaf` (the best particle's), at its poses: MRPT's simple map.
+mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<io::ScanRecord>& scans);
+
+struct SlamOutputs {
+  mrpt::maps::COccupancyGridMap2D grid;   ///< the best particle's map (toOccupancyGrid)
+  std::vector<io::TimedPose> trajectory;  ///< a pose for every scan
+  std::vector<std::string> trajectory_header;  ///< '#' lines of trajectory.txt
+  mrpt::maps::CSimpleMap simplemap;       ///< simpleMapOf
+  std::string stats;                      ///< the text of stats.txt
+  std::string options_ini;                ///< the text of options.ini (slamOptionsIni)
+};
+
+/// Writes the whole set into `dir` (created if needed), or nothing: throws on the first failure.
+void writeSlamOutputs(const std::string& dir, const SlamOutputs& out);
+
+}  // namespace gridtopo::slam

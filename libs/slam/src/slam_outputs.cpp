@@ -1,0 +1,60 @@
+#include "gridtopo/slam/slam_outputs.h"
+
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/io/map_io.h"
+#include "gridtopo/io/scan_conversion.h"
+#include "gridtopo/slam/map_export.h"
+
+namespace fs = std::filesystem;
+
+namespace gridtopo::slam {
+
+mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<io::ScanRecord>& scans) {
+  mrpt::maps::CSimpleMap sm;
+  for (const TrajectoryNode* n : pathOf(leaf)) {
+    auto sf = mrpt::obs::CSensoryFrame::Create();
+    sf->insert(io::toMrptScan(scans.at(n->scan_index).scan));
+    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
+                  mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
+              sf);
+  }
+  return sm;
+}
+
+void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
+  const fs::path d(dir);
+  OutputSet out;
+  out.write((d / "trajectory.txt").string(),
+            [&](const std::string& p) { io::writeTrajectory(p, o.trajectory, o.trajectory_header); });
+  out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.stats); });
+  out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(o.grid, p); });
+  out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
+    if (!cv::imwrite(p, renderMap(o.grid, o.trajectory))) throw std::runtime_error("cannot write " + p);
+  });
+  out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(o.grid, p); });
+  {
+    // The ROS pair names its image inside the YAML: written side by side in a scratch directory, then moved in
+    // with the others.
+    const fs::path scratch = fs::temp_directory_path() / ("gridtopo-slam-outputs-" + std::to_string(::getpid()));
+    fs::create_directories(scratch);
+    io::writeRosMap(o.grid, (scratch / "map").string());
+    for (const char* ext : {".pgm", ".yaml"})
+      out.write((d / (std::string("map") + ext)).string(), [&](const std::string& p) {
+        fs::copy_file(scratch / (std::string("map") + ext), p, fs::copy_options::overwrite_existing);
+      });
+    fs::remove_all(scratch);
+  }
+  out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(o.simplemap, p); });
+  out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.options_ini); });
+  out.commit();
+}
+
+}  // namespace gridtopo::slam
