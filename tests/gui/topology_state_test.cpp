@@ -6,6 +6,8 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/features.h"
 #include "gridtopo/places/labelling.h"
+#include "gridtopo/places/occupancy.h"
+#include "gridtopo/topology/pipeline.h"
 #include "gridtopo/session/session.h"
 #include "gridtopo/session/topology_state.h"
 #include "gridtopo/topology/export.h"
@@ -143,6 +145,19 @@ TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
     const auto ci = session::inspectCell(*s.topology(), 40, 50);
     EXPECT_EQ(ci.label_corrected, 0);
     EXPECT_FALSE(ci.has_sample);
+  }
+  // A probabilistic grid (a SLAM map: free cells at p_free 0.9, grey 230) keeps its free space when an output is
+  // loaded on it: the free threshold of its kind (204), not the plain images' 250 (which left no free cell).
+  {
+    session::MapLayer grid = t->map;
+    grid.kind = io::MapKind::ProbabilisticGrid;
+    grid.grey = t->map.grey.clone();
+    grid.grey.setTo(cv::Scalar(230), grid.grey >= 250);
+    const auto loaded = session::loadTopologyOutput(f.tmp / "out/topology.json", grid, f.s.topologyOptions());
+    const auto direct = topology::occupancyForTopology(grid.grey, grid.resolution, "grid", 204,
+                                                       f.s.topologyOptions().grid_free_opening_radius);
+    EXPECT_GT(places::countFree(loaded.occ), 1000u);
+    EXPECT_EQ(places::countFree(loaded.occ), places::countFree(direct));
   }
   // Without the map it was computed on, labels cannot be aligned: a clear error, nothing changes.
   session::Session s;

@@ -177,7 +177,7 @@ void Session::openRelations(const std::string& path) {
 }
 
 void Session::openTopology(const std::string& path) {
-  TopologyData t = loadTopologyOutput(path, map_);
+  TopologyData t = loadTopologyOutput(path, map_, topology_options_);
   setTopology(std::move(t));
 }
 

@@ -114,7 +114,7 @@ topology::TopologicalGraph graphFromGraphML(const std::string& path) {
   return g;
 }
 
-TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map) {
+TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map, const topology::TopologyOptions& options) {
   TopologyData t;
   t.map = map;
   const std::string ext = fs::path(path).extension().string();
@@ -137,7 +137,9 @@ TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map) {
                      "graph is for a " + std::to_string(t.topo.graph.cols) + "x" + std::to_string(t.topo.graph.rows) +
                          " map but the open map is " + std::to_string(map.cols()) + "x" + std::to_string(map.rows()));
   }
-  if (!map.empty()) t.occ = places::occupancyFromGrey(map.grey, map.resolution, map.source);
+  if (!map.empty())
+    t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, options.freeThresholdFor(map.kind),
+                                           options.freeOpeningRadiusFor(map.kind));
   return t;
 }
 

@@ -46,8 +46,11 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
 
 /// A previous gridtopo-topology output: topology.json (or .graphml) and, if present beside it, labels.png
 /// (77/115/179/0 code) to show the label overlay. `map` must be the map it was computed on (same size) when
-/// labels are present. Throws gridtopo::InputError naming file and line.
-TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map);
+/// labels are present. Its free space is the map's, thresholded and opened for the map's kind with `options` as
+/// computeTopology does (a SLAM grid's free cells are not those of a plain image). Throws gridtopo::InputError naming
+/// file and line.
+TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map,
+                                const topology::TopologyOptions& options = {});
 
 /// Parses a GraphML file written by topology::toGraphML(). Throws gridtopo::InputError (file:line).
 topology::TopologicalGraph graphFromGraphML(const std::string& path);
