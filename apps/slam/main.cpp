@@ -1,8 +1,5 @@
 // gridtopo-slam: RBPF grid SLAM with the informed proposal on a CARMEN log or an MRPT rawlog.
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/maps/CSimpleMap.h>
-#include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <tclap/CmdLine.h>
 
 #include <chrono>
@@ -10,21 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
-#include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
-#include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/log_reader.h"
-#include "gridtopo/io/map_io.h"
-#include "gridtopo/io/scan_conversion.h"
-#include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/rbpf_slam.h"
@@ -125,14 +116,10 @@ int main(int argc, char** argv) {
     slam::RbpfSlam& filter = *filter_owner;
     ProgressBar bar(records.size(), "slam", "scans", quiet.getValue() ? 0 : -1);
     std::ostringstream stats;
-    stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
-             "rss_kb\n";
+    stats << "# " << slam::kStatsColumns << " rss_kb\n";
     for (std::size_t i = 0; i < records.size(); ++i) {
       if (filter.processScan(records[i])) {
-        const auto& s = filter.stats().back();
-        stats << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' '
-              << s.neff << ' ' << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
-              << s.unique_tiles << ' ' << s.map_bytes << ' ' << rssKb() << '\n';
+        stats << slam::statsRow(filter.stats().back()) << ' ' << rssKb() << '\n';
       }
       if ((i & 63) == 0) bar.update(i);
     }

@@ -1,9 +1,6 @@
 #include "gridtopo/session/session.h"
 
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/poses/CPose3DPDFGaussian.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -17,10 +14,8 @@
 
 #include "gridtopo/core/data_dir.h"
 #include "gridtopo/core/error.h"
-#include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/odometry_track.h"
 #include "gridtopo/io/log_reader.h"
-#include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
@@ -317,12 +312,8 @@ void Session::saveSlamOutputs(const std::string& dir) {
                                                                 std::to_string(s->scans_fed) + " scans)"};
   outputs.simplemap = slam::simpleMapOf(s->particles[s->best].node, runner_->scans());
   std::ostringstream stats;
-  stats << "# step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles "
-           "map_bytes\n";
-  for (const auto& st : s->stats)
-    stats << st.step << ' ' << st.scan_index << ' ' << io::formatDouble(st.timestamp) << ' ' << st.time_s << ' '
-          << st.neff << ' ' << (st.resampled ? 1 : 0) << ' ' << st.particles << ' ' << st.failed_matches << ' '
-          << st.evaluations << ' ' << st.unique_tiles << ' ' << st.map_bytes << '\n';
+  stats << "# " << slam::kStatsColumns << "\n";
+  for (const auto& st : s->stats) stats << slam::statsRow(st) << '\n';
   outputs.stats = stats.str();
   // A loadable [slam] INI, so `gridtopo-slam -c` and the GUI can rerun with it.
   outputs.options_ini = slam::slamOptionsIni(runner_->options());

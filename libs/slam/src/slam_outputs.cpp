@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "gridtopo/core/output_set.h"
@@ -27,6 +28,14 @@ mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vec
               sf);
   }
   return sm;
+}
+
+std::string statsRow(const StepStats& s) {
+  std::ostringstream o;
+  o << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' ' << s.neff << ' '
+    << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
+    << s.unique_tiles << ' ' << s.map_bytes;
+  return o.str();
 }
 
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {

@@ -10,12 +10,19 @@
 
 #include "gridtopo/io/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/trajectory_tree.h"
 
 namespace gridtopo::slam {
 
 /// The processed scans along the path that ends at `leaf` (the best particle's), at its poses: MRPT's simple map.
 mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<io::ScanRecord>& scans);
+
+/// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
+inline constexpr const char* kStatsColumns =
+    "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes";
+/// One processed step's row of stats.txt (kStatsColumns, space-separated, no newline).
+std::string statsRow(const StepStats& s);
 
 struct SlamOutputs {
   mrpt::maps::COccupancyGridMap2D grid;   ///< the best particle's map (toOccupancyGrid)
