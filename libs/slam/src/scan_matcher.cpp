@@ -8,6 +8,14 @@ namespace gridtopo::slam {
 
 namespace {
 
+/// The squared distance from end point (px, py) to hit mean (mx, my) along the beam's surface normal (nx, ny) in the
+/// robot frame, turned by the pose's heading (c, s = cos, sin): MatchResidual::Plane. One function for scoreScan
+/// and the cached scorer, so that both give the same bits.
+inline double planeDistance2(double px, double py, double mx, double my, double c, double s, double nx, double ny) {
+  const double r = (px - mx) * (c * nx - s * ny) + (py - my) * (s * nx + c * ny);
+  return r * r;
+}
+
 /// Calls fn(beam, px, py, found, d2, mx, my) for every matching beam at pose x: its world end point, whether a
 /// correspondence was found, the squared distance to it and the hit mean (mx, my).
 template <class Fn>
@@ -90,10 +98,8 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
   const bool plane = o.residual == MatchResidual::Plane;
   const double c = std::cos(x.theta), s = std::sin(x.theta);
   associate(map, x, scan, o, [&](std::size_t b, double px, double py, bool found, double d2, double mx, double my) {
-    if (found && plane && (scan.nx[b] != 0.0 || scan.ny[b] != 0.0)) {
-      const double r = (px - mx) * (c * scan.nx[b] - s * scan.ny[b]) + (py - my) * (s * scan.nx[b] + c * scan.ny[b]);
-      d2 = r * r;
-    }
+    if (found && plane && (scan.nx[b] != 0.0 || scan.ny[b] != 0.0))
+      d2 = planeDistance2(px, py, mx, my, c, s, scan.nx[b], scan.ny[b]);
     if (found) {
       ++out.matched;
       out.log_likelihood += std::max(-d2 * inv2s2, o.null_log_likelihood);
@@ -230,11 +236,8 @@ bool ScanScorer::scoreImpl(const Pose2& x, double stop_at, ScanScore& out) {
         best_j = j;
       }
     }
-    if (plane && (nx[b] != 0.0 || ny[b] != 0.0)) {
-      // Same arithmetic as scoreScan's.
-      const double r = (px - h[2 * best_j]) * (c * nx[b] - s * ny[b]) + (py - h[2 * best_j + 1]) * (s * nx[b] + c * ny[b]);
-      best = r * r;
-    }
+    if (plane && (nx[b] != 0.0 || ny[b] != 0.0))
+      best = planeDistance2(px, py, h[2 * best_j], h[2 * best_j + 1], c, s, nx[b], ny[b]);
     ++out.matched;
     out.log_likelihood += std::max(-best * inv2s2, null_ll);
     if (kStop && out.log_likelihood <= stop_at) return false;

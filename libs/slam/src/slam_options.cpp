@@ -5,8 +5,10 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_value.h"
@@ -96,6 +98,33 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_min_curvature", o.proposal.min_curvature);
 }
 
+template <class E>
+using Words = std::initializer_list<std::pair<const char*, E>>;
+
+// The keys whose value is one of a few words, with their words: one table for load, save and dump, in the order
+// they are saved.
+template <class F>
+void forEachChoice(SlamOptions& o, F&& f) {
+  f("proposal", o.proposal.type,
+    Words<ProposalType>{{"informed", ProposalType::Informed}, {"mode-only", ProposalType::ModeOnly},
+                        {"odometry", ProposalType::Odometry}});
+  f("proposal_fit", o.proposal.fit,
+    Words<ProposalFit>{{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}});
+  f("proposal_weight", o.proposal.weight,
+    Words<ProposalWeight>{{"mode", ProposalWeight::Mode}, {"integral", ProposalWeight::Integral}});
+  f("match_method", o.matcher.method,
+    Words<MatchMethod>{{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}});
+  f("match_residual", o.matcher.residual,
+    Words<MatchResidual>{{"point", MatchResidual::Point}, {"plane", MatchResidual::Plane}});
+}
+
+template <class E>
+const char* wordOf(Words<E> words, E value) {
+  for (const auto& [word, v] : words)
+    if (v == value) return word;
+  return "?";
+}
+
 template <class T>
 std::string str(const T& v) {
   std::ostringstream s;
@@ -118,8 +147,7 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
     }
   });
   // Keys whose value is one of a few words: the word's enum value, or an error naming the words.
-  auto readChoice = [&](const char* key, auto& target,
-                        std::initializer_list<std::pair<const char*, std::decay_t<decltype(target)>>> words) {
+  forEachChoice(*this, [&](const char* key, auto& target, auto words) {
     if (!source.keyExists(section, key)) return;
     const std::string v = iniValueText(source.read_string(section, key, "", false));
     std::string expected;
@@ -131,16 +159,7 @@ void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source
       expected += (expected.empty() ? "" : ", ") + std::string(word);
     }
     throw InputError(file, 0, "[" + section + "] " + key, "unknown value '" + v + "' (expected " + expected + ")");
-  };
-  readChoice("match_method", matcher.method,
-             {{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}});
-  readChoice("match_residual", matcher.residual, {{"point", MatchResidual::Point}, {"plane", MatchResidual::Plane}});
-  readChoice("proposal", proposal.type,
-             {{"informed", ProposalType::Informed}, {"mode-only", ProposalType::ModeOnly},
-              {"odometry", ProposalType::Odometry}});
-  readChoice("proposal_fit", proposal.fit, {{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}});
-  readChoice("proposal_weight", proposal.weight,
-             {{"mode", ProposalWeight::Mode}, {"integral", ProposalWeight::Integral}});
+  });
   validate(file, section);
 }
 
@@ -151,13 +170,9 @@ void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const 
     if constexpr (std::is_same_v<T, bool>) target.write(section, key, std::string(value ? "true" : "false"));
     else target.write(section, key, str(value));
   });
-  target.write(section, "proposal", std::string(toString(proposal.type)));
-  target.write(section, "proposal_fit", std::string(proposal.fit == ProposalFit::Moments ? "moments" : "quadratic"));
-  target.write(section, "proposal_weight",
-               std::string(proposal.weight == ProposalWeight::Integral ? "integral" : "mode"));
-  target.write(section, "match_method",
-               std::string(matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb"));
-  target.write(section, "match_residual", std::string(matcher.residual == MatchResidual::Plane ? "plane" : "point"));
+  forEachChoice(self, [&](const char* key, auto& value, auto words) {
+    target.write(section, key, std::string(wordOf(words, value)));
+  });
 }
 
 void SlamOptions::dumpToTextStream(std::ostream& out) const {
@@ -170,11 +185,9 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
     else out << str(value);
     out << "\n";
   });
-  out << "  proposal = " << toString(proposal.type) << "\n";
-  out << "  proposal_fit = " << (proposal.fit == ProposalFit::Moments ? "moments" : "quadratic") << "\n";
-  out << "  proposal_weight = " << (proposal.weight == ProposalWeight::Integral ? "integral" : "mode") << "\n";
-  out << "  match_method = " << (matcher.method == MatchMethod::GaussNewton ? "gauss-newton" : "hill-climb") << "\n";
-  out << "  match_residual = " << (matcher.residual == MatchResidual::Plane ? "plane" : "point") << "\n";
+  forEachChoice(self, [&](const char* key, auto& value, auto words) {
+    out << "  " << key << " = " << wordOf(words, value) << "\n";
+  });
 }
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
