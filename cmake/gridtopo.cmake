@@ -28,6 +28,7 @@ function(gridtopo_test name)
   add_executable(${name} ${A_SOURCES})
   target_compile_options(${name} PRIVATE ${GRIDTOPO_WARNINGS})
   target_link_libraries(${name} PRIVATE ${A_DEPS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/tests)  # tests/common/*.h
   target_compile_definitions(${name} PRIVATE
     GRIDTOPO_DATA_DIR="${CMAKE_SOURCE_DIR}/datasets"
     GRIDTOPO_SOURCE_DIR="${CMAKE_SOURCE_DIR}"

@@ -1,27 +1,15 @@
 // Every command-line app shares one shell (core/app_shell.h): exit 2 and "<app>: usage: ..." on bad usage, exit 1
 // and "<app>: error: <file>..." on bad input, exit 0 on --help.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <string>
 
+#include "common/run_app.h"
 #include "gridtopo/core/app_shell.h"
 
 namespace {
-struct Result {
-  int status;
-  std::string output;
-};
-Result run(const std::string& app, const std::string& args) {
-  const std::string cmd = std::string(GRIDTOPO_BIN_DIR) + "/" + app + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int st = pclose(p);
-  return {WEXITSTATUS(st), out};
-}
+using Result = gridtopo::testing_app::AppRun;
+Result run(const std::string& app, const std::string& args) { return gridtopo::testing_app::runApp(app, args); }
 const char* kApps[] = {"gridtopo-slam",  "gridtopo-eval",  "gridtopo-import",          "gridtopo-topology",
                        "gridtopo-train", "gridtopo-topology-eval", "gridtopo-topology-compare"};
 }  // namespace

@@ -1,33 +1,20 @@
 // The gridtopo-eval command line: help, the reference figures through the app, JSON output, and errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
 
+#include "common/run_app.h"
 #include "gridtopo/io/carmen_log.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-struct Run {
-  int status;
-  std::string output;
-};
-Run run(const std::string& args) {
-  const std::string cmd = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-eval " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using Run = gridtopo::testing_app::AppRun;
+Run run(const std::string& args) { return gridtopo::testing_app::runApp("gridtopo-eval", args); }
 std::string data(const std::string& f) { return std::string(GRIDTOPO_DATA_DIR) + "/slam/" + f; }
 fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("gridtopo_eval_app_" + name); }
 std::string slurp(const fs::path& p) {

@@ -31,9 +31,7 @@ struct Profile {
 // true poses of the first 80 scans, scan 80 (24 m from the start, far from both ends) is scored around its true
 // pose.
 Profile corridorProfile(const slam::SlamOptions& o) {
-  sim::FloorPlan plan;
-  plan.walls.push_back({0, 0, 60, 0});
-  plan.walls.push_back({0, 2, 60, 2});
+  const sim::FloorPlan plan = sim::FloorPlan::straightCorridor(60, 2);
   sim::SimOptions so;
   so.max_range = 12;
   so.scan_spacing = kStep;

@@ -14,9 +14,7 @@ namespace {
 // A 2 m wide corridor along x (walls y = 0 and y = 2, 60 m long) and a scan from (10, 1) heading east, laser at
 // the robot's centre, 181 beams over 180 degrees, max range 12 m, 1 cm range noise.
 io::LaserScan corridorScan(double range_sigma = 0.01) {
-  sim::FloorPlan p;
-  p.walls.push_back({0, 0, 60, 0});
-  p.walls.push_back({0, 2, 60, 2});
+  const sim::FloorPlan p = sim::FloorPlan::straightCorridor(60, 2);
   sim::SimOptions so;
   so.max_range = 12;
   so.range_sigma = range_sigma;

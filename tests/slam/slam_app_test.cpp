@@ -1,28 +1,17 @@
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "common/run_app.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int status;
-  std::string output;
-};
-Result run(const std::string& args) {
-  const std::string cmd = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-slam " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int st = pclose(p);
-  return {WEXITSTATUS(st), out};
-}
+using Result = gridtopo::testing_app::AppRun;
+Result run(const std::string& args) { return gridtopo::testing_app::runApp("gridtopo-slam", args); }
 const std::string kIntel = std::string(GRIDTOPO_DATA_DIR) + "/slam/intel.clf.gz";
 }  // namespace
 

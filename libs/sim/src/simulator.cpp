@@ -44,6 +44,13 @@ FloorPlan FloorPlan::officeLoop() {
   return p;
 }
 
+FloorPlan FloorPlan::straightCorridor(double length, double width) {
+  FloorPlan p;
+  p.walls.push_back({0, 0, length, 0});
+  p.walls.push_back({0, width, length, width});
+  return p;
+}
+
 FloorPlan FloorPlan::pillarRoom() {
   FloorPlan p;
   p.addRectangle(0, 0, 12, 6);

@@ -34,6 +34,8 @@ struct FloorPlan {
   /// A 12 m × 6 m room with two 0.6 m square pillars centred at (3, 3) and (9, 3) and two short wall stubs,
   /// (5, 5.4)–(5, 6) and (7, 0)–(7, 0.5).
   static FloorPlan pillarRoom();
+  /// A featureless corridor along x: two walls, y = 0 and y = width, from x = 0 to x = length (open at both ends).
+  static FloorPlan straightCorridor(double length, double width);
   /// Distance from (x, y) along direction a to the nearest wall; +inf if none.
   double rayCast(double x, double y, double a) const;
 };
