@@ -271,7 +271,9 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
       p.log_weight_total += dw;
       p.pose = x;
       p.map.insertScan(x, scan.sensor, scan.map_beams, o_.map);
-      p.node = std::make_shared<const TrajectoryNode>(x, index, p.node);
+      // The reported pose: the informed proposal's mean (the sample minus its own noise), else the sample.
+      const bool report_mean = o_.proposal.report_mean && plan.type == ProposalType::Informed && plan.matched;
+      p.node = std::make_shared<const TrajectoryNode>(x, report_mean ? plan.gaussian.mean : x, index, p.node);
     });
     for (std::size_t i = 0; i < n; ++i) {
       st.failed_matches += !plans[group_of[i]].matched;
@@ -367,9 +369,9 @@ std::vector<io::TimedPose> RbpfSlam::trajectory() const {
     const ScanInfo& b = scans_[i];
     if (a.has_odometry && b.has_odometry) {
       const Pose2 d = relative(a.odometry, b.odometry);
-      return compose(path[k]->pose, {scale * d.x, scale * d.y, d.theta});
+      return compose(path[k]->estimate, {scale * d.x, scale * d.y, d.theta});
     }
-    return path[k]->pose;
+    return path[k]->estimate;
   };
   std::size_t prev = 0;  // index into path
   for (std::size_t i = 0; i < scans_.size(); ++i) {
@@ -377,7 +379,7 @@ std::vector<io::TimedPose> RbpfSlam::trajectory() const {
     Pose2 p;
     if (proc_at[i] >= 0) {
       prev = static_cast<std::size_t>(proc_at[i]);
-      p = path[prev]->pose;
+      p = path[prev]->estimate;
     } else if (prev + 1 < path.size()) {
       // Blend the odometry extrapolations from the previous and the next processed scan.
       const std::size_t i0 = path[prev]->scan_index, i1 = path[prev + 1]->scan_index;

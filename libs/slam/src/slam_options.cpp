@@ -94,6 +94,7 @@ void forEachKey(SlamOptions& o, F&& f) {
   f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
   f("proposal_laplace_weight", o.proposal.laplace_weight);
   f("proposal_start_spread", o.proposal.start_spread);
+  f("proposal_report_mean", o.proposal.report_mean);
   f("proposal_beam_sigma", o.proposal.beam_sigma);
   f("proposal_min_curvature", o.proposal.min_curvature);
 }

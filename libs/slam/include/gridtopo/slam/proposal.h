@@ -56,6 +56,10 @@ struct ProposalOptions {
   /// is flat (along a corridor) the mode then keeps that spread, so the particles stay diverse in the directions
   /// the scan cannot observe. Not used for scans without odometry (their prior is no noise model).
   double start_spread = 1.0;
+  /// Informed proposal: the trajectory reports, for each pose, the mean of the Gaussian it was drawn from (the
+  /// Rao-Blackwellized estimate of the pose given the particle's past poses and the scan) instead of the sample.
+  /// The filter itself (maps, weights, next predictions) always uses the sample. false = report the samples.
+  bool report_mean = true;
   /// Quadratic fit: the shape N(μ, Σ) uses the likelihood of a beam whose end point registers to within this
   /// standard deviation (m): ln p(z|m,x)·(match_sigma / beam_sigma)². match_sigma is wide so that the matcher has
   /// a basin to climb, and likelihood_gain softens the weights for correlated beams; neither says how precisely a

@@ -10,12 +10,17 @@
 namespace gridtopo::slam {
 
 struct TrajectoryNode {
-  Pose2 pose;
+  Pose2 pose;  ///< the particle's pose: the sample its map was updated with
+  /// The pose reported in the trajectory: the mean of the proposal the pose was drawn from (the Rao-Blackwellized
+  /// estimate of the pose given the particle's past, which lacks the sample's own noise), or the pose itself.
+  Pose2 estimate;
   std::size_t scan_index = 0;  ///< index of the scan (in input order) this pose belongs to
   std::shared_ptr<const TrajectoryNode> parent;
 
   TrajectoryNode(const Pose2& p, std::size_t scan, std::shared_ptr<const TrajectoryNode> par)
-      : pose(p), scan_index(scan), parent(std::move(par)) {}
+      : pose(p), estimate(p), scan_index(scan), parent(std::move(par)) {}
+  TrajectoryNode(const Pose2& p, const Pose2& est, std::size_t scan, std::shared_ptr<const TrajectoryNode> par)
+      : pose(p), estimate(est), scan_index(scan), parent(std::move(par)) {}
   TrajectoryNode(const TrajectoryNode&) = delete;
   TrajectoryNode& operator=(const TrajectoryNode&) = delete;
   /// Releases long chains iteratively (a recursive release of a 10⁵-node path would overflow the stack).
