@@ -1,0 +1,39 @@
+#pragma once
+// A topology run as an INI file, like gridtopo-slam's RUN.ini (and MRPT's `rbpf-slam CONFIG.ini`):
+// `gridtopo-topology RUN.ini` reads
+//   [topology_run]  map = MAP, model = MODEL (default datasets/models/places_model.yml), output = DIR
+//   [topology], [relaxation], [correction]  the options (TopologyOptions, config-ini/topology.ini)
+// and the command-line flags override single values. A RUN.ini holds no other section and no unknown key (both are
+// InputErrors naming the file, the line, the section and the key). The options.ini a run writes is this INI with
+// the paths absolute, so loading it again as RUN.ini (or its options with -c) reproduces the run.
+#include <string>
+
+#include "gridtopo/topology/pipeline.h"
+
+namespace gridtopo::topology {
+
+inline constexpr const char* kTopologyRunSection = "topology_run";
+inline constexpr const char* kDefaultPlacesModel = "datasets/models/places_model.yml";
+
+struct TopologyRunSpec {
+  std::string map;     ///< the occupancy map; relative paths are taken from the working directory
+  std::string model = kDefaultPlacesModel;  ///< the place model (gridtopo-train)
+  std::string output;  ///< the output directory
+  TopologyOptions options;
+  std::string ini;     ///< the RUN.ini this was read from; empty when none
+  bool map_from_ini = false, model_from_ini = false;  ///< the value is the RUN.ini's (no flag replaced it)
+};
+
+/// Reads a RUN.ini: [topology_run] and the option sections (each may be missing: defaults). InputError for an
+/// unreadable file, another section, an unknown key or a bad value.
+TopologyRunSpec loadTopologyRunIni(const std::string& path);
+
+/// Checks that the run names a map and a model that exist, and an output. A missing or wrong value from a RUN.ini
+/// is an InputError naming the RUN.ini, the line and "[topology_run] key"; a missing file given by a flag is named
+/// itself.
+void checkTopologyRunSpec(const TopologyRunSpec& spec);
+
+/// The exact loadable INI of the run: [topology_run] (paths absolute), then topologyOptionsIni.
+std::string topologyRunIni(const TopologyRunSpec& spec);
+
+}  // namespace gridtopo::topology

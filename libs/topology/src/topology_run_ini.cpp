@@ -1,0 +1,92 @@
+#include "gridtopo/topology/topology_run_ini.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
+
+namespace fs = std::filesystem;
+
+namespace gridtopo::topology {
+
+namespace {
+
+const char* const kOptionSections[] = {"topology", "relaxation", "correction"};
+
+/// The keys of each option section: those TopologyOptions saves.
+std::vector<std::string> optionKeys(const std::string& section) {
+  mrpt::config::CConfigFileMemory mem;
+  TopologyOptions().saveToConfigFile(mem, "topology");
+  std::vector<std::string> keys;
+  mem.getAllKeys(section, keys);
+  return keys;
+}
+
+std::string absolute(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal().string(); }
+
+}  // namespace
+
+TopologyRunSpec loadTopologyRunIni(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
+  const IniFile ini = IniFile::read(path);
+  const std::string run = kTopologyRunSection;
+  ini.requireKnownSections({run, "topology", "relaxation", "correction"});
+  ini.requireKnownKeys(run, {"map", "model", "output"});
+  for (const char* s : kOptionSections)
+    ini.requireKnownKeys(s, optionKeys(s), "not an option of this section; see config-ini/topology.ini");
+  TopologyRunSpec spec;
+  spec.ini = path;
+  if (const auto v = ini.value(run, "map"); v && !v->empty()) {
+    spec.map = *v;
+    spec.map_from_ini = true;
+  }
+  if (const auto v = ini.value(run, "model"); v && !v->empty()) {
+    spec.model = *v;
+    spec.model_from_ini = true;
+  }
+  if (const auto v = ini.value(run, "output")) spec.output = *v;
+  try {
+    spec.options = loadTopologyOptions(path);
+  } catch (const InputError& e) {
+    // loadTopologyOptions names "<path>: [section] key" without the line: add it.
+    const std::string field = e.field();
+    const auto close = field.find("] ");
+    if (e.line() == 0 && field.rfind("[", 0) == 0 && close != std::string::npos) {
+      const std::size_t line = ini.line(field.substr(1, close - 1), field.substr(close + 2));
+      if (line > 0) throw InputError(path, line, field, e.message());
+    }
+    throw;
+  }
+  return spec;
+}
+
+void checkTopologyRunSpec(const TopologyRunSpec& spec) {
+  const std::string run = kTopologyRunSection;
+  auto lineOf = [&](const std::string& key) {
+    if (spec.ini.empty()) return std::size_t{0};
+    const IniFile ini = IniFile::read(spec.ini);
+    const std::size_t l = ini.line(run, key);
+    return l > 0 ? l : ini.line(run);
+  };
+  const std::string where = spec.ini.empty() ? "<command line>" : spec.ini;
+  if (spec.map.empty()) throw InputError(where, lineOf("map"), "[" + run + "] map", "missing: name the map to label (or give it on the command line)");
+  if (spec.output.empty())
+    throw InputError(where, lineOf("output"), "[" + run + "] output", "missing: name the output directory (or give -o)");
+  auto requireFile = [&](const std::string& file, bool from_ini, const std::string& key) {
+    if (fs::exists(file)) return;
+    if (from_ini) throw InputError(spec.ini, lineOf(key), "[" + run + "] " + key, "no such file '" + file + "'");
+    throw InputError(file, "no such file");
+  };
+  requireFile(spec.map, spec.map_from_ini, "map");
+  requireFile(spec.model, spec.model_from_ini, "model");
+}
+
+std::string topologyRunIni(const TopologyRunSpec& spec) {
+  return "[" + std::string(kTopologyRunSection) + "]\nmap = " + absolute(spec.map) + "\nmodel = " +
+         absolute(spec.model) + "\noutput = " + absolute(spec.output) + "\n\n" + topologyOptionsIni(spec.options);
+}
+
+}  // namespace gridtopo::topology
