@@ -28,9 +28,8 @@ struct TopologyRunSpec {
 /// unreadable file, another section, an unknown key or a bad value.
 TopologyRunSpec loadTopologyRunIni(const std::string& path);
 
-/// Checks that the run names a map and a model that exist, and an output. A missing or wrong value from a RUN.ini
-/// is an InputError naming the RUN.ini, the line and "[topology_run] key"; a missing file given by a flag is named
-/// itself.
+/// Checks that the run names a map and an output, and that the files its RUN.ini names exist: an InputError
+/// naming the RUN.ini, the line and "[topology_run] key". (Files named by flags are checked by their readers.)
 void checkTopologyRunSpec(const TopologyRunSpec& spec);
 
 /// The exact loadable INI of the run: [topology_run] (paths absolute), then topologyOptionsIni.
