@@ -65,6 +65,19 @@ TEST(IniFile, UnknownSectionsAndKeysNameFileLineSectionAndKey) {
   }
 }
 
+TEST(IniFile, LinesForErrorsOfOptionLoaders) {
+  const IniFile ini = IniFile::parse(kText, "run.ini");
+  EXPECT_EQ(ini.lineOrSection("slam", "seed"), 11u);
+  EXPECT_EQ(ini.lineOrSection("slam", "threads"), 9u);  // absent: where it belongs
+  EXPECT_EQ(ini.lineOrSection("other", "x"), 0u);
+  // An options loader names "[section] key" without a line: the line of that key is added.
+  EXPECT_STREQ(ini.withLine(InputError("run.ini", 0, "[slam] seed", "must be >= 0")).what(),
+               "run.ini:11: [slam] seed: must be >= 0");
+  EXPECT_STREQ(ini.withLine(InputError("run.ini", 0, "[slam] threads", "bad")).what(), "run.ini: [slam] threads: bad");
+  EXPECT_STREQ(ini.withLine(InputError("run.ini", 3, "[slam] seed", "bad")).what(), "run.ini:3: [slam] seed: bad");
+  EXPECT_STREQ(ini.withLine(InputError("run.ini", 0, "--seed", "bad")).what(), "run.ini: --seed: bad");
+}
+
 TEST(IniFile, MalformedLinesAndMissingFilesAreInputErrors) {
   auto message = [](const std::string& text) {
     try {

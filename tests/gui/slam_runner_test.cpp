@@ -19,10 +19,12 @@
 #include "gridtopo/session/slam_runner.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/slam_outputs.h"
+#include "common/same_outputs.h"
 #include "test_helpers.h"
 
 using namespace gridtopo;
 using namespace std::chrono_literals;
+using testing_outputs::expectSameTrajectory;
 
 namespace {
 const std::string kIntel = GRIDTOPO_DATA_DIR "/slam/intel.clf.gz";
@@ -51,15 +53,6 @@ const std::vector<io::TimedPose>& directTrajectory() {
     return f.trajectory();
   }();
   return t;
-}
-void expectSameTrajectory(const std::vector<io::TimedPose>& a, const std::vector<io::TimedPose>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].timestamp, b[i].timestamp) << i;
-    ASSERT_EQ(a[i].pose.x, b[i].pose.x) << i;
-    ASSERT_EQ(a[i].pose.y, b[i].pose.y) << i;
-    ASSERT_EQ(a[i].pose.phi, b[i].pose.phi) << i;
-  }
 }
 }  // namespace
 

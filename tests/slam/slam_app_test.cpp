@@ -5,9 +5,13 @@
 #include <sstream>
 
 #include "common/run_app.h"
+#include "common/same_outputs.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
+using gridtopo::testing_outputs::slurp;
+using gridtopo::testing_outputs::statsWithoutTimeAndRss;
+using gridtopo::testing_outputs::withoutLine;
 
 namespace {
 using Result = gridtopo::testing_app::AppRun;
@@ -56,32 +60,6 @@ TEST(SlamApp, BadIniValuesFailWithFileSectionAndKey) {
   EXPECT_NE(r.output.find("/nonexistent.clf"), std::string::npos) << r.output;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ostringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
-// The text without its line "key = ...".
-std::string withoutLine(const std::string& text, const std::string& key) {
-  std::istringstream in(text);
-  std::string out;
-  for (std::string l; std::getline(in, l);)
-    if (l.rfind(key + " = ", 0) != 0) out += l + "\n";
-  return out;
-}
-// stats.txt without its wall-time (4th) and RSS (12th) columns.
-std::string statsWithoutTimeAndRss(const fs::path& p) {
-  std::istringstream in(slurp(p));
-  std::string out;
-  for (std::string l; std::getline(in, l);) {
-    std::istringstream w(l);
-    std::string word;
-    for (int i = 0; w >> word; ++i)
-      if (l[0] == '#' || (i != 3 && i != 11)) out += word + ' ';
-    out += '\n';
-  }
-  return out;
-}
 const char* const kOutputs[] = {"map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz",
                                 "map.simplemap", "trajectory.txt", "options.ini"};
 
@@ -109,7 +87,7 @@ TEST(SlamApp, OptionsIniOfARunReproducesIt) {
   EXPECT_EQ(gridtopo::io::readTrajectory((out / "trajectory.txt").string()).size(), 150u);
   for (const char* f : kOutputs)
     if (std::string(f) != "options.ini") EXPECT_EQ(slurp(again / f), slurp(out / f)) << f;
-  EXPECT_EQ(statsWithoutTimeAndRss(again / "stats.txt"), statsWithoutTimeAndRss(out / "stats.txt"));
+  EXPECT_EQ(statsWithoutTimeAndRss(slurp(again / "stats.txt")), statsWithoutTimeAndRss(slurp(out / "stats.txt")));
   fs::remove_all(out);
   fs::remove_all(again);
 }
@@ -146,7 +124,7 @@ TEST(SlamApp, RunIniRunsAndItsOptionsIniReproducesTheRun) {
   r = run((saved / "options.ini").string() + " -q");  // writes into out again
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* file : kOutputs) EXPECT_EQ(slurp(f.out / file), slurp(saved / file)) << file;
-  EXPECT_EQ(statsWithoutTimeAndRss(f.out / "stats.txt"), statsWithoutTimeAndRss(saved / "stats.txt"));
+  EXPECT_EQ(statsWithoutTimeAndRss(slurp(f.out / "stats.txt")), statsWithoutTimeAndRss(slurp(saved / "stats.txt")));
 }
 
 TEST(SlamApp, FlagsOverrideTheRunIni) {

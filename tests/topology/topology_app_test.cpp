@@ -9,12 +9,14 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/same_outputs.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo;
+using testing_outputs::withoutLine;
 
 namespace {
 const std::string kBin = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-topology";
@@ -97,14 +99,6 @@ namespace {
 int runTopology(const std::string& args, const fs::path& err) {
   const int st = std::system((kBin + " " + args + " 2> " + err.string() + " > /dev/null").c_str());
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-// The text without its line "key = ...".
-std::string withoutLine(const std::string& text, const std::string& key) {
-  std::istringstream in(text);
-  std::string out;
-  for (std::string l; std::getline(in, l);)
-    if (l.rfind(key + " = ", 0) != 0) out += l + "\n";
-  return out;
 }
 const char* const kTopologyOutputs[] = {"topology.graphml", "topology.json", "topology.dot", "topology_posegraph.graph",
                                         "overlay.png", "labels.png", "labels_before_correction.png",

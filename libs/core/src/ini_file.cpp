@@ -83,6 +83,19 @@ std::size_t IniFile::line(const std::string& section, const std::string& key) co
   return 0;
 }
 
+std::size_t IniFile::lineOrSection(const std::string& section, const std::string& key) const {
+  const std::size_t l = line(section, key);
+  return l > 0 ? l : line(section);
+}
+
+InputError IniFile::withLine(const InputError& e) const {
+  const std::string& field = e.field();
+  const auto close = field.find("] ");
+  if (e.line() > 0 || field.rfind("[", 0) != 0 || close == std::string::npos) return e;
+  const std::size_t l = line(field.substr(1, close - 1), field.substr(close + 2));
+  return l > 0 ? InputError(name_, l, field, e.message()) : e;
+}
+
 std::optional<std::string> IniFile::value(const std::string& section, const std::string& key) const {
   std::optional<std::string> v;
   for (const auto& e : entries_)

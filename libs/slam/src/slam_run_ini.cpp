@@ -34,13 +34,7 @@ SlamOptions loadOptions(const std::string& path, const IniFile& layout, const st
   try {
     o.loadFromConfigFile(mrpt::config::CConfigFile(path), section);
   } catch (const InputError& e) {
-    // SlamOptions names "[section] key" without the line: add it.
-    const std::string prefix = "[" + section + "] ";
-    if (e.line() == 0 && e.field().rfind(prefix, 0) == 0) {
-      const std::size_t line = layout.line(section, e.field().substr(prefix.size()));
-      if (line > 0) throw InputError(path, line, e.field(), e.message());
-    }
-    throw;
+    throw layout.withLine(e);  // SlamOptions names "[section] key" without the line
   }
   return o;
 }
@@ -105,10 +99,7 @@ void overrideOptions(SlamOptions& o, const SlamOptionFlags& f) {
 void checkSlamRunSpec(const SlamRunSpec& spec) {
   const std::string run = kSlamRunSection;
   auto lineOf = [&](const std::string& key) {
-    if (spec.ini.empty()) return std::size_t{0};
-    const IniFile ini = IniFile::read(spec.ini);
-    const std::size_t l = ini.line(run, key);
-    return l > 0 ? l : ini.line(run);
+    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
   };
   if (spec.input.empty())
     throw InputError(spec.ini.empty() ? "<command line>" : spec.ini, lineOf("input"), "[" + run + "] input",

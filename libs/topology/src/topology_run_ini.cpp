@@ -51,14 +51,7 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
   try {
     spec.options = loadTopologyOptions(path);
   } catch (const InputError& e) {
-    // loadTopologyOptions names "<path>: [section] key" without the line: add it.
-    const std::string field = e.field();
-    const auto close = field.find("] ");
-    if (e.line() == 0 && field.rfind("[", 0) == 0 && close != std::string::npos) {
-      const std::size_t line = ini.line(field.substr(1, close - 1), field.substr(close + 2));
-      if (line > 0) throw InputError(path, line, field, e.message());
-    }
-    throw;
+    throw ini.withLine(e);  // loadTopologyOptions names "[section] key" without the line
   }
   return spec;
 }
@@ -66,13 +59,12 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
 void checkTopologyRunSpec(const TopologyRunSpec& spec) {
   const std::string run = kTopologyRunSection;
   auto lineOf = [&](const std::string& key) {
-    if (spec.ini.empty()) return std::size_t{0};
-    const IniFile ini = IniFile::read(spec.ini);
-    const std::size_t l = ini.line(run, key);
-    return l > 0 ? l : ini.line(run);
+    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
   };
   const std::string where = spec.ini.empty() ? "<command line>" : spec.ini;
-  if (spec.map.empty()) throw InputError(where, lineOf("map"), "[" + run + "] map", "missing: name the map to label (or give it on the command line)");
+  if (spec.map.empty())
+    throw InputError(where, lineOf("map"), "[" + run + "] map",
+                     "missing: name the map to label (or give it on the command line)");
   if (spec.output.empty())
     throw InputError(where, lineOf("output"), "[" + run + "] output", "missing: name the output directory (or give -o)");
   // A file named on the command line is left to its reader, which names it.

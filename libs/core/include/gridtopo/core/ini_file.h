@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/error.h"
+
 namespace gridtopo {
 
 class IniFile {
@@ -27,6 +29,11 @@ class IniFile {
   std::vector<std::string> keys(const std::string& section) const;
   /// The 1-based line of `[section]` (key empty) or of `key` in it; 0 when absent.
   std::size_t line(const std::string& section, const std::string& key = "") const;
+  /// The line of `key` in `section`, else of the section's header (where the key belongs); 0 when neither is there.
+  std::size_t lineOrSection(const std::string& section, const std::string& key) const;
+  /// `e` with the line of the key its field names ("[section] key", as the options' loaders name it) when `e` names
+  /// no line and the key is in this file; else `e` as it is.
+  InputError withLine(const InputError& e) const;
   /// The value of `key` without its comment (iniValueText); nothing when absent. The last one wins, as in MRPT.
   std::optional<std::string> value(const std::string& section, const std::string& key) const;
 
