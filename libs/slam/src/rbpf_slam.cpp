@@ -1,11 +1,8 @@
 #include "gridtopo/slam/rbpf_slam.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <stdexcept>
 #include <unordered_set>
@@ -13,7 +10,6 @@
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/proposal.h"
 #include "gridtopo/slam/resampling.h"
-#include "gridtopo/slam/scan_matcher.h"
 
 namespace gridtopo::slam {
 
