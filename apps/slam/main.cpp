@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
+    // TCLAP hands an unknown flag to the optional positional argument.
+    if (run_ini.getValue().rfind('-', 0) == 0) throw UsageError(run_ini.getValue() + ": unknown argument");
     const bool has_run_ini = !run_ini.getValue().empty();
     if (has_run_ini && config.isSet()) throw UsageError("give the options either in RUN.ini or with -c, not both");
     if (!has_run_ini && (!input.isSet() || !output.isSet()))

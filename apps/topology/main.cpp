@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
@@ -45,6 +46,8 @@ int main(int argc, char** argv) {
     cmd.parse(argc, argv);
 
     const std::string& first = map_arg.getValue();
+    // TCLAP hands an unknown flag to the positional argument.
+    if (first.rfind('-', 0) == 0) throw UsageError(first + ": unknown argument");
     const bool has_run_ini = first.size() > 4 && first.compare(first.size() - 4, 4, ".ini") == 0;
     if (has_run_ini && ini.isSet()) throw UsageError("give the options either in RUN.ini or with -c, not both");
     if (!has_run_ini && !out.isSet()) throw UsageError("name the output directory (-o), or give a RUN.ini");
@@ -53,20 +56,9 @@ int main(int argc, char** argv) {
       spec.map = first;
       spec.options = topology::loadTopologyOptions(ini.getValue());
     }
-    if (model_arg.isSet()) {
-      spec.model = model_arg.getValue();
-      spec.model_from_ini = false;
-    }
-    if (out.isSet()) spec.output = out.getValue();
-    topology::TopologyOptions& opt = spec.options;
-    if (res.isSet()) {
-      if (!(res.getValue() > 0)) throw InputError("--resolution", "must be > 0");
-      opt.resolution = res.getValue();
-    }
-    if (threads.isSet()) {
-      if (threads.getValue() < 1) throw InputError("--threads", "must be >= 1");
-      opt.threads = threads.getValue();
-    }
+    const auto given = [](auto& arg) { return arg.isSet() ? std::optional(arg.getValue()) : std::nullopt; };
+    topology::overrideRun(spec, {given(model_arg), given(out), given(res), given(threads)});
+    const topology::TopologyOptions& opt = spec.options;
     topology::checkTopologyRunSpec(spec);
     const auto t0 = std::chrono::steady_clock::now();
     const places::PlacesModel model = places::PlacesModel::load(spec.model);

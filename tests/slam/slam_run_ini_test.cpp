@@ -74,10 +74,10 @@ TEST(SlamRunIni, FlagsAreCheckedAndNamed) {
   EXPECT_EQ(o.proposal.type, slam::ProposalType::Odometry);
   slam::overrideOptions(o, {});
   EXPECT_EQ(o.particles, 3);  // unset flags keep the values
-  EXPECT_EQ(fieldOf([&] { slam::overrideOptions(o, {std::nullopt, -1}); }), "--seed");
+  EXPECT_EQ(fieldOf([&] { slam::overrideOptions(o, {std::nullopt, -1, std::nullopt, std::nullopt}); }), "--seed");
   EXPECT_EQ(fieldOf([&] { slam::overrideOptions(o, {std::nullopt, std::nullopt, std::nullopt, std::string("x")}); }),
             "--proposal");
-  EXPECT_EQ(fieldOf([&] { slam::overrideOptions(o, {0}); }), "[slam] particles");
+  EXPECT_EQ(fieldOf([&] { slam::overrideOptions(o, {0, std::nullopt, std::nullopt, std::nullopt}); }), "[slam] particles");
 }
 
 TEST(SlamRunIni, AMissingInputOrOutputIsNamed) {

@@ -77,3 +77,19 @@ TEST(TopologyRunIni, AMissingMapOrOutputIsNamed) {
     EXPECT_EQ(e.field(), "[topology_run] output");
   }
 }
+
+TEST(TopologyRunIni, FlagsOverrideSingleValuesAndAreChecked) {
+  topology::TopologyRunSpec spec;
+  spec.model = "a.yml";
+  spec.model_from_ini = true;
+  topology::overrideRun(spec, {std::string("b.yml"), std::string("/out"), 0.1, 3});
+  EXPECT_EQ(spec.model, "b.yml");
+  EXPECT_FALSE(spec.model_from_ini);
+  EXPECT_EQ(spec.output, "/out");
+  EXPECT_EQ(spec.options.resolution, 0.1);
+  EXPECT_EQ(spec.options.threads, 3);
+  topology::overrideRun(spec, {});
+  EXPECT_EQ(spec.options.threads, 3);  // unset flags keep the values
+  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, -1.0, std::nullopt}), InputError);
+  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, std::nullopt, 0}), InputError);
+}

@@ -56,6 +56,22 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
   return spec;
 }
 
+void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
+  if (f.model) {
+    spec.model = *f.model;
+    spec.model_from_ini = false;
+  }
+  if (f.output) spec.output = *f.output;
+  if (f.resolution) {
+    if (!(*f.resolution > 0)) throw InputError("--resolution", "must be > 0");
+    spec.options.resolution = *f.resolution;
+  }
+  if (f.threads) {
+    if (*f.threads < 1) throw InputError("--threads", "must be >= 1");
+    spec.options.threads = *f.threads;
+  }
+}
+
 void checkTopologyRunSpec(const TopologyRunSpec& spec) {
   const std::string run = kTopologyRunSection;
   auto lineOf = [&](const std::string& key) {

@@ -6,6 +6,7 @@
 // and the command-line flags override single values. A RUN.ini holds no other section and no unknown key (both are
 // InputErrors naming the file, the line, the section and the key). The options.ini a run writes is this INI with
 // the paths absolute, so loading it again as RUN.ini (or its options with -c) reproduces the run.
+#include <optional>
 #include <string>
 
 #include "gridtopo/topology/pipeline.h"
@@ -27,6 +28,16 @@ struct TopologyRunSpec {
 /// Reads a RUN.ini: [topology_run] and the option sections (each may be missing: defaults). InputError for an
 /// unreadable file, another section, an unknown key or a bad value.
 TopologyRunSpec loadTopologyRunIni(const std::string& path);
+
+/// The command line's values over a run (gridtopo-topology -m, -o, -r, --threads); unset = keep.
+struct TopologyRunFlags {
+  std::optional<std::string> model, output;
+  std::optional<double> resolution;
+  std::optional<int> threads;
+};
+
+/// Sets the given flags' values: InputError("--resolution" / "--threads", ...) for a value out of range.
+void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& flags);
 
 /// Checks that the run names a map and an output, and that the files its RUN.ini names exist: an InputError
 /// naming the RUN.ini, the line and "[topology_run] key". (Files named by flags are checked by their readers.)
