@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <numeric>
 
 #include <mrpt/io/CFileGZInputStream.h>
@@ -16,10 +18,13 @@
 #include "gridtopo/session/session.h"
 #include "gridtopo/session/slam_runner.h"
 #include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/slam_outputs.h"
+#include "common/same_outputs.h"
 #include "test_helpers.h"
 
 using namespace gridtopo;
 using namespace std::chrono_literals;
+using testing_outputs::expectSameTrajectory;
 
 namespace {
 const std::string kIntel = GRIDTOPO_DATA_DIR "/slam/intel.clf.gz";
@@ -48,15 +53,6 @@ const std::vector<io::TimedPose>& directTrajectory() {
     return f.trajectory();
   }();
   return t;
-}
-void expectSameTrajectory(const std::vector<io::TimedPose>& a, const std::vector<io::TimedPose>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].timestamp, b[i].timestamp) << i;
-    ASSERT_EQ(a[i].pose.x, b[i].pose.x) << i;
-    ASSERT_EQ(a[i].pose.y, b[i].pose.y) << i;
-    ASSERT_EQ(a[i].pose.phi, b[i].pose.phi) << i;
-  }
 }
 }  // namespace
 
@@ -174,6 +170,24 @@ TEST(SessionSlam, SavesTheSameFilesAsTheWritersAndSendsTheMapToTopology) {
   const auto expected = slam::toOccupancyGrid(snap->best_map);
   EXPECT_EQ(grid->getSizeX(), expected.getSizeX());
   EXPECT_EQ(grid->getSizeY(), expected.getSizeY());
+  // stats.txt is the run's (SlamRun::statsText: a row per processed scan with the process RSS), and options.ini the
+  // RUN.ini that reruns the scans fed with gridtopo-slam.
+  {
+    std::ifstream stats(tmp / "out/stats.txt");
+    std::string header;
+    std::getline(stats, header);
+    EXPECT_EQ(header, std::string("# ") + slam::kStatsColumns + " rss_kb");
+    std::size_t rows = 0;
+    for (std::string l; std::getline(stats, l);) ++rows;
+    EXPECT_EQ(rows, snap->steps);
+    std::ostringstream ini;
+    ini << std::ifstream(tmp / "out/options.ini").rdbuf();
+    EXPECT_EQ(ini.str().rfind("[slam_run]\ninput = " + std::filesystem::absolute(kIntel).lexically_normal().string() +
+                                  "\noutput = " + tmp / "out" + "\nmax_scans = 250\n\n[slam]\n",
+                              0),
+              0u)
+        << ini.str();
+  }
   // The INI written back loads into the same options.
   session::Session s2;
   s2.openSlamIni(tmp / "out/options.ini");

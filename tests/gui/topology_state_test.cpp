@@ -121,10 +121,17 @@ TEST(TopologyState, NodeSelectionShowsRegionAndNeighbours) {
 TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
   Fixture f;
   const auto* t = f.s.topology();
-  session::saveTopologyOutputs(*t, f.tmp / "out", f.s.topologyOptions());
-  for (const char* n : {"topology.graphml", "topology.json", "topology.dot", "overlay.png", "labels.png",
-                        "labels_before_correction.png", "segmentation.png", "segmentation_colour.png", "options.ini"})
+  topology::TopologyOptions options = f.s.topologyOptions();
+  options.correction.min_room_area = 1.0 / 3.0;  // a value that six digits do not keep
+  session::saveTopologyOutputs(*t, f.tmp / "out", options);
+  for (const char* n : {"topology.graphml", "topology.json", "topology.dot", "topology_posegraph.graph", "overlay.png",
+                        "labels.png", "labels_before_correction.png", "segmentation.png", "segmentation_colour.png",
+                        "options.ini"})
     EXPECT_TRUE(std::filesystem::is_regular_file(f.tmp / ("out/" + std::string(n)))) << n;
+  // options.ini is the loadable INI of the options (gridtopo-topology -c reads it back to the same options).
+  const topology::TopologyOptions loaded = topology::loadTopologyOptions(f.tmp / "out/options.ini");
+  EXPECT_EQ(loaded.correction.min_room_area, 1.0 / 3.0);
+  EXPECT_EQ(topology::topologyOptionsIni(loaded), topology::topologyOptionsIni(options));
   const cv::Mat codes = cv::imread(f.tmp / "out/labels.png", cv::IMREAD_GRAYSCALE);
   EXPECT_EQ(cv::countNonZero(codes != places::labelsToCodes(t->topo.labels)), 0);
   for (const char* g : {"out/topology.json", "out/topology.graphml"}) {

@@ -5,9 +5,13 @@
 #include <sstream>
 
 #include "common/run_app.h"
+#include "common/same_outputs.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
+using gridtopo::testing_outputs::slurp;
+using gridtopo::testing_outputs::statsWithoutTimeAndRss;
+using gridtopo::testing_outputs::withoutLine;
 
 namespace {
 using Result = gridtopo::testing_app::AppRun;
@@ -56,8 +60,11 @@ TEST(SlamApp, BadIniValuesFailWithFileSectionAndKey) {
   EXPECT_NE(r.output.find("/nonexistent.clf"), std::string::npos) << r.output;
 }
 
-// OUT/options.ini is a loadable [slam] section that reproduces the run: `gridtopo-slam -c OUT/options.ini` reads
-// it back (command-line overrides included) and gives the same trajectory and the same options file.
+const char* const kOutputs[] = {"map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz",
+                                "map.simplemap", "trajectory.txt", "options.ini"};
+
+// OUT/options.ini is the run's INI: [slam_run] with the absolute paths, then every option in [slam].
+// `gridtopo-slam -c OUT/options.ini` reads its [slam] back (command-line overrides included) and gives the same run.
 TEST(SlamApp, OptionsIniOfARunReproducesIt) {
   const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_rerun_a";
   const fs::path again = fs::temp_directory_path() / "gridtopo_slam_app_rerun_b";
@@ -67,23 +74,113 @@ TEST(SlamApp, OptionsIniOfARunReproducesIt) {
   ASSERT_EQ(r.status, 0) << r.output;
   r = run("-i " + kIntel + " -o " + again.string() + " -c " + (out / "options.ini").string() + " -q --max-scans 150");
   ASSERT_EQ(r.status, 0) << r.output;
-  const auto slurp = [](const fs::path& p) {
-    std::ostringstream s;
-    s << std::ifstream(p).rdbuf();
-    return s.str();
-  };
   const std::string ini = slurp(out / "options.ini");
-  EXPECT_EQ(ini.rfind("[slam]", 0), 0u) << ini;
-  EXPECT_NE(ini.find("particles = 3"), std::string::npos) << ini;
-  EXPECT_NE(ini.find("seed = 11"), std::string::npos) << ini;
-  EXPECT_NE(ini.find("proposal = mode-only"), std::string::npos) << ini;
-  EXPECT_EQ(slurp(again / "options.ini"), ini);
-  // The identical trajectory (written with round-trip precision) and map.
+  EXPECT_EQ(ini.rfind("[slam_run]\ninput = " + fs::absolute(kIntel).lexically_normal().string() + "\noutput = " +
+                          out.string() + "\nmax_scans = 150\n\n[slam]\n",
+                      0),
+            0u)
+      << ini;
+  EXPECT_NE(ini.find("\nparticles = 3\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nseed = 11\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nproposal = mode-only\n"), std::string::npos) << ini;
+  EXPECT_EQ(withoutLine(slurp(again / "options.ini"), "output"), withoutLine(ini, "output"));
   EXPECT_EQ(gridtopo::io::readTrajectory((out / "trajectory.txt").string()).size(), 150u);
-  EXPECT_EQ(slurp(again / "trajectory.txt"), slurp(out / "trajectory.txt"));
-  EXPECT_EQ(slurp(again / "map.pgm"), slurp(out / "map.pgm"));
+  for (const char* f : kOutputs) {
+    if (std::string(f) == "options.ini") continue;
+    EXPECT_EQ(slurp(again / f), slurp(out / f)) << f;
+  }
+  EXPECT_EQ(statsWithoutTimeAndRss(slurp(again / "stats.txt")), statsWithoutTimeAndRss(slurp(out / "stats.txt")));
   fs::remove_all(out);
   fs::remove_all(again);
+}
+
+namespace {
+struct RunIniFixture {
+  // One directory per test: ctest runs the tests of this file as parallel processes.
+  fs::path dir = fs::temp_directory_path() /
+                 ("gridtopo_slam_app_run_ini_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::path ini = dir / "run.ini";
+  fs::path out = dir / "out";
+  RunIniFixture() {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~RunIniFixture() { fs::remove_all(dir); }
+  void write(const std::string& text) const { std::ofstream(ini) << text; }
+};
+}  // namespace
+
+// gridtopo-slam RUN.ini, as MRPT's rbpf-slam CONFIG.ini; the options.ini it writes, run again as RUN.ini, writes
+// the same files byte for byte (stats.txt but for its wall-time and RSS columns).
+TEST(SlamApp, RunIniRunsAndItsOptionsIniReproducesTheRun) {
+  RunIniFixture f;
+  f.write("; a run\n[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() +
+          "  ; the output directory\nmax_scans = 120\n\n[slam]\nparticles = 3\nseed = 4\nthreads = 2\n");
+  Result r = run(f.ini.string() + " -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(gridtopo::io::readTrajectory((f.out / "trajectory.txt").string()).size(), 120u);
+  const std::string ini = slurp(f.out / "options.ini");
+  EXPECT_NE(ini.find("\nmax_scans = 120\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nparticles = 3\n"), std::string::npos) << ini;
+  const fs::path saved = f.dir / "saved";
+  fs::copy(f.out, saved);
+  fs::remove_all(f.out);
+  r = run((saved / "options.ini").string() + " -q");  // writes into out again
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* file : kOutputs) EXPECT_EQ(slurp(f.out / file), slurp(saved / file)) << file;
+  EXPECT_EQ(statsWithoutTimeAndRss(slurp(f.out / "stats.txt")), statsWithoutTimeAndRss(slurp(saved / "stats.txt")));
+}
+
+TEST(SlamApp, FlagsOverrideTheRunIni) {
+  RunIniFixture f;
+  f.write("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() +
+          "\nmax_scans = 120\n[slam]\nparticles = 3\nthreads = 2\n");
+  const fs::path other = f.dir / "other";
+  const Result r = run(f.ini.string() + " -o " + other.string() + " -p 2 --max-scans 60 -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(f.out));
+  EXPECT_EQ(gridtopo::io::readTrajectory((other / "trajectory.txt").string()).size(), 60u);
+  const std::string ini = slurp(other / "options.ini");
+  EXPECT_NE(ini.find("\noutput = " + other.string() + "\nmax_scans = 60\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nparticles = 2\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nthreads = 2\n"), std::string::npos) << ini;
+}
+
+TEST(SlamApp, RunIniErrorsNameFileLineSectionAndKey) {
+  RunIniFixture f;
+  const std::string ini = f.ini.string();
+  auto expectError = [&](const std::string& text, const std::string& message) {
+    f.write(text);
+    const Result r = run(ini + " -q");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("gridtopo-slam: error: " + ini + message), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(f.out));
+  };
+  expectError("[slam_run]\noutput = " + f.out.string() + "\n", ":1: [slam_run] input: missing");
+  expectError("[slam_run]\ninput = /nonexistent/x.clf\noutput = " + f.out.string() + "\n",
+              ":2: [slam_run] input: no such file '/nonexistent/x.clf'");
+  expectError("[slam_run]\ninput = " + kIntel + "\n", ":1: [slam_run] output: missing");
+  expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\nmax_scan = 5\n",
+              ":4: [slam_run] max_scan: unknown key (expected input, output, max_scans)");
+  expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\nmax_scans = ten\n",
+              ":4: [slam_run] max_scans: cannot parse 'ten' as a non-negative integer");
+  expectError("[slam_run]\ninput = " + kIntel + "\n[slma]\nparticles = 3\n",
+              ":3: [slma]: unknown section (expected slam_run, slam)");
+  expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticle = 3\n",
+              ":5: [slam] particle: unknown key");
+  expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticles = 0\n",
+              ":5: [slam] particles: must be at least 1");
+}
+
+TEST(SlamApp, UsageErrorsWithoutInputOrWithTwoOptionFiles) {
+  RunIniFixture f;
+  f.write("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n");
+  Result r = run(f.ini.string() + " -c " + GRIDTOPO_SOURCE_DIR + "/config-ini/slam.ini -q");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("either in RUN.ini or with -c"), std::string::npos) << r.output;
+  r = run("-o " + f.out.string() + " -q");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("gridtopo-slam: usage: name the log (-i)"), std::string::npos) << r.output;
 }
 
 // The reader's decisions against the log's word reach the user of gridtopo-slam, even with -q.

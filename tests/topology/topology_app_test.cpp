@@ -4,15 +4,19 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <sys/wait.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/same_outputs.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
 
 namespace fs = std::filesystem;
 using namespace gridtopo;
+using testing_outputs::withoutLine;
 
 namespace {
 const std::string kBin = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-topology";
@@ -88,6 +92,105 @@ TEST(TopologyApp, BadInputsGiveClearErrors) {
   EXPECT_NE(run(kData + "/places/maps/Fr52_original.png -m " + (d / "nope.yml").string() + " -o " +
                     (d / "o4").string(), d / "err"), 0);
   EXPECT_NE(slurp(d / "err").find("not found"), std::string::npos) << slurp(d / "err");
+}
+
+namespace {
+// gridtopo-topology with its arguments; the exit status.
+int runTopology(const std::string& args, const fs::path& err) {
+  const int st = std::system((kBin + " " + args + " 2> " + err.string() + " > /dev/null").c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+const char* const kTopologyOutputs[] = {"topology.graphml", "topology.json", "topology.dot", "topology_posegraph.graph",
+                                        "overlay.png", "labels.png", "labels_before_correction.png",
+                                        "segmentation.png", "segmentation_colour.png", "options.ini"};
+}  // namespace
+
+// gridtopo-topology RUN.ini; the options.ini it writes is that INI with absolute paths, and run again as RUN.ini it
+// writes the same files byte for byte.
+TEST(TopologyApp, RunIniRunsAndItsOptionsIniReproducesTheRun) {
+  const fs::path d = fresh("run_ini");
+  const std::string map = kData + "/places/maps/lab_intel.png";
+  std::ofstream(d / "run.ini") << "[topology_run]\nmap = " << map << "\nmodel = " << kModel
+                                << "\noutput = " << (d / "out").string()
+                                << "\n[topology]\nthreads = 2\noverlay_scale = 1\n[correction]\nmin_room_area = 3.5\n";
+  ASSERT_EQ(runTopology((d / "run.ini").string() + " -q", d / "err"), 0) << slurp(d / "err");
+  const std::string ini = slurp(d / "out" / "options.ini");
+  EXPECT_EQ(ini.rfind("[topology_run]\nmap = " + fs::absolute(map).lexically_normal().string() + "\nmodel = " +
+                          fs::absolute(kModel).lexically_normal().string() + "\noutput = " + (d / "out").string() +
+                          "\n\n[topology]\n",
+                      0),
+            0u)
+      << ini;
+  EXPECT_NE(ini.find("\noverlay_scale = 1\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\n[correction]\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\nmin_room_area = 3.5\n"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\n[relaxation]\nmax_iterations = 30\n"), std::string::npos) << ini;
+  // The overlay at scale 1 has the map's size.
+  EXPECT_EQ(cv::imread((d / "out" / "overlay.png").string()).size(), cv::imread(map).size());
+  fs::rename(d / "out", d / "saved");
+  ASSERT_EQ(runTopology((d / "saved" / "options.ini").string() + " -q", d / "err"), 0) << slurp(d / "err");
+  for (const char* f : kTopologyOutputs) EXPECT_EQ(slurp(d / "out" / f), slurp(d / "saved" / f)) << f;
+  // Its options through -c give the same run too (options.ini differs in the output directory only).
+  ASSERT_EQ(runTopology(map + " -m " + kModel + " -c " + (d / "saved" / "options.ini").string() + " -o " +
+                            (d / "again").string() + " -q",
+                        d / "err"),
+            0)
+      << slurp(d / "err");
+  for (const char* f : kTopologyOutputs)
+    EXPECT_EQ(withoutLine(slurp(d / "again" / f), "output"), withoutLine(slurp(d / "saved" / f), "output")) << f;
+}
+
+TEST(TopologyApp, FlagsOverrideTheRunIni) {
+  const fs::path d = fresh("run_ini_flags");
+  std::ofstream(d / "run.ini") << "[topology_run]\nmap = " << kData << "/places/maps/lab_intel.png\nmodel = "
+                                << (d / "missing_model.yml").string() << "\noutput = " << (d / "out").string()
+                                << "\n[topology]\nthreads = 1\n";
+  ASSERT_EQ(runTopology((d / "run.ini").string() + " -m " + kModel + " -o " + (d / "other").string() +
+                            " --threads 2 -q",
+                        d / "err"),
+            0)
+      << slurp(d / "err");
+  EXPECT_FALSE(fs::exists(d / "out"));
+  const std::string ini = slurp(d / "other" / "options.ini");
+  EXPECT_NE(ini.find("\nmodel = " + fs::absolute(kModel).lexically_normal().string() + "\noutput = " +
+                     (d / "other").string() + "\n"),
+            std::string::npos)
+      << ini;
+  EXPECT_NE(ini.find("\nthreads = 2\n"), std::string::npos) << ini;
+}
+
+TEST(TopologyApp, RunIniErrorsNameFileLineSectionAndKey) {
+  const fs::path d = fresh("run_ini_errors");
+  const std::string ini = (d / "run.ini").string();
+  const std::string map = kData + "/places/maps/lab_intel.png";
+  auto expectError = [&](const std::string& text, const std::string& message) {
+    std::ofstream(ini) << text;
+    EXPECT_EQ(runTopology(ini + " -q", d / "err"), 1) << slurp(d / "err");
+    EXPECT_NE(slurp(d / "err").find("gridtopo-topology: error: " + ini + message), std::string::npos)
+        << slurp(d / "err");
+    EXPECT_FALSE(fs::exists(d / "out"));
+  };
+  const std::string out = "output = " + (d / "out").string() + "\n";
+  expectError("[topology_run]\n" + out, ":1: [topology_run] map: missing");
+  expectError("[topology_run]\nmap = /nonexistent/map.png\n" + out,
+              ":2: [topology_run] map: no such file '/nonexistent/map.png'");
+  expectError("[topology_run]\nmap = " + map + "\nmodel = /nonexistent/model.yml\n" + out,
+              ":3: [topology_run] model: no such file '/nonexistent/model.yml'");
+  expectError("[topology_run]\nmap = " + map + "\n", ":1: [topology_run] output: missing");
+  expectError("[topology_run]\nmap = " + map + "\n" + out + "maps = x\n",
+              ":4: [topology_run] maps: unknown key (expected map, model, output)");
+  expectError("[topology_run]\nmap = " + map + "\n" + out + "[topolgy]\n",
+              ":4: [topolgy]: unknown section (expected topology_run, topology, relaxation, correction)");
+  expectError("[topology_run]\nmap = " + map + "\n" + out + "[correction]\nmin_room = 3\n",
+              ":5: [correction] min_room: unknown key");
+  expectError("[topology_run]\nmap = " + map + "\n" + out + "[topology]\n\nthreads = 0\n",
+              ":6: [topology] threads: must be in [1, 256]");
+  // A RUN.ini and -c at once, and no output directory: usage errors.
+  std::ofstream(ini) << "[topology_run]\nmap = " << map << "\n" << out;
+  EXPECT_EQ(runTopology(ini + " -c " + std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/topology.ini", d / "err"), 2);
+  EXPECT_EQ(runTopology(map, d / "err"), 2);
+  EXPECT_NE(slurp(d / "err").find("gridtopo-topology: usage: name the output directory (-o)"), std::string::npos)
+      << slurp(d / "err");
 }
 
 // A probabilistic grid like the ones gridtopo-slam writes: free cells are confident (p_free 0.95) but never reach the

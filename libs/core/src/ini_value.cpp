@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 
 namespace gridtopo {
 
@@ -90,5 +91,18 @@ std::optional<std::string> parseIniValue(const std::string& text, std::string& o
   out = text;
   return std::nullopt;
 }
+
+std::string iniText(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+std::string iniText(int v) { return std::to_string(v); }
+
+std::string iniText(bool v) { return v ? "true" : "false"; }
+
+std::string iniText(const std::string& v) { return v; }
 
 }  // namespace gridtopo

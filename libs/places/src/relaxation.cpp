@@ -18,6 +18,12 @@ void RelaxationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
   validate("[" + sec + "]");
 }
 
+void RelaxationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
+  t.write(sec, "max_iterations", iniText(max_iterations));
+  t.write(sec, "tolerance", iniText(tolerance));
+  t.write(sec, "neighbourhood_radius", iniText(neighbourhood_radius));
+}
+
 void RelaxationOptions::dumpToTextStream(std::ostream& out) const {
   out << "max_iterations = " << max_iterations << "\n"
       << "tolerance      = " << tolerance << "\n"

@@ -18,8 +18,7 @@
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
-#include "gridtopo/slam/options_ini.h"
-#include "gridtopo/slam/slam_outputs.h"
+#include "gridtopo/slam/slam_run_ini.h"
 
 namespace gridtopo::session {
 
@@ -299,25 +298,20 @@ std::optional<eval::RelationsResult> Session::relationsError(const SlamSnapshot&
 }
 
 void Session::saveSlamOutputs(const std::string& dir) {
+  if (!runner_) throw std::runtime_error("no SLAM run to save");
+  // An idle run's snapshot is the one that acknowledged the pause (or the end), so it counts the scans the run
+  // has fed; saveOutputs refuses a running one.
   const auto s = slamSnapshot();
-  if (!s) throw std::runtime_error("no SLAM run to save");
-  if (s->state == RunState::Running) throw std::runtime_error("pause the run before saving");
-  if (s->trajectory.empty() || s->trajectory_scans != s->scans_fed)
-    throw std::runtime_error("the run has no complete trajectory yet (process at least one scan)");
-  // The files and formats of gridtopo-slam, from the snapshot.
-  slam::SlamOutputs outputs;
-  outputs.grid = slam::toOccupancyGrid(s->best_map);
-  outputs.trajectory = s->trajectory;
-  outputs.trajectory_header = {"gridtopo-gui " + log_path_, "one pose per laser scan, best particle (" +
-                                                                std::to_string(s->scans_fed) + " scans)"};
-  outputs.simplemap = slam::simpleMapOf(s->particles[s->best].node, runner_->scans());
-  std::ostringstream stats;
-  stats << "# " << slam::kStatsColumns << "\n";
-  for (const auto& st : s->stats) stats << slam::statsRow(st) << '\n';
-  outputs.stats = stats.str();
-  // A loadable [slam] INI, so `gridtopo-slam -c` and the GUI can rerun with it.
-  outputs.options_ini = slam::slamOptionsIni(runner_->options());
-  slam::writeSlamOutputs(dir, outputs);
+  // The files and formats of gridtopo-slam; options.ini is the RUN.ini that reruns the part of the log fed so far.
+  slam::SlamRunSpec spec;
+  spec.input = log_path_;
+  spec.output = dir;
+  spec.max_scans = s->scans_fed;
+  spec.options = runner_->options();
+  runner_->saveOutputs(dir,
+                       {"gridtopo-gui " + log_path_,
+                        "one pose per laser scan, best particle (" + std::to_string(s->scans_fed) + " scans)"},
+                       slam::slamRunIni(spec));
 }
 
 void Session::useSlamMap() {

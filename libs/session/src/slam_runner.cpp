@@ -1,9 +1,9 @@
 #include "gridtopo/session/slam_runner.h"
 
-#include <fstream>
-#include <sstream>
+#include <stdexcept>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/process_memory.h"
 
 namespace gridtopo::session {
 
@@ -18,27 +18,11 @@ const char* toString(RunState s) {
   return "?";
 }
 
-void processMemory(std::size_t& rss, std::size_t& peak) {
-  rss = peak = 0;
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line)) {
-    std::istringstream in(line);
-    std::string key;
-    std::size_t kb = 0;
-    in >> key >> kb;
-    if (key == "VmRSS:") rss = kb * 1024;
-    if (key == "VmHWM:") peak = kb * 1024;
-  }
-}
-
 SlamRunner::SlamRunner(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const slam::SlamOptions& options,
                        const RunnerOptions& runner)
     : scans_(std::move(scans)), options_(options), ropt_(runner) {
-  if (!scans_ || scans_->empty()) throw InputError("<log>", "the log holds no laser scans");
-  options_.validate("<options>", "slam");
-  limit_ = ropt_.max_scans ? std::min(ropt_.max_scans, scans_->size()) : scans_->size();
-  slam_ = std::make_unique<slam::RbpfSlam>(options_);
+  run_ = std::make_unique<slam::SlamRun>(scans_, options_, ropt_.max_scans);
+  limit_ = run_->scanLimit();
   publish(true);
   worker_ = std::thread([this] { run(); });
 }
@@ -92,6 +76,15 @@ bool SlamRunner::waitIdle(std::chrono::milliseconds timeout) const {
   return cv_.wait_for(lk, timeout, [&] { return idle() && snapshot_ && snapshot_->state == state_; });
 }
 
+void SlamRunner::saveOutputs(const std::string& dir, const std::vector<std::string>& trajectory_header,
+                             const std::string& options_ini) const {
+  // Holding the lock keeps the worker where it is: idle and acknowledged (its snapshot shows the idle state), so it
+  // does not touch the run until the next command, which cannot come while the lock is held.
+  std::lock_guard<std::mutex> lk(mu_);
+  if (!(idle() && snapshot_ && snapshot_->state == state_)) throw std::runtime_error("pause the run before saving");
+  slam::writeSlamOutputs(dir, run_->outputs(trajectory_header, options_ini));
+}
+
 std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {
   std::lock_guard<std::mutex> lk(mu_);
   return snapshot_;
@@ -99,18 +92,20 @@ std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {
 
 void SlamRunner::publish(bool with_trajectory) {
   // Called by the worker (or the constructor before the worker exists): reads the filter freely.
+  const slam::RbpfSlam& filter = run_->filter();
+  const std::size_t fed = run_->scansFed();
   auto s = std::make_shared<SlamSnapshot>();
-  s->scans_fed = next_scan_;
+  s->scans_fed = fed;
   s->scans_total = limit_;
-  s->steps = slam_->stepsProcessed();
+  s->steps = filter.stepsProcessed();
   const auto& sc = *scans_;
   const double t_first = sc.front().scan.timestamp;
   s->log_duration = sc[limit_ - 1].scan.timestamp - t_first;
-  if (next_scan_ > 0) {
-    s->last_scan = next_scan_ - 1;
-    s->log_time = sc[next_scan_ - 1].scan.timestamp - t_first;
+  if (fed > 0) {
+    s->last_scan = fed - 1;
+    s->log_time = sc[fed - 1].scan.timestamp - t_first;
   }
-  const auto& ps = slam_->particles();
+  const auto& ps = filter.particles();
   s->particles.reserve(ps.size());
   double max_lw = -1e300;
   for (const auto& p : ps) max_lw = std::max(max_lw, p.log_weight);
@@ -119,24 +114,26 @@ void SlamRunner::publish(bool with_trajectory) {
   for (const auto& p : ps)
     s->particles.push_back({p.pose, std::exp(p.log_weight - max_lw) / sum, p.log_weight_total, p.node});
   if (!ps.empty()) {
-    s->best = slam_->bestParticleIndex();
+    s->best = filter.bestParticleIndex();
     s->best_map = ps[s->best].map;  // shares tiles
     s->last_scan_pose = ps[s->best].pose;
   }
-  if (with_trajectory || next_scan_ == limit_) {
-    last_trajectory_poses_ = slam_->trajectory();
-    last_trajectory_scans_ = next_scan_;
+  if (with_trajectory || fed == limit_) {
+    last_trajectory_poses_ = filter.trajectory();
+    last_trajectory_scans_ = fed;
     last_trajectory_ = std::chrono::steady_clock::now();
   }
   s->trajectory = last_trajectory_poses_;
   s->trajectory_scans = last_trajectory_scans_;
-  s->stats = slam_->stats();
-  s->wall_seconds = wall_;
-  if (wall_ > 0 && next_scan_ > 0) {
-    s->scans_per_second = next_scan_ / wall_;
-    s->eta_seconds = (limit_ - next_scan_) / s->scans_per_second;
+  s->stats = filter.stats();
+  s->wall_seconds = run_->filterSeconds();
+  if (s->wall_seconds > 0 && fed > 0) {
+    s->scans_per_second = fed / s->wall_seconds;
+    s->eta_seconds = (limit_ - fed) / s->scans_per_second;
   }
-  processMemory(s->rss_bytes, s->peak_rss_bytes);
+  const ProcessMemory memory = processMemory();
+  s->rss_bytes = memory.rss_kb * 1024;
+  s->peak_rss_bytes = memory.peak_kb * 1024;
   std::lock_guard<std::mutex> lk(mu_);
   s->state = state_;
   s->error = error_;
@@ -162,22 +159,19 @@ void SlamRunner::run() {
       }
     }
     // One scan.
-    const auto t0 = clock::now();
     bool processed = false;
     try {
-      processed = slam_->processScan((*scans_)[next_scan_]);
-      ++next_scan_;
+      processed = run_->step();
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lk(mu_);
       error_ = e.what();
       state_ = RunState::Failed;
     }
-    wall_ += std::chrono::duration<double>(clock::now() - t0).count();
     bool state_changed = false;
     {
       std::lock_guard<std::mutex> lk(mu_);
       if (state_ == RunState::Running) {
-        if (next_scan_ >= limit_) {
+        if (run_->atEnd()) {
           state_ = RunState::Finished;
           state_changed = true;
         } else if (pending_steps_ > 0 && processed && --pending_steps_ == 0) {

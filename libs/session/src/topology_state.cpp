@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/core/output_set.h"
 #include "gridtopo/places/features.h"
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/regions.h"
+#include "gridtopo/topology/topology_outputs.h"
 
 namespace gridtopo::session {
 
@@ -262,31 +262,11 @@ std::string NodeInspection::text() const {
 }
 
 void saveTopologyOutputs(const TopologyData& t, const std::string& dir, const topology::TopologyOptions& options) {
-  const int overlay_scale = options.overlay_scale;
   if (t.topo.labels.empty()) throw std::runtime_error("no topology with labels to save");
-  OutputSet outs;
-  outs.write(dir + "/topology.graphml",
-             [&](const std::string& p) { writeTextFileAtomically(p, topology::toGraphML(t.topo.graph)); });
-  outs.write(dir + "/topology.json",
-             [&](const std::string& p) { writeTextFileAtomically(p, topology::toJson(t.topo.graph)); });
-  outs.write(dir + "/topology.dot",
-             [&](const std::string& p) { writeTextFileAtomically(p, topology::toDot(t.topo.graph)); });
-  auto png = [&](const std::string& name, const cv::Mat& img) {
-    outs.write(dir + "/" + name, [&](const std::string& p) {
-      if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
-    });
-  };
-  png("overlay.png", topology::renderOverlay(t.occ, t.topo.labels, t.topo.regions, t.topo.graph, overlay_scale));
-  png("labels.png", places::labelsToCodes(t.topo.labels));
-  if (t.has_labelling) png("labels_before_correction.png", places::labelsToCodes(t.labelling.labels));
-  if (!t.topo.segmentation.empty()) {
-    png("segmentation.png", topology::segmentationImage16(t.topo.segmentation));
-    png("segmentation_colour.png", topology::colourSegmentation(t.topo.segmentation));
-  }
-  std::ostringstream used;
-  options.dumpToTextStream(used);
-  outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, used.str()); });
-  outs.commit();
+  // The files of gridtopo-topology; options.ini holds the options as a loadable INI (its -c, or a RUN.ini's
+  // option sections).
+  topology::writeTopologyOutputs(dir, t.occ, t.topo, t.has_labelling ? t.labelling.labels : cv::Mat(),
+                                 options.overlay_scale, topology::topologyOptionsIni(options));
 }
 
 }  // namespace gridtopo::session

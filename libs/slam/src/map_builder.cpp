@@ -5,7 +5,6 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <mrpt/poses/CPose3DPDFParticles.h>
 
 #include <cmath>
@@ -24,20 +23,20 @@ CMetricMapBuilderGridRbpf::CMetricMapBuilderGridRbpf(const SlamOptions& options)
 void CMetricMapBuilderGridRbpf::initialize(const mrpt::maps::CSimpleMap& initialMap,
                                            const mrpt::poses::CPosePDF* x0) {
   std::lock_guard<std::mutex> lock(critZoneChangingMap);
-  filter_ = std::make_unique<RbpfSlam>(slamOptions);
-  frames_.clear();
+  run_ = std::make_unique<SlamRun>(slamOptions);
+  RbpfSlam& filter = run_->filter();
   has_odometry_ = false;
   odometry_ = {0, 0, 0};
   if (x0) {
     const auto m = x0->getMeanVal();
-    filter_->setInitialPose({m.x(), m.y(), m.phi()});
+    filter.setInitialPose({m.x(), m.y(), m.phi()});
   }
   for (const auto& [pose, sf] : initialMap) {
     if (!pose || !sf) continue;
     const auto p = pose->getMeanVal();
     for (const auto& o : *sf)
       if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o))
-        filter_->insertKnownScan({p.x(), p.y(), p.yaw()}, io::fromMrptScan(*scan));
+        filter.insertKnownScan({p.x(), p.y(), p.yaw()}, io::fromMrptScan(*scan));
   }
 }
 
@@ -49,13 +48,8 @@ void CMetricMapBuilderGridRbpf::feed(const mrpt::obs::CObservation& obs) {
   r.scan.timestamp = mrpt::Clock::toDouble(scan->timestamp);
   r.has_odometry = has_odometry_;
   r.odometry = odometry_;
-  r.source_index = filter_->scansSeen();
-  const std::size_t index = filter_->scansSeen();
-  if (options.enableMapUpdating && filter_->processScan(r)) {
-    auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(std::dynamic_pointer_cast<mrpt::obs::CObservation>(scan->duplicateGetSmartPtr()));
-    frames_[index] = sf;
-  }
+  r.source_index = run_->scansFed();
+  if (options.enableMapUpdating) run_->feed(std::move(r));
 }
 
 void CMetricMapBuilderGridRbpf::processActionObservation(mrpt::obs::CActionCollection& action,
@@ -83,7 +77,7 @@ void CMetricMapBuilderGridRbpf::processObservation(const mrpt::obs::CObservation
 }
 
 mrpt::poses::CPose3DPDF::Ptr CMetricMapBuilderGridRbpf::getCurrentPoseEstimation() const {
-  const auto& ps = filter_->particles();
+  const auto& ps = run_->filter().particles();
   auto pdf = std::make_shared<mrpt::poses::CPose3DPDFParticles>(std::max<std::size_t>(1, ps.size()));
   if (ps.empty()) return pdf;
   std::vector<double> lw;
@@ -97,37 +91,28 @@ mrpt::poses::CPose3DPDF::Ptr CMetricMapBuilderGridRbpf::getCurrentPoseEstimation
 }
 
 void CMetricMapBuilderGridRbpf::getCurrentlyBuiltMap(mrpt::maps::CSimpleMap& out_map) const {
-  out_map.clear();
-  if (filter_->particles().empty()) return;
-  for (const TrajectoryNode* n : pathOf(filter_->bestParticle().node)) {
-    const auto it = frames_.find(n->scan_index);
-    if (it == frames_.end()) continue;
-    auto pose = std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
-        mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0));
-    out_map.insert(pose, it->second);
-  }
+  out_map = run_->simpleMap();
 }
 
 unsigned int CMetricMapBuilderGridRbpf::getCurrentlyBuiltMapSize() {
-  if (filter_->particles().empty()) return 0;
-  unsigned int n = 0;
-  for (const TrajectoryNode* node : pathOf(filter_->bestParticle().node)) n += frames_.count(node->scan_index) > 0;
-  return n;
+  return static_cast<unsigned int>(run_->filter().stepsProcessed());
 }
 
 const mrpt::maps::CMultiMetricMap* CMetricMapBuilderGridRbpf::getCurrentlyBuiltMetricMap() const {
   metric_map_.maps.clear();
-  if (!filter_->particles().empty()) {
-    auto grid = std::make_shared<mrpt::maps::COccupancyGridMap2D>(toOccupancyGrid(filter_->bestParticle().map));
+  const RbpfSlam& filter = run_->filter();
+  if (!filter.particles().empty()) {
+    auto grid = std::make_shared<mrpt::maps::COccupancyGridMap2D>(toOccupancyGrid(filter.bestParticle().map));
     metric_map_.maps.push_back(grid);
   }
   return &metric_map_;
 }
 
 void CMetricMapBuilderGridRbpf::saveCurrentEstimationToImage(const std::string& file, bool /*formatEMF_BMP*/) {
-  if (filter_->particles().empty()) throw std::runtime_error("saveCurrentEstimationToImage: no map yet");
-  const auto grid = toOccupancyGrid(filter_->bestParticle().map);
-  if (!cv::imwrite(file, renderMap(grid, filter_->trajectory())))
+  const RbpfSlam& filter = run_->filter();
+  if (filter.particles().empty()) throw std::runtime_error("saveCurrentEstimationToImage: no map yet");
+  const auto grid = toOccupancyGrid(filter.bestParticle().map);
+  if (!cv::imwrite(file, renderMap(grid, filter.trajectory())))
     throw std::runtime_error("saveCurrentEstimationToImage: cannot write " + file);
 }
 

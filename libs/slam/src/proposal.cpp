@@ -7,6 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/motion_model.h"
+#include "gridtopo/slam/prepared_scan.h"
+#include "gridtopo/slam/scan_matcher.h"
+#include "gridtopo/slam/slam_options.h"
+
 namespace gridtopo::slam {
 
 double logSumExp(const std::vector<double>& v) {
@@ -150,6 +156,120 @@ Pose2 sampleGaussian(const GaussianProposal& g, Rng& rng) {
   Eigen::Vector3d dz = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().cwiseProduct(z);
   Eigen::Vector3d x = ldlt.transpositionsP().transpose() * (ldlt.matrixL() * dz);
   return {g.mean.x + x.x(), g.mean.y + x.y(), wrapAngle(g.mean.theta + x.z())};
+}
+
+namespace {
+/// The minimum sigmas on the proposal's diagonal (numerical safety).
+void addFloor(GaussianProposal& g, const ProposalOptions& p) {
+  g.cov(0, 0) += p.min_sigma_xy * p.min_sigma_xy;
+  g.cov(1, 1) += p.min_sigma_xy * p.min_sigma_xy;
+  g.cov(2, 2) += p.min_sigma_theta * p.min_sigma_theta;
+}
+}  // namespace
+
+ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                          const Pose2* start) {
+  ProposalPlan plan;
+  plan.type = o.proposal.type;
+  if (o.proposal.type == ProposalType::Odometry) return plan;
+  if (o.proposal.type == ProposalType::ModeOnly) {
+    plan.matched = true;  // matched per particle in drawFromProposal (from its own motion sample)
+    return plan;
+  }
+  const double inv_gain = 1.0 / o.likelihood_gain;
+  const Pose2 predicted = start ? *start : compose(prev, u);
+  MatchPrior prior;
+  prior.likelihood_scale = inv_gain;
+  prior.log_prior = [&](const Pose2& x) { return motion.logDensity(x, prev, u, has_odometry); };
+  ScanScorer scorer(map, scan, o.matcher);
+  const MatchResult m = matchScan(scorer, predicted, o.matcher.use_motion_prior ? &prior : nullptr);
+  plan.evaluations = m.evaluations;
+  if (!m.ok) return plan;
+  plan.matched = true;
+  // Informed proposal: ln p(z|m,x_j) at K poses on a grid around the mode.
+  const int n = o.proposal.points_per_axis;
+  const double half = 0.5 * (n - 1);
+  std::vector<Pose2> xs;
+  std::vector<double> log_lik;
+  xs.reserve(static_cast<std::size_t>(n) * n * n);
+  log_lik.reserve(xs.capacity());
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Pose2 x{m.pose.x + (i - half) * o.proposal.delta_xy, m.pose.y + (j - half) * o.proposal.delta_xy,
+                      wrapAngle(m.pose.theta + (k - half) * o.proposal.delta_theta)};
+        xs.push_back(x);
+        log_lik.push_back((i == n / 2 && j == n / 2 && k == n / 2 && (n % 2) == 1) ? m.score.log_likelihood
+                                                                                    : scorer.score(x).log_likelihood);
+      }
+  plan.evaluations += static_cast<int>(xs.size()) - (n % 2);
+  if (o.proposal.fit == ProposalFit::Quadratic) {
+    // Laplace's approximation of τ, centred on the mode the hill climb found (to a millimetre; the fit's own peak
+    // is smoothed over the grid and biased by truncated beams), with the curvature fitted over the K poses.
+    auto fitAtMode = [&](double min_curvature) {
+      LocalQuadratic q =
+          fitLocalQuadratic(xs, log_lik, m.pose, o.proposal.delta_xy, o.proposal.delta_theta, min_curvature);
+      q.b.setZero();
+      q.c = m.score.log_likelihood;
+      return q;
+    };
+    // The shape keeps only the directions the scan clearly observes.
+    const LocalQuadratic observed = fitAtMode(o.proposal.min_curvature);
+    if (observed.ok) {
+      const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
+      const Pose2 prediction = compose(prev, u);  // the motion prior's mean (the search may start elsewhere)
+      // The weight: the softened likelihood at the mode, or the integral of the softened target with every concave
+      // direction (the best local model of the integrand). The shape: the likelihood of beams that register to
+      // beam_sigma, times the motion prior.
+      plan.log_weight_increment =
+          o.proposal.weight == ProposalWeight::Mode
+              ? m.score.log_likelihood * inv_gain
+              : informedGaussian(fitAtMode(0.0), inv_gain, m.pose, prediction, sg.xy, sg.theta).log_eta;
+      const double shape_scale = std::pow(o.matcher.sigma / o.proposal.beam_sigma, 2);
+      plan.gaussian = informedGaussian(observed, shape_scale, m.pose, prediction, sg.xy, sg.theta);
+      addFloor(plan.gaussian, o.proposal);
+      return plan;
+    }
+  }
+  // The paper's moments: τ_j = p(z|m,x_j)^(1/gain)·p(x_j|x_{t-1},u).
+  std::vector<double> log_tau(xs.size());
+  for (std::size_t j = 0; j < xs.size(); ++j)
+    log_tau[j] = log_lik[j] * inv_gain + motion.logDensity(xs[j], prev, u, has_odometry);
+  plan.gaussian = fitProposal(xs, log_tau, m.pose);
+  addFloor(plan.gaussian, o.proposal);
+  // The weight factor approximates the integral ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx, so that it is
+  // commensurate with the weight of a particle whose matching failed (odometry proposal: p(z|m,x)^(1/gain) at a
+  // motion sample, a one-sample Monte-Carlo estimate of the same integral). η = Σ τ_j alone lacks the grid
+  // volume Δx·Δy·Δθ, and such particles would be discarded in every mixed step.
+  plan.log_weight_increment =
+      o.proposal.laplace_weight
+          ? logIntegralOnGrid(xs, log_tau, m.pose, o.proposal.delta_xy, o.proposal.delta_theta)
+          : logSumExp(log_tau) + 2.0 * std::log(o.proposal.delta_xy) + std::log(o.proposal.delta_theta);
+  return plan;
+}
+
+double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
+                        bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
+                        const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose) {
+  if (plan.type == ProposalType::ModeOnly) {
+    // GMapping: draw from the motion model, climb to the likelihood mode from there, weight p(z|m,x̂).
+    const Pose2 start = motion.sample(prev, u, rng, has_odometry);
+    const MatchResult m = matchScan(map, start, scan, o.matcher);
+    if (m.ok) {
+      out_pose = m.pose;
+      return m.score.log_likelihood / o.likelihood_gain;
+    }
+    out_pose = start;
+    return scoreScan(map, start, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
+  if (!plan.matched) {
+    // Odometry proposal (also the fallback when matching failed): sample the motion model, weight by p(z|m,x).
+    out_pose = motion.sample(prev, u, rng, has_odometry);
+    return scoreScan(map, out_pose, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
+  out_pose = plan.type == ProposalType::Informed ? sampleGaussian(plan.gaussian, rng) : plan.gaussian.mean;
+  return plan.log_weight_increment;
 }
 
 }  // namespace gridtopo::slam

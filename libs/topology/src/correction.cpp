@@ -25,6 +25,17 @@ void CorrectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
   validate("[" + sec + "]");
 }
 
+void CorrectionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
+  t.write(sec, "enabled", iniText(enabled));
+  t.write(sec, "min_place_area", iniText(min_place_area));
+  t.write(sec, "min_room_area", iniText(min_room_area));
+  t.write(sec, "min_corridor_area", iniText(min_corridor_area));
+  t.write(sec, "min_doorway_area", iniText(min_doorway_area));
+  t.write(sec, "doorways_must_separate", iniText(doorways_must_separate));
+  t.write(sec, "max_doorway_area", iniText(max_doorway_area));
+  t.write(sec, "max_passes", iniText(max_passes));
+}
+
 void CorrectionOptions::dumpToTextStream(std::ostream& out) const {
   out << "enabled                = " << enabled << "\n"
       << "min_place_area         = " << min_place_area << "   // m^2\n"

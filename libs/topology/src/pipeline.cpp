@@ -3,6 +3,7 @@
 
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
 #include <string>
@@ -15,29 +16,37 @@
 
 namespace gridtopo::topology {
 
+namespace {
+// One table drives load and save of the [topology] keys, so that neither can miss one.
+template <class Options, class F>
+void forEachTopologyKey(Options& o, F&& f) {
+  f("threads", o.threads);
+  f("resolution", o.resolution);
+  f("free_threshold", o.free_threshold);
+  f("grid_free_threshold", o.grid_free_threshold);
+  f("free_opening_radius", o.free_opening_radius);
+  f("grid_free_opening_radius", o.grid_free_opening_radius);
+  f("overlay_scale", o.overlay_scale);
+  f("segmentation", o.segmentation);
+  f("merge_contact", o.seg_rules.merge_contact);
+  f("split_neck_width", o.seg_rules.neck_width);
+  f("split_min_part_area", o.seg_rules.min_part_area);
+  f("split_fill_obstacle_area", o.seg_rules.fill_obstacle_area);
+  f("segment_vote", o.seg_rules.segment_vote);
+  f("blob_vote", o.blob_vote.enabled);
+  f("blob_vote_neck_width", o.blob_vote.neck_width);
+  f("blob_vote_min_core_area", o.blob_vote.min_core_area);
+  f("blob_vote_grow_limit", o.blob_vote.grow_limit);
+  f("blob_vote_fill_obstacle_area", o.blob_vote.fill_obstacle_area);
+  f("blob_vote_min_share", o.blob_vote.min_share);
+  f("corridor_split", o.corridor_split.enabled);
+  f("corridor_min_branch", o.corridor_split.min_branch);
+  f("corridor_min_piece_area", o.corridor_split.min_piece_area);
+}
+}  // namespace
+
 void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  readIniValue(s, sec, "threads", threads);
-  readIniValue(s, sec, "resolution", resolution);
-  readIniValue(s, sec, "free_threshold", free_threshold);
-  readIniValue(s, sec, "grid_free_threshold", grid_free_threshold);
-  readIniValue(s, sec, "free_opening_radius", free_opening_radius);
-  readIniValue(s, sec, "grid_free_opening_radius", grid_free_opening_radius);
-  readIniValue(s, sec, "overlay_scale", overlay_scale);
-  readIniValue(s, sec, "segmentation", segmentation);
-  readIniValue(s, sec, "merge_contact", seg_rules.merge_contact);
-  readIniValue(s, sec, "split_neck_width", seg_rules.neck_width);
-  readIniValue(s, sec, "split_min_part_area", seg_rules.min_part_area);
-  readIniValue(s, sec, "split_fill_obstacle_area", seg_rules.fill_obstacle_area);
-  readIniValue(s, sec, "segment_vote", seg_rules.segment_vote);
-  readIniValue(s, sec, "blob_vote", blob_vote.enabled);
-  readIniValue(s, sec, "blob_vote_neck_width", blob_vote.neck_width);
-  readIniValue(s, sec, "blob_vote_min_core_area", blob_vote.min_core_area);
-  readIniValue(s, sec, "blob_vote_grow_limit", blob_vote.grow_limit);
-  readIniValue(s, sec, "blob_vote_fill_obstacle_area", blob_vote.fill_obstacle_area);
-  readIniValue(s, sec, "blob_vote_min_share", blob_vote.min_share);
-  readIniValue(s, sec, "corridor_split", corridor_split.enabled);
-  readIniValue(s, sec, "corridor_min_branch", corridor_split.min_branch);
-  readIniValue(s, sec, "corridor_min_piece_area", corridor_split.min_piece_area);
+  forEachTopologyKey(*this, [&](const char* key, auto& value) { readIniValue(s, sec, key, value); });
   const std::string where = "[" + sec + "]";
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
   if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
@@ -75,6 +84,18 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
+}
+
+void TopologyOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
+  forEachTopologyKey(*this, [&](const char* key, const auto& value) { t.write(sec, key, iniText(value)); });
+  relaxation.saveToConfigFile(t, "relaxation");
+  correction.saveToConfigFile(t, "correction");
+}
+
+std::string topologyOptionsIni(const TopologyOptions& options) {
+  mrpt::config::CConfigFileMemory ini;
+  options.saveToConfigFile(ini, "topology");
+  return ini.getContent();
 }
 
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {

@@ -26,6 +26,13 @@ std::optional<std::string> parseIniValue(const std::string& text, float& out);
 std::optional<std::string> parseIniValue(const std::string& text, bool& out);
 std::optional<std::string> parseIniValue(const std::string& text, std::string& out);
 
+/// The text an INI file holds for a value so that parseIniValue reads back the same value: numbers to 17
+/// significant digits (doubles round-trip exactly), booleans as true / false, strings as they are.
+std::string iniText(double v);
+std::string iniText(int v);
+std::string iniText(bool v);
+std::string iniText(const std::string& v);
+
 /// `value` from key `key` of `section` if the key exists (else unchanged). Works with any MRPT config
 /// (CConfigFileBase: keyExists, read_string). Throws InputError("[section]", 0, key, "cannot parse '<text>' as
 /// <what>") on a malformed value.

@@ -22,6 +22,8 @@ struct RelaxationOptions : public mrpt::config::CLoadableOptions {
   int neighbourhood_radius = 1;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  /// Every key, loadable by loadFromConfigFile to the same values (doubles to 17 digits).
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
   void validate(const std::string& where = "RelaxationOptions") const;
 };

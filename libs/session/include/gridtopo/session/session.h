@@ -127,7 +127,8 @@ class Session {
   /// Relations error of the snapshot's trajectory (cached per trajectory); nullopt without relations.
   std::optional<eval::RelationsResult> relationsError(const SlamSnapshot& s);
   /// Writes map.png, map.pgm + map.yaml, map.gridmap.gz, map.simplemap, trajectory.txt, stats.txt, options.ini
-  /// from the latest snapshot (the run must be paused or over), with the io writers gridtopo-slam uses.
+  /// of the run so far (it must be paused or over), through the SlamRun gridtopo-slam uses; options.ini is the
+  /// RUN.ini (slam::slamRunIni) that reruns the scans fed so far with `gridtopo-slam OUT/options.ini`.
   void saveSlamOutputs(const std::string& dir);
   /// Makes the SLAM's current best map the session map (for the topology view and the label painter), through
   /// the same conversion as the saved map (slam::toOccupancyGrid + io::gridToImage).

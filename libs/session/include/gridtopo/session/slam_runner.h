@@ -1,6 +1,6 @@
 #pragma once
-// Runs the RBPF SLAM (gridtopo::slam::RbpfSlam) on a log in a worker thread with play / pause / step / stop,
-// and publishes read-only snapshots the GUI draws from. A snapshot shares the particle map tiles and the
+// Runs one SLAM run (gridtopo::slam::SlamRun, the scan loop gridtopo-slam drives too) on a log in a worker thread
+// with play / pause / step / stop, and publishes read-only snapshots the GUI draws from. A snapshot shares the particle map tiles and the
 // trajectory-tree nodes with the filter (both are immutable once shared: the map is copy-on-write and tree
 // nodes are const), so taking one costs a few vector copies, never a map copy, and the GUI thread never reads
 // memory the filter writes.
@@ -18,6 +18,7 @@
 #include "gridtopo/io/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_run.h"
 
 namespace gridtopo::session {
 
@@ -67,9 +68,6 @@ struct RunnerOptions {
   std::size_t max_scans = 0;          ///< feed at most this many scans (0 = the whole log)
 };
 
-/// Resident set size and its peak (bytes) of this process, from /proc/self/status (0 if unavailable).
-void processMemory(std::size_t& rss, std::size_t& peak);
-
 class SlamRunner {
  public:
   /// Validates the options and builds the filter (throws gridtopo::InputError on bad options or an empty log).
@@ -95,6 +93,12 @@ class SlamRunner {
   std::shared_ptr<const std::vector<io::ScanRecord>> scansPtr() const { return scans_; }
   std::size_t scanLimit() const { return limit_; }
 
+  /// Writes the run's output set (slam::writeSlamOutputs, whole or nothing) into `dir`, with `trajectory_header`
+  /// and `options_ini` (empty: the [slam] section alone). The worker must be idle (paused, finished, stopped): a
+  /// std::runtime_error otherwise, or when no scan has been processed yet. The run can go on afterwards.
+  void saveOutputs(const std::string& dir, const std::vector<std::string>& trajectory_header,
+                   const std::string& options_ini = "") const;
+
  private:
   void run();
   void publish(bool with_trajectory);
@@ -104,7 +108,8 @@ class SlamRunner {
   slam::SlamOptions options_;
   RunnerOptions ropt_;
   std::size_t limit_ = 0;
-  std::unique_ptr<slam::RbpfSlam> slam_;  // touched by the worker only (and by the constructor)
+  // Touched by the worker while running, by the constructor, and by saveOutputs while the worker is idle.
+  std::unique_ptr<slam::SlamRun> run_;
 
   mutable std::mutex mu_;
   mutable std::condition_variable cv_;  // commands -> worker, and worker -> waitIdle
@@ -115,8 +120,6 @@ class SlamRunner {
   std::atomic<std::uint64_t> version_{0};
 
   // worker-only
-  std::size_t next_scan_ = 0;
-  double wall_ = 0.0;
   std::chrono::steady_clock::time_point last_snapshot_{}, last_trajectory_{};
   std::size_t peak_rss_ = 0;
   std::vector<io::TimedPose> last_trajectory_poses_;

@@ -6,10 +6,10 @@
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/slam/CMetricMapBuilder.h>
 
-#include <map>
 #include <memory>
 
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_run.h"
 
 namespace gridtopo::slam {
 
@@ -33,7 +33,8 @@ class CMetricMapBuilderGridRbpf : public mrpt::slam::CMetricMapBuilder {
   /// Observation-only rawlog layout: CObservationOdometry sets the odometry, CObservation2DRangeScan is fed to
   /// the filter with the latest odometry; other observations are ignored.
   void processObservation(const mrpt::obs::CObservation::Ptr& obs);
-  /// The processed frames along the best particle's path with their poses.
+  /// The processed scans along the best particle's path at its poses (SlamRun::simpleMap, as gridtopo-slam writes
+  /// map.simplemap).
   void getCurrentlyBuiltMap(mrpt::maps::CSimpleMap& out_map) const override;
   unsigned int getCurrentlyBuiltMapSize() override;
   /// The best particle's map as a CMultiMetricMap holding one COccupancyGridMap2D (rebuilt on each call).
@@ -42,15 +43,16 @@ class CMetricMapBuilderGridRbpf : public mrpt::slam::CMetricMapBuilder {
   /// formatEMF_BMP is ignored, EMF is not supported).
   void saveCurrentEstimationToImage(const std::string& file, bool formatEMF_BMP = true) override;
 
-  const RbpfSlam& filter() const { return *filter_; }
+  const RbpfSlam& filter() const { return run_->filter(); }
+  /// The run the builder feeds (its statistics rows, its output set: SlamRun::outputs, writeSlamOutputs).
+  const SlamRun& run() const { return *run_; }
 
  private:
   void feed(const mrpt::obs::CObservation& obs);
 
-  std::unique_ptr<RbpfSlam> filter_;
+  std::unique_ptr<SlamRun> run_;
   bool has_odometry_ = false;
   mrpt::math::TPose2D odometry_{0, 0, 0};
-  std::map<std::size_t, mrpt::obs::CSensoryFrame::Ptr> frames_;  ///< processed scan index -> its frame
   mutable mrpt::maps::CMultiMetricMap metric_map_;
 };
 

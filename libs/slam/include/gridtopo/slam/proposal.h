@@ -117,4 +117,31 @@ double logIntegralOnGrid(const std::vector<Pose2>& poses, const std::vector<doub
 /// ln Σ exp(v).
 double logSumExp(const std::vector<double>& v);
 
+class GridMap;
+struct PreparedScan;
+class OdometryMotionModel;
+struct SlamOptions;
+
+/// The deterministic part of one particle's step (predict, match, sample around the mode, fit the proposal):
+/// it depends only on the particle's map and previous pose, so particles duplicated by resampling share it.
+struct ProposalPlan {
+  bool matched = false;            ///< false: fall back to the odometry proposal
+  ProposalType type = ProposalType::Informed;
+  GaussianProposal gaussian;       ///< informed: N(μ, Σ) and ln η; mode-only: the mode in `mean`
+  double log_weight_increment = 0.0;  ///< ln(η·Δx·Δy·Δθ) ≈ ln ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx
+  int evaluations = 0;             ///< likelihood evaluations (scan matching + proposal)
+};
+
+/// Plans the proposal for a particle at `prev` with odometry increment `u` (in the frame of `prev`). The mode
+/// search starts at `start` when given (proposal_start_spread > 0), else at the prediction prev ⊕ u.
+ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
+                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
+                          const Pose2* start = nullptr);
+
+/// Draws the particle's new pose from the plan with the particle's own random stream; returns the weight
+/// increment (ln η for the informed proposal, ln p(z|m,x)/gain for mode-only and odometry).
+double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
+                        bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
+                        const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose);
+
 }  // namespace gridtopo::slam

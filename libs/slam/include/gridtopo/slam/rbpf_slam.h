@@ -3,6 +3,7 @@
 // (Grisetti, Stachniss, Burgard, "Improved techniques for grid mapping with Rao-Blackwellized particle filters",
 // IEEE T-RO 23(1), 2007). Feed scans in log order with processScan(); read the trajectory of every scan and the
 // best particle's map at any time.
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/motion_model.h"
+#include "gridtopo/slam/prepared_scan.h"
+#include "gridtopo/slam/proposal.h"
 #include "gridtopo/slam/slam_options.h"
 #include "gridtopo/slam/thread_pool.h"
 #include "gridtopo/slam/trajectory_tree.h"
@@ -43,28 +46,6 @@ struct StepStats {
   std::size_t map_bytes = 0;     ///< memory of those tiles
 };
 
-/// The deterministic part of one particle's step (predict, match, sample around the mode, fit the proposal):
-/// it depends only on the particle's map and previous pose, so particles duplicated by resampling share it.
-struct ProposalPlan {
-  bool matched = false;            ///< false: fall back to the odometry proposal
-  ProposalType type = ProposalType::Informed;
-  GaussianProposal gaussian;       ///< informed: N(μ, Σ) and ln η; mode-only: the mode in `mean`
-  double log_weight_increment = 0.0;  ///< ln(η·Δx·Δy·Δθ) ≈ ln ∫ p(z|m,x)^(1/gain) p(x|x_{t-1},u) dx
-  int evaluations = 0;             ///< likelihood evaluations (scan matching + proposal)
-};
-
-/// Plans the proposal for a particle at `prev` with odometry increment `u` (in the frame of `prev`). The mode
-/// search starts at `start` when given (proposal_start_spread > 0), else at the prediction prev ⊕ u.
-ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u, bool has_odometry,
-                          const PreparedScan& scan, const SlamOptions& o, const OdometryMotionModel& motion,
-                          const Pose2* start = nullptr);
-
-/// Draws the particle's new pose from the plan with the particle's own random stream; returns the weight
-/// increment (ln η for the informed proposal, ln p(z|m,x)/gain for mode-only and odometry).
-double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose2& prev, const Pose2& u,
-                        bool has_odometry, const PreparedScan& scan, const SlamOptions& o,
-                        const OdometryMotionModel& motion, Rng& rng, Pose2& out_pose);
-
 class RbpfSlam {
  public:
   explicit RbpfSlam(const SlamOptions& options);
@@ -76,7 +57,9 @@ class RbpfSlam {
   /// (to continue mapping on top of a previous map).
   void insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan);
 
-  /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy).
+  /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy): then, the
+  /// paper's steps for every particle: predict with the odometry, scan-match, sample around the mode and fit the
+  /// proposal, draw the pose and weight it, update the map; resample when N_eff < resample_threshold·N.
   bool processScan(const io::ScanRecord& record);
 
   /// A pose for every scan fed so far: processed scans from the best particle's path, the others from the
@@ -99,8 +82,46 @@ class RbpfSlam {
     bool has_odometry;
     Pose2 odometry;
   };
+  /// The odometry increment from the last processed scan to this one, when both carry odometry.
+  struct Odometry {
+    bool available = false;
+    Pose2 u;  ///< in the frame of the last processed scan's odometry pose
+  };
+  /// Which particles share one proposal plan: duplicates of one particle (same trajectory node and odometry
+  /// scale) unless every particle starts its mode search from its own motion sample.
+  struct ProposalGroups {
+    bool own_start = false;            ///< one group per particle (proposal_start_spread)
+    std::vector<std::size_t> leaders;  ///< the particle each group's plan is computed for
+    std::vector<std::size_t> group_of;  ///< particle -> group
+  };
+
   bool shouldProcess(const io::ScanRecord& r) const;
+  /// The first processed scan: every particle at the initial pose, with the prior map plus the scan.
+  void startParticles(const io::ScanRecord& record, const PreparedScan& scan, std::size_t index);
+  Odometry odometrySinceLastStep(const io::ScanRecord& record) const;
+  /// Predict: each particle's motion increment u (the odometry with the particle's odometry scale, after the
+  /// scale's random walk; without odometry a constant-velocity prediction from its last two poses).
+  std::vector<Pose2> predictWithOdometry(const io::ScanRecord& record, const Odometry& odo);
+  ProposalGroups groupParticles(bool has_odometry) const;
+  /// Scan-match, sample around the mode and fit the proposal (planProposal), once per group, in parallel.
+  std::vector<ProposalPlan> matchAndFitProposals(const ProposalGroups& groups, const std::vector<Pose2>& u,
+                                                 bool has_odometry, const PreparedScan& scan);
+  /// Draw every particle's new pose from its group's proposal and weight it (drawFromProposal); the match
+  /// failures and likelihood evaluations go into `st`. `estimates` gets the pose each particle reports in the
+  /// trajectory: the informed proposal's mean (proposal_report_mean), else the drawn pose.
+  std::vector<Pose2> sampleFromProposals(const ProposalGroups& groups, const std::vector<ProposalPlan>& plans,
+                                         const std::vector<Pose2>& u, bool has_odometry, const PreparedScan& scan,
+                                         StepStats& st, std::vector<Pose2>& estimates);
+  /// Update the maps: every particle moves to its new pose, inserts the scan there and extends its trajectory
+  /// (with the reported estimate of that pose).
+  void updateMaps(const std::vector<Pose2>& poses, const std::vector<Pose2>& estimates, const PreparedScan& scan,
+                  std::size_t index);
+  /// The normalised weights (for N_eff and resampling); the log weights are rebased to a maximum of 0.
+  std::vector<double> normaliseWeights();
+  /// Resample (low variance) with the normalised weights `w`; survivors restart at weight 1.
   void resample(const std::vector<double>& w);
+  /// Completes the step's statistics (tile counts every 20 steps, wall time since `t0`) and keeps them.
+  void recordStep(StepStats& st, std::chrono::steady_clock::time_point t0);
 
   SlamOptions o_;
   OdometryMotionModel motion_;

@@ -25,6 +25,8 @@ struct CorrectionOptions : public mrpt::config::CLoadableOptions {
   int max_passes = 20;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  /// Every key, loadable by loadFromConfigFile to the same values (doubles to 17 digits).
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
   void validate(const std::string& where = "CorrectionOptions") const;
 };

@@ -41,6 +41,8 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  /// Writes every key of [topology] (as `section`), [relaxation] and [correction], loadable to the same values.
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
 
   /// The free threshold for a map of kind `kind` (a file's: io::mapFileKind): grid_free_threshold for probabilistic
@@ -52,6 +54,10 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// grid_free_opening_radius for ROS maps and probabilistic grids.
   double freeOpeningRadiusFor(io::MapKind kind) const;
 };
+
+/// The options as a loadable INI text ([topology], [relaxation], [correction]; doubles to 17 digits): what
+/// loadTopologyOptions reads back to the same options.
+std::string topologyOptionsIni(const TopologyOptions& options);
 
 /// Reads a topology INI (config-ini/topology.ini: [topology], [relaxation], [correction]); an empty path gives the
 /// defaults. Errors (missing file, bad value) are InputErrors that name the INI file and the key.

@@ -1,0 +1,57 @@
+#pragma once
+// The layout of an INI file: its sections and keys in file order, with their line numbers and value texts. MRPT's
+// config classes read values but cannot say on which line a key sits, nor list what they did not expect; this
+// does both, for the strict checks and the error messages of the apps' RUN.ini files.
+// Syntax as in MRPT's INI files: "[section]", "key = value", comments after ';', '#' or "//" (whole lines, or after
+// white space behind a value); MRPT's "@define" lines are skipped.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gridtopo/core/error.h"
+
+namespace gridtopo {
+
+class IniFile {
+ public:
+  /// Reads `path`; InputError(path, "cannot read the INI file") if it cannot be opened.
+  static IniFile read(const std::string& path);
+  /// Parses `text`; `name` stands for the file in error messages.
+  static IniFile parse(const std::string& text, const std::string& name);
+
+  const std::string& name() const { return name_; }
+  bool hasSection(const std::string& section) const;
+  bool hasKey(const std::string& section, const std::string& key) const;
+  /// The sections in file order (each once).
+  std::vector<std::string> sections() const;
+  /// The keys of `section` in file order (each once).
+  std::vector<std::string> keys(const std::string& section) const;
+  /// The 1-based line of `[section]` (key empty) or of `key` in it; 0 when absent.
+  std::size_t line(const std::string& section, const std::string& key = "") const;
+  /// The line of `key` in `section`, else of the section's header (where the key belongs); 0 when neither is there.
+  std::size_t lineOrSection(const std::string& section, const std::string& key) const;
+  /// `e` with the line of the key its field names ("[section] key", as the options' loaders name it) when `e` names
+  /// no line and the key is in this file; else `e` as it is.
+  InputError withLine(const InputError& e) const;
+  /// The value of `key` without its comment (iniValueText); nothing when absent. The last one wins, as in MRPT.
+  std::optional<std::string> value(const std::string& section, const std::string& key) const;
+
+  /// Throws InputError(name, line, "[section]", "unknown section (expected ...)") for the first section that is not
+  /// in `known`.
+  void requireKnownSections(const std::vector<std::string>& known) const;
+  /// Throws InputError(name, line, "[section] key", "unknown key (expected ...)") for the first key of `section`
+  /// that is not in `known`; `where_listed` (e.g. "see config-ini/slam.ini") replaces the list of a long table.
+  void requireKnownKeys(const std::string& section, const std::vector<std::string>& known,
+                        const std::string& where_listed = "") const;
+
+ private:
+  struct Entry {
+    std::string section, key, value;  ///< key empty: the section's header line
+    std::size_t line = 0;
+  };
+  std::string name_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace gridtopo

@@ -1,0 +1,20 @@
+#pragma once
+// The process's memory as the kernel counts it (/proc/self/status), for the statistics of long runs, and giving
+// freed heap pages back to the system.
+#include <cstddef>
+
+namespace gridtopo {
+
+struct ProcessMemory {
+  std::size_t rss_kb = 0;   ///< resident set size now (VmRSS)
+  std::size_t peak_kb = 0;  ///< its peak so far (VmHWM)
+};
+
+/// The resident memory of this process; zeros where /proc/self/status is not available.
+ProcessMemory processMemory();
+
+/// Gives the pages of freed heap memory back to the system (glibc keeps them otherwise: many small blocks spread
+/// over the heap stay mapped after they are freed). A no-op on other C libraries.
+void releaseFreedMemory();
+
+}  // namespace gridtopo

@@ -1,0 +1,83 @@
+#pragma once
+// One SLAM run: the scan records, the filter (RbpfSlam) fed one scan at a time or to the end, the rows of
+// stats.txt (statsRow plus the process RSS), the time spent in the filter, and the run's output set
+// (SlamOutputs, writeSlamOutputs). gridtopo-slam, the GUI's runner thread (with its play / pause / step) and the
+// MRPT map builder (CMetricMapBuilderGridRbpf) all drive one, so the scan loop exists once.
+#include <mrpt/maps/CSimpleMap.h>
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gridtopo/io/scan_record.h"
+#include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_options.h"
+#include "gridtopo/slam/slam_outputs.h"
+
+namespace gridtopo::slam {
+
+class SlamRun {
+ public:
+  /// A run over a log read whole (shared with the caller, e.g. the GUI, which draws its scans): its first
+  /// `max_scans` scans, 0 = all. Throws InputError on bad options ("<options>" [slam] key) or an empty log.
+  SlamRun(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const SlamOptions& options,
+          std::size_t max_scans = 0);
+  /// A run without a log, fed scan by scan with feed() (the MRPT map builder). It keeps the ranges of the
+  /// processed scans only (what the simple map needs); the other records keep their time and odometry.
+  explicit SlamRun(const SlamOptions& options);
+
+  /// The filter: for setInitialPose / insertKnownScan before the first scan, and for reading its state.
+  RbpfSlam& filter();
+  const RbpfSlam& filter() const;
+  const SlamOptions& options() const { return options_; }
+
+  /// Feeds the next scan of the log; true if the filter processed it (update policy). std::logic_error at the end.
+  bool step();
+  /// Feeds every remaining scan; `progress(fed, total)` every 64 scans and once at the end.
+  void runToEnd(const std::function<void(std::size_t fed, std::size_t total)>& progress = {});
+  /// A run without a log: appends `record` and feeds it. std::logic_error for a run over a log.
+  bool feed(io::ScanRecord record);
+
+  bool atEnd() const { return fed_ >= limit_; }
+  std::size_t scansFed() const { return fed_; }
+  /// The scans this run feeds: min(max_scans, log size), or the scans appended so far by feed().
+  std::size_t scanLimit() const { return limit_; }
+  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
+  /// Wall time spent in the filter (s), pauses excluded.
+  double filterSeconds() const { return filter_seconds_; }
+
+  /// The text of stats.txt: "# " kStatsColumns " rss_kb", then one row per processed scan with the process's
+  /// resident memory (kB) right after that scan.
+  std::string statsText() const;
+  /// The best particle's processed scans at its poses (simpleMapOf).
+  mrpt::maps::CSimpleMap simpleMap() const;
+
+  /// The output set of the run so far; the run can go on. `options_ini` empty = slamOptionsIni(options()).
+  SlamOutputs outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "") const;
+  /// The output set at the end of a run, built so that the peak memory stays the filter's: the trajectory and
+  /// the best particle are taken, every particle's map freed but the best one's (and the memory given back to the
+  /// system), and only then the map and its pictures (3 bytes a cell) made. The run is over: it cannot be fed or
+  /// asked for outputs again.
+  SlamOutputs finish(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "");
+  /// finish(), then writeSlamOutputs(dir): the whole output set or nothing.
+  void finishAndWrite(const std::string& dir, const std::vector<std::string>& trajectory_header,
+                      const std::string& options_ini = "");
+  bool finished() const { return !filter_; }
+
+ private:
+  bool feedNext();
+  void requireFilter(const char* what) const;
+
+  SlamOptions options_;
+  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
+  std::shared_ptr<std::vector<io::ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
+  std::unique_ptr<RbpfSlam> filter_;
+  std::size_t limit_ = 0;
+  std::size_t fed_ = 0;
+  std::vector<std::size_t> rss_kb_;  ///< per processed scan
+  double filter_seconds_ = 0.0;
+};
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,57 @@
+#pragma once
+// A SLAM run as an INI file, in the spirit of MRPT's `rbpf-slam CONFIG.ini` (whose [MappingApplication] names the
+// rawlog and the output directory): `gridtopo-slam RUN.ini` reads
+//   [slam_run]  input = LOG, output = DIR, max_scans = N (0 = every scan)
+//   [slam]      the filter's options (SlamOptions, config-ini/slam.ini)
+// and the command-line flags override single values. A RUN.ini holds no other section and no unknown key (both are
+// InputErrors naming the file, the line, the section and the key). The options.ini a run writes is this INI, with
+// the paths absolute, so loading it again as RUN.ini (or its [slam] with -c) reproduces the run.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "gridtopo/slam/slam_options.h"
+
+namespace gridtopo::slam {
+
+inline constexpr const char* kSlamRunSection = "slam_run";
+
+struct SlamRunSpec {
+  std::string input;          ///< the log (CARMEN or MRPT rawlog); a relative path is taken from the working directory
+  std::string output;         ///< the output directory (likewise)
+  std::size_t max_scans = 0;  ///< feed only the first max_scans scans; 0 = every scan
+  SlamOptions options;
+  std::string ini;            ///< the RUN.ini this was read from; empty when none
+  bool input_from_ini = false;   ///< `input` is the RUN.ini's (no flag replaced it)
+  bool output_from_ini = false;  ///< `output` is the RUN.ini's
+};
+
+/// Reads a RUN.ini: [slam_run] and the options section `options_section` (either may be missing; the options
+/// keep their defaults then). InputError for an unreadable file, another section, an unknown key or a bad value.
+SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_section = "slam");
+
+/// The options of `section` of an options INI (`gridtopo-slam -c FILE`): InputError if the file or the section is
+/// missing or a value is bad. Other sections are not read.
+SlamOptions loadSlamOptionsIni(const std::string& path, const std::string& section = "slam");
+
+/// The command line's values of single options (gridtopo-slam -p, -s, -t, --proposal); unset = keep.
+struct SlamOptionFlags {
+  std::optional<int> particles;
+  std::optional<long long> seed;
+  std::optional<int> threads;
+  std::optional<std::string> proposal;
+};
+
+/// Sets the given flags' values and validates the result: InputError("<command line>", 0, "--seed", ...) for a bad
+/// flag, ("<command line>", 0, "[slam] key", ...) for options out of range.
+void overrideOptions(SlamOptions& options, const SlamOptionFlags& flags);
+
+/// Checks that the run names its input, which must exist, and its output. A missing or wrong value from a RUN.ini
+/// is an InputError naming the RUN.ini, the line and "[slam_run] key"; a missing input given by -i names that file.
+void checkSlamRunSpec(const SlamRunSpec& spec);
+
+/// The exact loadable INI of the run: [slam_run] (input and output absolute, max_scans), then [slam] with every
+/// option (slamOptionsIni).
+std::string slamRunIni(const SlamRunSpec& spec);
+
+}  // namespace gridtopo::slam

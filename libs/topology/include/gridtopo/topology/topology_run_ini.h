@@ -1,0 +1,49 @@
+#pragma once
+// A topology run as an INI file, like gridtopo-slam's RUN.ini (and MRPT's `rbpf-slam CONFIG.ini`):
+// `gridtopo-topology RUN.ini` reads
+//   [topology_run]  map = MAP, model = MODEL (default datasets/models/places_model.yml), output = DIR
+//   [topology], [relaxation], [correction]  the options (TopologyOptions, config-ini/topology.ini)
+// and the command-line flags override single values. A RUN.ini holds no other section and no unknown key (both are
+// InputErrors naming the file, the line, the section and the key). The options.ini a run writes is this INI with
+// the paths absolute, so loading it again as RUN.ini (or its options with -c) reproduces the run.
+#include <optional>
+#include <string>
+
+#include "gridtopo/topology/pipeline.h"
+
+namespace gridtopo::topology {
+
+inline constexpr const char* kTopologyRunSection = "topology_run";
+inline constexpr const char* kDefaultPlacesModel = "datasets/models/places_model.yml";
+
+struct TopologyRunSpec {
+  std::string map;     ///< the occupancy map; relative paths are taken from the working directory
+  std::string model = kDefaultPlacesModel;  ///< the place model (gridtopo-train)
+  std::string output;  ///< the output directory
+  TopologyOptions options;
+  std::string ini;     ///< the RUN.ini this was read from; empty when none
+  bool map_from_ini = false, model_from_ini = false;  ///< the value is the RUN.ini's (no flag replaced it)
+};
+
+/// Reads a RUN.ini: [topology_run] and the option sections (each may be missing: defaults). InputError for an
+/// unreadable file, another section, an unknown key or a bad value.
+TopologyRunSpec loadTopologyRunIni(const std::string& path);
+
+/// The command line's values over a run (gridtopo-topology -m, -o, -r, --threads); unset = keep.
+struct TopologyRunFlags {
+  std::optional<std::string> model, output;
+  std::optional<double> resolution;
+  std::optional<int> threads;
+};
+
+/// Sets the given flags' values: InputError("--resolution" / "--threads", ...) for a value out of range.
+void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& flags);
+
+/// Checks that the run names a map and an output, and that the files its RUN.ini names exist: an InputError
+/// naming the RUN.ini, the line and "[topology_run] key". (Files named by flags are checked by their readers.)
+void checkTopologyRunSpec(const TopologyRunSpec& spec);
+
+/// The exact loadable INI of the run: [topology_run] (paths absolute), then topologyOptionsIni.
+std::string topologyRunIni(const TopologyRunSpec& spec);
+
+}  // namespace gridtopo::topology

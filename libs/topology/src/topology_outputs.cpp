@@ -1,0 +1,39 @@
+#include "gridtopo/topology/topology_outputs.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/topology/export.h"
+#include "gridtopo/topology/mrpt_graph.h"
+#include "gridtopo/topology/segmentation.h"
+
+namespace gridtopo::topology {
+
+void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& occ, const TopologyResult& topo,
+                          const cv::Mat& labels_before_correction, int overlay_scale, const std::string& options_ini) {
+  OutputSet outs;
+  outs.write(dir + "/topology.graphml", [&](const std::string& p) { writeTextFileAtomically(p, toGraphML(topo.graph)); });
+  outs.write(dir + "/topology.json", [&](const std::string& p) { writeTextFileAtomically(p, toJson(topo.graph)); });
+  outs.write(dir + "/topology.dot", [&](const std::string& p) { writeTextFileAtomically(p, toDot(topo.graph)); });
+  outs.write(dir + "/topology_posegraph.graph",
+             [&](const std::string& p) { toMrptPoseGraph(topo.graph).saveToTextFile(p); });
+  auto png = [&](const std::string& name, const cv::Mat& img) {
+    outs.write(dir + "/" + name, [&](const std::string& p) {
+      if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
+    });
+  };
+  png("overlay.png", renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale));
+  png("labels.png", places::labelsToCodes(topo.labels));
+  if (!labels_before_correction.empty())
+    png("labels_before_correction.png", places::labelsToCodes(labels_before_correction));
+  if (!topo.segmentation.empty()) {
+    png("segmentation.png", segmentationImage16(topo.segmentation));
+    png("segmentation_colour.png", colourSegmentation(topo.segmentation));
+  }
+  outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, options_ini); });
+  outs.commit();
+}
+
+}  // namespace gridtopo::topology

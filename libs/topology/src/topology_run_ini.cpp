@@ -1,0 +1,100 @@
+#include "gridtopo/topology/topology_run_ini.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
+
+namespace fs = std::filesystem;
+
+namespace gridtopo::topology {
+
+namespace {
+
+const char* const kOptionSections[] = {"topology", "relaxation", "correction"};
+
+/// The keys of each option section: those TopologyOptions saves.
+std::vector<std::string> optionKeys(const std::string& section) {
+  mrpt::config::CConfigFileMemory mem;
+  TopologyOptions().saveToConfigFile(mem, "topology");
+  std::vector<std::string> keys;
+  mem.getAllKeys(section, keys);
+  return keys;
+}
+
+std::string absolute(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal().string(); }
+
+}  // namespace
+
+TopologyRunSpec loadTopologyRunIni(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
+  const IniFile ini = IniFile::read(path);
+  const std::string run = kTopologyRunSection;
+  ini.requireKnownSections({run, "topology", "relaxation", "correction"});
+  ini.requireKnownKeys(run, {"map", "model", "output"});
+  for (const char* s : kOptionSections)
+    ini.requireKnownKeys(s, optionKeys(s), "not an option of this section; see config-ini/topology.ini");
+  TopologyRunSpec spec;
+  spec.ini = path;
+  if (const auto v = ini.value(run, "map"); v && !v->empty()) {
+    spec.map = *v;
+    spec.map_from_ini = true;
+  }
+  if (const auto v = ini.value(run, "model"); v && !v->empty()) {
+    spec.model = *v;
+    spec.model_from_ini = true;
+  }
+  if (const auto v = ini.value(run, "output")) spec.output = *v;
+  try {
+    spec.options = loadTopologyOptions(path);
+  } catch (const InputError& e) {
+    throw ini.withLine(e);  // loadTopologyOptions names "[section] key" without the line
+  }
+  return spec;
+}
+
+void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
+  if (f.model) {
+    spec.model = *f.model;
+    spec.model_from_ini = false;
+  }
+  if (f.output) spec.output = *f.output;
+  if (f.resolution) {
+    if (!(*f.resolution > 0)) throw InputError("--resolution", "must be > 0");
+    spec.options.resolution = *f.resolution;
+  }
+  if (f.threads) {
+    if (*f.threads < 1) throw InputError("--threads", "must be >= 1");
+    spec.options.threads = *f.threads;
+  }
+}
+
+void checkTopologyRunSpec(const TopologyRunSpec& spec) {
+  const std::string run = kTopologyRunSection;
+  auto lineOf = [&](const std::string& key) {
+    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
+  };
+  const std::string where = spec.ini.empty() ? "<command line>" : spec.ini;
+  if (spec.map.empty())
+    throw InputError(where, lineOf("map"), "[" + run + "] map",
+                     "missing: name the map to label (or give it on the command line)");
+  if (spec.output.empty())
+    throw InputError(where, lineOf("output"), "[" + run + "] output", "missing: name the output directory (or give -o)");
+  // A file named on the command line is left to its reader, which names it.
+  auto requireFile = [&](const std::string& file, bool from_ini, const std::string& key) {
+    if (from_ini && !fs::exists(file))
+      throw InputError(spec.ini, lineOf(key), "[" + run + "] " + key, "no such file '" + file + "'");
+  };
+  requireFile(spec.map, spec.map_from_ini, "map");
+  requireFile(spec.model, spec.model_from_ini, "model");
+}
+
+std::string topologyRunIni(const TopologyRunSpec& spec) {
+  return "[" + std::string(kTopologyRunSection) + "]\nmap = " + absolute(spec.map) + "\nmodel = " +
+         absolute(spec.model) + "\noutput = " + absolute(spec.output) + "\n\n" + topologyOptionsIni(spec.options);
+}
+
+}  // namespace gridtopo::topology
