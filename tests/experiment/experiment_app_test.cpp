@@ -44,7 +44,7 @@ TEST(ExperimentApp, QuickExperimentEndToEnd) {
     EXPECT_EQ(row["status"], "ok") << row.dump();
     EXPECT_EQ(row["params"]["max_scans"], "600");
     EXPECT_EQ(row["options"]["particles"], "8");
-    EXPECT_GT(row["relations_scored"].get<int>(), 100);
+    EXPECT_EQ(row["relations_scored"].get<int>(), 47);  // the Intel relations within its first 600 scans
     EXPECT_GT(row["steps"].get<int>(), 50);
     EXPECT_GT(row["cpu_s"].get<double>(), 0.1);
     EXPECT_GT(row["peak_rss_mb"].get<double>(), 10.0);
@@ -58,9 +58,13 @@ TEST(ExperimentApp, QuickExperimentEndToEnd) {
   }
   for (const char* f : {"summary.md", "plots/by_particles.dat", "plots/error_vs_particles.gp",
                         "plots/error_vs_particles.png", "plots/error_vs_particles.svg", "plots/success_vs_particles.png",
-                        "plots/time_vs_particles.png", "plots/time_vs_particles.svg"})
+                        "plots/time_vs_particles.png", "plots/time_vs_particles.svg", "plots/neff/intel_informed.gp",
+                        "plots/neff/intel_informed.png", "plots/neff/intel_odometry.svg"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
   EXPECT_GT(fs::file_size(out / "plots/error_vs_particles.png"), 5000u);
+  // N_eff plot data: one block per seed, one line per processed step (stats.txt's rows).
+  const std::string neff = test::readText(out / "plots/neff/intel_informed.dat");
+  EXPECT_EQ(test::countLines(neff), rows[0]["steps"].get<std::size_t>() + rows[1]["steps"].get<std::size_t>() + 4u);
   EXPECT_NE(test::readText(out / "summary.md").find("| intel | informed | 2 | 0 |"), std::string::npos);
 
   // The run's options.ini reproduces the run: same trajectory, byte for byte.

@@ -113,7 +113,7 @@ TEST(ExperimentSpec, BadFilesNameFileLineSectionAndKey) {
       {"[slam]\nparticle = 3\n", "10: [slam] particle: unknown key"},
       {"[record]\nsuccess_metric = median\n", "10: [record] success_metric: unknown value 'median'"},
       {"[record]\nsuccess_threshold = -1\n", "10: [record] success_threshold: must be > 0"},
-      {"[record]\nplots = error neff\n", "10: [record] plots: unknown plot 'neff'"},
+      {"[record]\nplots = error nef\n", "10: [record] plots: unknown plot 'nef'"},
       {"[records]\nplots = error\n", "9: [records]: unknown section"},
       {"[dataset.mit]\nlog = /nonexistent.clf\n", "10: [dataset.mit] log: no such file: /nonexistent.clf"},
       {"[dataset.mit]\nrelations = /x\n", "10: [dataset.mit] relations: no such file: /x"},

@@ -97,9 +97,9 @@ ExperimentSpec parseExperimentSpec(const IniDocument& doc) {
           std::string p;
           while (in >> p) {
             if (p == "none") continue;
-            if (p != "error" && p != "success" && p != "time")
+            if (p != "error" && p != "success" && p != "time" && p != "neff")
               throw InputError(doc.path, e.line, field(s, e),
-                               "unknown plot '" + p + "' (expected error, success, time or none)");
+                               "unknown plot '" + p + "' (expected error, success, time, neff or none)");
             spec.plots.push_back(p);
           }
         } else {

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/experiment/run_scoring.h"
 #include "gridtopo/experiment/run_statistics.h"
 #include "gridtopo/experiment/subprocess.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -127,8 +129,10 @@ std::string plotScript(const ExperimentPlan& plan, const std::vector<RunRecord>&
     style = "yerrorlines";
   } else if (which == "success") {
     o << "set title " << quoted("Success rate vs particles (" + plan.spec.name + ")") << "\n";
-    o << "set ylabel " << quoted(std::string("success rate (") + toString(plan.spec.success_metric) + " <= " +
-                                 num(plan.spec.success_threshold) + ")")
+    const bool metres = plan.spec.success_metric == SuccessMetric::TransMean ||
+                        plan.spec.success_metric == SuccessMetric::TransMax;
+    o << "set ylabel " << quoted(std::string("success rate over seeds (") + toString(plan.spec.success_metric) +
+                                 " <= " + num(plan.spec.success_threshold) + (metres ? " m)" : " deg)"))
       << "\nset yrange [0:1.05]\n";
     using_ = "1:4";
     style = "linespoints";
@@ -148,18 +152,75 @@ std::string plotScript(const ExperimentPlan& plan, const std::vector<RunRecord>&
                     " pointtype 7 title " + quoted(series[i].title));
   }
   if (parts.empty()) return "";
-  o << "set terminal pngcairo size 960,600 font \",11\"\nset output '" << name << ".png'\nplot ";
+  o << "set terminal pngcairo size 960,600 font \",11\" noenhanced\nset output '" << name << ".png'\nplot ";
   for (std::size_t i = 0; i < parts.size(); ++i) o << (i ? ", \\\n     " : "") << parts[i];
-  o << "\nset terminal svg size 960,600 font \"sans,11\"\nset output '" << name << ".svg'\nreplot\nunset output\n";
+  o << "\nset terminal svg size 960,600 font \"sans,11\" noenhanced\nset output '" << name << ".svg'\nreplot\nunset output\n";
   return o.str();
+}
+
+std::string neffPlots(const ExperimentPlan& plan, const std::vector<RunRecord>& records,
+                      std::vector<std::pair<std::string, std::string>>& files) {
+  std::string index;
+  for (const auto& g : groupRuns(records, keysBut(plan.varied_keys, {"seed"}))) {
+    std::string name, title;
+    for (const auto& [k, v] : g.key) {
+      name += (name.empty() ? "" : "_") + (k == "dataset" || k == "proposal" ? v : k + "-" + v);
+      title += (title.empty() ? "" : ", ") + k + " " + v;
+    }
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+    if (name.empty()) name = "all";
+    std::ostringstream dat, parts;
+    std::size_t blocks = 0;
+    for (const RunRecord* r : g.runs) {
+      if (!r->ok()) continue;
+      std::ifstream f(fs::path(r->dir) / "out" / "stats.txt");
+      if (!f) continue;
+      std::ostringstream text;
+      text << f.rdbuf();
+      const StepSummary steps = summarizeSteps(text.str(), (fs::path(r->dir) / "out" / "stats.txt").string());
+      const double n = particlesOf(*r);
+      if (steps.neff.empty() || !(n > 0)) continue;
+      dat << (blocks ? "\n\n" : "") << "# " << r->label << "\n";
+      for (std::size_t i = 0; i < steps.neff.size(); ++i) dat << i << ' ' << num(steps.neff[i] / n) << "\n";
+      parts << (blocks ? ", \\\n     " : "") << "'" << name << ".dat' index " << blocks << " using 1:2 with lines title "
+            << quoted(r->label);
+      ++blocks;
+    }
+    if (!blocks) continue;
+    std::ostringstream gp;
+    gp << "# gridtopo-experiment plot of experiment '" << plan.spec.name << "': N_eff over the processed steps of each run"
+       << " of one group. Edit and run `gnuplot " << name << ".gp` in this folder to redraw it.\n"
+       << "set encoding utf8\nset grid\nset key outside right top noenhanced\n"
+       << "set title " << quoted("N_eff / particles per processed scan: " + title) << "\n"
+       << "set xlabel \"processed scan (filter step)\"\nset ylabel \"N_eff / particles\"\nset yrange [0:1.05]\n"
+       << "set terminal pngcairo size 960,600 font \",11\" noenhanced\nset output '" << name << ".png'\nplot "
+       << parts.str() << "\nset terminal svg size 960,600 font \"sans,11\" noenhanced\nset output '" << name
+       << ".svg'\nreplot\nunset output\n";
+    files.emplace_back("neff/" + name + ".dat", dat.str());
+    files.emplace_back("neff/" + name + ".gp", gp.str());
+    index += name + "\n";
+  }
+  return index;
 }
 
 PlotFiles drawPlots(const ExperimentPlan& plan, const std::vector<RunRecord>& records) {
   PlotFiles files;
   if (plan.spec.plots.empty()) return files;
   const fs::path dir = fs::path(plan.output) / "plots";
-  std::vector<std::pair<std::string, std::string>> scripts;
+  std::vector<std::pair<std::string, std::string>> written;  // path under plots/, text
+  std::vector<std::string> scripts;                          // .gp paths under plots/
+  bool by_particles = false;
   for (const auto& which : plan.spec.plots) {
+    if (which == "neff") {
+      std::vector<std::pair<std::string, std::string>> neff;
+      if (neffPlots(plan, records, neff).empty()) files.notes.push_back("no neff plot: no run has a stats.txt");
+      for (const auto& f : neff) {
+        written.push_back(f);
+        if (f.first.size() > 3 && f.first.compare(f.first.size() - 3, 3, ".gp") == 0) scripts.push_back(f.first);
+      }
+      continue;
+    }
     const std::string text = plotScript(plan, records, which);
     if (text.empty()) {
       files.notes.push_back("no " + which + " plot: no run has data for it");
@@ -167,36 +228,38 @@ PlotFiles drawPlots(const ExperimentPlan& plan, const std::vector<RunRecord>& re
     }
     const std::string name = which == "error" ? "error_vs_particles" : which == "success" ? "success_vs_particles"
                                                                                            : "time_vs_particles";
-    scripts.emplace_back(name, text);
+    written.emplace_back(name + ".gp", text);
+    scripts.push_back(name + ".gp");
+    by_particles = true;
   }
+  if (by_particles) written.emplace_back("by_particles.dat", particlesTable(plan, records));
   if (scripts.empty()) return files;
   {
     OutputSet out;
-    const std::string table = particlesTable(plan, records);
-    out.write((dir / "by_particles.dat").string(), [&](const std::string& p) { writeTextFileAtomically(p, table); });
-    for (const auto& [name, text] : scripts) {
-      out.write((dir / (name + ".gp")).string(), [&](const std::string& p) { writeTextFileAtomically(p, text); });
-      files.scripts.push_back((dir / (name + ".gp")).string());
-    }
+    for (const auto& [rel, text] : written)
+      out.write((dir / rel).string(), [&](const std::string& p) { writeTextFileAtomically(p, text); });
     out.commit();
   }
+  for (const auto& rel : scripts) files.scripts.push_back((dir / rel).string());
   const std::string gnuplot = findOnPath("gnuplot");
   if (gnuplot.empty()) {
     files.notes.push_back("gnuplot not found: the .gp scripts are written, no pictures (apt-get install gnuplot-nox)");
     return files;
   }
   fs::remove(dir / "gnuplot.log");
-  for (const auto& [name, text] : scripts) {
-    for (const char* ext : {".png", ".svg"}) fs::remove(dir / (name + ext));
-    const auto r = runProcess({gnuplot, name + ".gp"}, (dir / "gnuplot.log").string(), dir.string());
+  for (const auto& rel : scripts) {
+    const fs::path gp = dir / rel;
+    const fs::path base = gp.parent_path() / gp.stem();
+    for (const char* ext : {".png", ".svg"}) fs::remove(base.string() + ext);
+    const auto r = runProcess({gnuplot, gp.filename().string()}, (dir / "gnuplot.log").string(),
+                              gp.parent_path().string());
     bool made = r.ok();
     for (const char* ext : {".png", ".svg"}) {
-      if (fs::is_regular_file(dir / (name + ext)) && fs::file_size(dir / (name + ext)) > 0)
-        files.pictures.push_back((dir / (name + ext)).string());
-      else
-        made = false;
+      const std::string pic = base.string() + ext;
+      if (fs::is_regular_file(pic) && fs::file_size(pic) > 0) files.pictures.push_back(pic);
+      else made = false;
     }
-    if (!made) files.notes.push_back("gnuplot failed on " + name + ".gp, see " + (dir / "gnuplot.log").string());
+    if (!made) files.notes.push_back("gnuplot failed on " + gp.string() + ", see " + (dir / "gnuplot.log").string());
   }
   if (files.notes.empty()) fs::remove(dir / "gnuplot.log");
   return files;

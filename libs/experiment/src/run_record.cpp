@@ -144,8 +144,15 @@ bool loadRecord(const PlannedRun& run, RunRecord& out) {
   try {
     RunRecord r = recordFromJson(ss.str(), p.string());
     if (r.id != run.id) return false;
-    r.index = run.index;  // the same run may sit at another position of an edited sweep
+    // Same id, same options and input contents: the record describes this plan's run, wherever the experiment,
+    // its inputs or its results folder were when it ran, and at whichever position of an edited sweep.
+    r.index = run.index;
     r.params = run.params;
+    r.label = run.label;
+    r.dir = run.dir;
+    r.dataset = run.dataset;
+    r.log = run.log;
+    r.relations = run.relations;
     out = std::move(r);
     return true;
   } catch (const InputError&) {

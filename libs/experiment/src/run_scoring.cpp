@@ -1,6 +1,9 @@
 #include "gridtopo/experiment/run_scoring.h"
 
 #include <algorithm>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -53,6 +56,11 @@ ErrorScores RunScorer::score(const std::vector<io::TimedPose>& trajectory, const
     // Gap correction by the log's odometry when it is a CARMEN log (as gridtopo-eval --log); none otherwise.
     const bool carmen = log.find(".clf") != std::string::npos || log.find(".log") != std::string::npos;
     if (carmen) ref->odometry = eval::OdometryTrack::fromLog(io::readCarmenLog(log), eval::OdometrySource::Auto);
+#if defined(__GLIBC__)
+    // Give the parsed log's pages back: a run forked later starts with this process's resident pages, and its
+    // peak RSS (wait4) is at least that.
+    malloc_trim(0);
+#endif
   }
   const auto within = relationsWithin(ref->relations, trajectory);
   if (within.empty()) return s;

@@ -40,7 +40,7 @@ struct ExperimentSpec {
   SuccessMetric success_metric = SuccessMetric::TransMean;
   double success_threshold = 0.1;
   bool keep_maps = true;
-  std::vector<std::string> plots = {"error", "success", "time"};
+  std::vector<std::string> plots = {"error", "success", "time"};  ///< and "neff" on request
 
   const DatasetSpec* dataset(const std::string& name) const;
 };

@@ -1,8 +1,10 @@
 #pragma once
 // The experiment's plots, drawn by gnuplot: error vs particles (mean over seeds, std as error bars), success rate
 // vs particles and wall time vs particles, one line per combination of the other varied keys (dataset, proposal,
-// ...). Each plot is a .gp script beside its data (plots/by_particles.dat) and its pictures (.png and .svg), so
-// users can restyle it and run `gnuplot NAME.gp` again in that folder.
+// ...); on request (plots = neff) N_eff / particles over the processed steps, one plot per group of runs that
+// differ by their seed (plots/neff/GROUP.*), one line per run. Each plot is a .gp script beside its data
+// (plots/by_particles.dat, plots/neff/GROUP.dat) and its pictures (.png and .svg), so users can restyle it and run
+// `gnuplot NAME.gp` again in that folder.
 #include <string>
 #include <vector>
 
@@ -22,6 +24,7 @@ std::string particlesTable(const ExperimentPlan& plan, const std::vector<RunReco
 std::string plotScript(const ExperimentPlan& plan, const std::vector<RunRecord>& records, const std::string& which);
 
 /// Writes plots/ under plan.output and runs gnuplot (found on PATH) on each script of plan.spec.plots.
+/// The neff plots read each ok run's RUN/out/stats.txt.
 PlotFiles drawPlots(const ExperimentPlan& plan, const std::vector<RunRecord>& records);
 
 /// The first executable `name` on PATH, or "".
