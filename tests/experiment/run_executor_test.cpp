@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "experiment/experiment_files.h"
+#include "gridtopo/core/error.h"
 #include "gridtopo/experiment/results_writer.h"
 #include "gridtopo/experiment/run_record.h"
 
@@ -144,6 +145,28 @@ TEST(RunExecutor, AStopRequestEndsTheRunningRunAndRecordsNothingForIt) {
   EXPECT_FALSE(fs::exists(fs::path(f.plan.runs[1].dir) / "result.json"));
   EXPECT_FALSE(fs::exists(fs::path(f.plan.runs[2].dir)));
   EXPECT_EQ(collectRecords(f.plan).size(), 1u);
+}
+
+TEST(RunExecutor, OneRunnerPerResultsFolder) {
+  const Fixture f = makeExperiment("lock", "1 5");
+  std::ostringstream log;
+  ExecutionOptions o = options(f);
+  clearStopRequest();
+  std::thread first([&] {
+    std::ostringstream first_log;
+    executeRuns(f.plan, {}, o, first_log);  // seed 5 sleeps until the stop request
+  });
+  const fs::path sleeping = fs::path(f.plan.runs[1].dir) / "options.ini";
+  for (int i = 0; i < 200 && !fs::exists(sleeping); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  try {
+    executeRuns(f.plan, {}, o, log);
+    ADD_FAILURE() << "a second runner started";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), f.plan.output + ": another gridtopo-experiment is running in this results folder");
+  }
+  requestStop();
+  first.join();
+  clearStopRequest();
 }
 
 TEST(RunExecutor, DefaultJobsAreCoresOverThreads) {

@@ -1,6 +1,8 @@
 #include "gridtopo/experiment/run_executor.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/experiment/run_record.h"
@@ -145,6 +148,21 @@ ExecutionSummary executeRuns(const ExperimentPlan& plan, const std::vector<std::
     log << "gridtopo-experiment: " << sum.skipped << " of " << sum.selected
         << " runs already done (same parameters and inputs), skipped; --force reruns them\n";
   if (todo.empty()) return sum;
+
+  // One runner per results folder at a time (Slurm tasks, which run one run each, share it).
+  fs::create_directories(plan.output);
+  const std::string lock_path = (fs::path(plan.output) / ".runner.lock").string();
+  const int lock = indices.size() == 1 ? -1 : ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock >= 0 && ::flock(lock, LOCK_EX | LOCK_NB) != 0) {
+    ::close(lock);
+    throw InputError(plan.output, "another gridtopo-experiment is running in this results folder");
+  }
+  struct CloseLock {
+    int fd;
+    ~CloseLock() {
+      if (fd >= 0) ::close(fd);
+    }
+  } close_lock{lock};
 
   const std::string commit = sourceCommit(), host = hostName();
   RunScorer scorer;

@@ -26,7 +26,8 @@ struct ExecutionSummary {
   bool stopped = false;  ///< a stop request ended the execution early
 };
 
-/// Runs `indices` of plan.runs (all when empty).
+/// Runs `indices` of plan.runs (all when empty). Unless it runs a single index, it holds a lock on
+/// OUTPUT/.runner.lock: a second runner on the same results folder stops with an InputError.
 ExecutionSummary executeRuns(const ExperimentPlan& plan, const std::vector<std::size_t>& indices,
                              const ExecutionOptions& options, std::ostream& log);
 
