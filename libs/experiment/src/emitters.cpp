@@ -23,7 +23,11 @@ std::string taskCommand(const ExperimentPlan& plan, const std::string& exe, cons
 
 std::string slurmScript(const ExperimentPlan& plan, const std::string& exe, const std::string& ini) {
   int threads = 1;
-  for (const auto& r : plan.runs) threads = std::max(threads, r.threads);
+  bool all_cores = false;  // threads = 0: the run takes every core of its node
+  for (const auto& r : plan.runs) {
+    threads = std::max(threads, r.threads);
+    all_cores |= r.threads <= 0;
+  }
   const std::string out = fs::absolute(plan.output).string();
   std::ostringstream o;
   o << "#!/bin/bash\n"
@@ -34,7 +38,8 @@ std::string slurmScript(const ExperimentPlan& plan, const std::string& exe, cons
     << "#SBATCH --job-name=" << plan.spec.name << "\n"
     << "#SBATCH --array=0-" << (plan.runs.empty() ? 0 : plan.runs.size() - 1) << "\n"
     << "#SBATCH --ntasks=1\n"
-    << "#SBATCH --cpus-per-task=" << threads << "\n"
+    << (all_cores ? std::string("#SBATCH --exclusive\n")
+                  : "#SBATCH --cpus-per-task=" + std::to_string(threads) + "\n")
     << "#SBATCH --output=" << out << "/slurm-logs/%A_%a.log\n"
     << "set -euo pipefail\n"
     << "exec " << taskCommand(plan, exe, ini, "\"$SLURM_ARRAY_TASK_ID\"") << "\n";

@@ -9,7 +9,8 @@
 
 namespace gridtopo::experiment {
 
-/// `experiment_exe` and `experiment_ini` should be absolute (the jobs may start elsewhere).
+/// `experiment_exe` and `experiment_ini` should be absolute (the jobs may start elsewhere). Each task asks for the
+/// runs' largest `threads` as --cpus-per-task, or a whole node (--exclusive) when a run has threads = 0 (all cores).
 std::string slurmScript(const ExperimentPlan& plan, const std::string& experiment_exe,
                         const std::string& experiment_ini);
 std::string parallelJobs(const ExperimentPlan& plan, const std::string& experiment_exe,
