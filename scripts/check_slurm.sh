@@ -26,7 +26,13 @@ say() { awk -v a="$EPOCHREALTIME" -v b="$T0" -v m="$*" 'BEGIN { printf "check_sl
 D=$(mktemp -d /tmp/gtslurm.XXXXXX)
 chmod 711 "$D"  # munged wants execute permission for all on every folder above its socket
 PIDS=()
-alive() { [ -r "/proc/$1/stat" ] && [ "$(cut -d' ' -f3 "/proc/$1/stat")" != Z ]; }  # zombies are not alive
+# Alive: /proc/PID/stat exists and its state (the field after "(comm)") is not Z: exited daemons linger as zombies.
+alive() {
+  local stat
+  stat=$(cat "/proc/$1/stat" 2> /dev/null) || return 1
+  stat=${stat##*) }
+  [ -n "$stat" ] && [ "${stat%% *}" != Z ]
+}
 stop_daemons() {
   local p
   for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do
