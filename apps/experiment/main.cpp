@@ -8,7 +8,6 @@
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/data_dir.h"
 #include "gridtopo/experiment/emitters.h"
-#include "gridtopo/experiment/plots.h"
 #include "gridtopo/experiment/results_writer.h"
 #include "gridtopo/experiment/run_executor.h"
 
@@ -45,16 +44,14 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (emit.isSet()) {
-      if (emit.getValue() != "slurm" && emit.getValue() != "parallel")
-        throw UsageError("--emit must be slurm or parallel");
+      if (emit.getValue() != "slurm" && emit.getValue() != "parallel") throw UsageError("--emit must be slurm or parallel");
       std::cout << emitJobs(plan, emit.getValue(), self, fs::absolute(ini.getValue()).string()) << "\n";
       return 0;
     }
-    ExecutionSummary sum;
     if (!collect.getValue()) {
       if (run_index.isSet() && (run_index.getValue() < 0 || static_cast<std::size_t>(run_index.getValue()) >= plan.runs.size()))
         throw UsageError("--run-index must be in 0.." + std::to_string(plan.runs.size() - 1));
-      ExecutionOptions eo;
+      ExecutionOptions eo;  // gridtopo-slam is the one beside this program
       eo.jobs = jobs.isSet() ? jobs.getValue() : defaultJobs(plan);
       if (eo.jobs < 1) throw UsageError("--jobs must be >= 1");
       eo.force = force.getValue();
@@ -65,7 +62,7 @@ int main(int argc, char** argv) {
       installStopHandlers();
       std::vector<std::size_t> indices;
       if (run_index.isSet()) indices.push_back(static_cast<std::size_t>(run_index.getValue()));
-      sum = executeRuns(plan, indices, eo, std::cerr);
+      const ExecutionSummary sum = executeRuns(plan, indices, eo, std::cerr);
       if (sum.stopped) {
         std::cerr << "gridtopo-experiment: stopped: " << sum.ok + sum.failed << " runs recorded, " << sum.interrupted
                   << " not; run the same command again to resume\n";
@@ -73,15 +70,6 @@ int main(int argc, char** argv) {
       }
       if (run_index.isSet()) return sum.failed ? 1 : 0;
     }
-    const auto records = collectRecords(plan);
-    writeResults(plan, records);
-    const PlotFiles plots = drawPlots(plan, records);
-    for (const auto& n : plots.notes) std::cerr << "gridtopo-experiment: note: " << n << "\n";
-    std::size_t failed = 0;
-    for (const auto& r : records) failed += !r.ok();
-    std::cerr << "gridtopo-experiment: " << records.size() << " of " << plan.runs.size() << " runs recorded (" << failed
-              << " failed); " << plan.output << "/summary.md, results.csv, results.jsonl, " << plots.pictures.size()
-              << " plot pictures\n";
-    return failed ? 1 : 0;
+    return writeTablesAndPlots(plan, std::cerr) ? 0 : 1;
   });
 }

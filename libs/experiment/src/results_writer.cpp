@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <sstream>
 
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/experiment/plots.h"
 #include "gridtopo/experiment/run_statistics.h"
 #include "gridtopo/io/trajectory_io.h"
 
@@ -167,6 +169,19 @@ void writeResults(const ExperimentPlan& plan, const std::vector<RunRecord>& reco
   out.write((d / "results.jsonl").string(), [&](const std::string& p) { writeTextFileAtomically(p, jsonl); });
   out.write((d / "summary.md").string(), [&](const std::string& p) { writeTextFileAtomically(p, md); });
   out.commit();
+}
+
+bool writeTablesAndPlots(const ExperimentPlan& plan, std::ostream& log) {
+  const auto records = collectRecords(plan);
+  writeResults(plan, records);
+  const PlotFiles plots = drawPlots(plan, records);
+  for (const auto& n : plots.notes) log << "gridtopo-experiment: note: " << n << "\n";
+  std::size_t failed = 0;
+  for (const auto& r : records) failed += !r.ok();
+  log << "gridtopo-experiment: " << records.size() << " of " << plan.runs.size() << " runs recorded (" << failed
+      << " failed); " << plan.output << "/summary.md, results.csv, results.jsonl, " << plots.pictures.size()
+      << " plot pictures\n";
+  return failed == 0;
 }
 
 }  // namespace gridtopo::experiment

@@ -2,6 +2,7 @@
 // The experiment's tables: results.csv and results.jsonl (one row per recorded run: every parameter, every metric,
 // the success flag, times, memory, commit, host, start time) and summary.md (runs grouped by every varied key but
 // the seed: mean, std, median, min, max of the errors, success rate, times).
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,9 @@ std::vector<RunRecord> collectRecords(const ExperimentPlan& plan);
 
 /// Writes results.csv, results.jsonl and summary.md into plan.output, all or nothing.
 void writeResults(const ExperimentPlan& plan, const std::vector<RunRecord>& records);
+
+/// collectRecords, writeResults and drawPlots, with a line to `log` (and the plots' notes). True when every
+/// recorded run is ok.
+bool writeTablesAndPlots(const ExperimentPlan& plan, std::ostream& log);
 
 }  // namespace gridtopo::experiment
