@@ -129,8 +129,11 @@ TEST(RunExecutor, AStopRequestEndsTheRunningRunAndRecordsNothingForIt) {
   ExecutionOptions o = options(f);
   o.jobs = 1;
   clearStopRequest();
-  std::thread stopper([] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // Stop once seed 5 has started (with one job, seed 1 has then finished): its options.ini is written at launch.
+  const fs::path sleeping = fs::path(f.plan.runs[1].dir) / "options.ini";
+  std::thread stopper([&] {
+    for (int i = 0; i < 3000 && !fs::exists(sleeping); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
     requestStop();
   });
   const auto t0 = std::chrono::steady_clock::now();
@@ -154,10 +157,20 @@ TEST(RunExecutor, OneRunnerPerResultsFolder) {
   clearStopRequest();
   std::thread first([&] {
     std::ostringstream first_log;
-    executeRuns(f.plan, {}, o, first_log);  // seed 5 sleeps until the stop request
+    try {
+      executeRuns(f.plan, {}, o, first_log);  // seed 5 sleeps until the stop request
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
   });
   const fs::path sleeping = fs::path(f.plan.runs[1].dir) / "options.ini";
-  for (int i = 0; i < 200 && !fs::exists(sleeping); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 3000 && !fs::exists(sleeping); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (!fs::exists(sleeping)) {
+    requestStop();
+    first.join();
+    clearStopRequest();
+    FAIL() << "the first runner did not start";
+  }
   try {
     executeRuns(f.plan, {}, o, log);
     ADD_FAILURE() << "a second runner started";
