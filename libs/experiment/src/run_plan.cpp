@@ -62,18 +62,20 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
     plan.slam_keys.push_back(e.key);
     known.insert(e.key);
   }
-  auto knownList = [&] { return "a [slam] option of config-ini/slam.ini or one of: dataset, max_scans"; };
 
   // Where each option key is set in the experiment INI, to name it when its value is refused.
   std::map<std::string, std::pair<std::string, std::size_t>> origin;  // key -> ("[slam]" | "[sweep]", line)
   for (const auto& e : spec.slam) {
     if (!known.count(e.key))
-      throw InputError(spec.path, e.line, "[slam] " + e.key, "unknown key (expected " + std::string(knownList()) + ")");
+      throw InputError(spec.path, e.line, "[slam] " + e.key,
+                       "unknown key (not an option of gridtopo-slam; see config-ini/slam.ini)");
     origin[e.key] = {"[slam]", e.line};
   }
   for (const auto& k : spec.sweep) {
     if (!known.count(k.key) && !isRunKey(k.key))
-      throw InputError(spec.path, k.line, "[sweep] " + k.key, "unknown key (expected " + std::string(knownList()) + ")");
+      throw InputError(spec.path, k.line, "[sweep] " + k.key,
+                       "unknown key (expected an option of gridtopo-slam, see config-ini/slam.ini, or dataset, "
+                       "max_scans)");
     origin[k.key] = {"[sweep]", k.line};
   }
 
