@@ -6,9 +6,11 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
   libmrpt-slam-dev libmrpt-gui-dev libwxgtk3.2-dev libopencv-dev libeigen3-dev
-  libtclap-dev zlib1g-dev
+  libtclap-dev zlib1g-dev libssl-dev nlohmann-json3-dev
   googletest libgtest-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
+  # gridtopo-experiment: plots (gnuplot), and scripts/check_slurm.sh, which the suite runs (a one-node Slurm).
+  gnuplot-nox python3 slurm-wlm munge
 )
 
 missing=()

@@ -1,0 +1,48 @@
+#pragma once
+// The runs of an experiment: the sweep expanded, each combination turned into the exact options of one
+// gridtopo-slam run (base INI, then [slam], then the swept values), loaded through slam::SlamOptions so that a
+// wrong key or value stops the experiment before anything runs, and keyed by a hash of those options and of the
+// input files' contents.
+#include <string>
+#include <vector>
+
+#include "gridtopo/experiment/experiment_spec.h"
+#include "gridtopo/experiment/sweep.h"
+
+namespace gridtopo::experiment {
+
+struct PlannedRun {
+  std::size_t index = 0;  ///< position in the expanded sweep (the --run-index of a Slurm array task)
+  std::string id;         ///< 16 hex digits of sha256(options, max_scans, log and relations contents)
+  std::string label;      ///< the varied values, readable ("intel_informed_particles-8_seed-1")
+  std::string dir;        ///< OUTPUT/runs/<label>_<id>
+  Assignment params;      ///< every swept key with its value, in sweep order (dataset first)
+  std::string dataset, log, relations;
+  long max_scans = -1;      ///< -1: the whole log
+  int threads = 0;          ///< of the run's [slam] options (0 = all cores)
+  std::string options_ini;  ///< the run's [slam] section, every key (slam::slamOptionsIni)
+};
+
+struct ExperimentPlan {
+  ExperimentSpec spec;
+  std::string output;                     ///< results folder
+  std::vector<PlannedRun> runs;
+  std::vector<std::string> slam_keys;     ///< every [slam] option key, in the order options.ini lists them
+  std::vector<std::string> varied_keys;   ///< swept keys with more than one value, dataset first
+};
+
+/// Plans every run. `output` overrides the spec's output folder (relative to the current directory); one of the
+/// two must be given (InputError otherwise). Bad [slam] keys or values: InputError naming the experiment INI (or
+/// the base INI), the line and "[section] key".
+ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& output = "");
+
+/// The value of `key` in an options.ini text ("" when absent).
+std::string optionValue(const std::string& options_ini, const std::string& key);
+
+/// The run's options.ini: a comment block (experiment, run, the command that reproduces it) and the [slam] section.
+std::string runIniText(const ExperimentPlan& plan, const PlannedRun& run, const std::string& slam_exe);
+
+/// The gridtopo-slam arguments of a run (argv[0] = slam_exe).
+std::vector<std::string> slamCommand(const PlannedRun& run, const std::string& slam_exe);
+
+}  // namespace gridtopo::experiment
