@@ -303,6 +303,6 @@ TEST(Export, MrptPoseGraphRoundTrip) {
   back.loadFromTextFile(p.string());
   ASSERT_EQ(back.nodes.size(), g.nodes.size());
   const auto& n0 = g.nodes.front();
-  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.centroid_m.x, 1e-6);
+  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.anchor_m.x, 1e-6);
   EXPECT_EQ(back.edgeCount(), g.edges.size());
 }

@@ -1,0 +1,155 @@
+#include "gridtopo/topology/edge_route.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+
+namespace gridtopo::topology {
+
+namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+constexpr double kClearanceScale = 0.7;  // m: a step costs 1 + (kClearanceScale / clearance)^2
+constexpr double kSimplify = 1.0;        // cells
+
+// Every cell of the straight 8-connected line a -> b lies in region a_id or b_id.
+bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
+  cv::LineIterator it(ids, p, q, 8);
+  for (int i = 0; i < it.count; ++i, ++it) {
+    const int v = ids.at<int>(it.pos());
+    if (v != a && v != b) return false;
+  }
+  return true;
+}
+
+double distanceToSegment(cv::Point2d p, cv::Point2d a, cv::Point2d b) {
+  const cv::Point2d d = b - a;
+  const double l2 = d.dot(d);
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  const cv::Point2d c = a + t * d;
+  return std::hypot(p.x - c.x, p.y - c.y);
+}
+
+void simplify(const std::vector<cv::Point>& pts, std::size_t i, std::size_t j, const cv::Mat& ids, int a, int b,
+              std::vector<cv::Point>& out) {
+  // Appends pts[i + 1 .. j] (simplified); pts[i] is already in `out`.
+  if (j <= i + 1) {
+    if (j > i) out.push_back(pts[j]);
+    return;
+  }
+  double worst = -1;
+  std::size_t k = i + 1;
+  for (std::size_t m = i + 1; m < j; ++m) {
+    const double d = distanceToSegment(pts[m], pts[i], pts[j]);
+    if (d > worst) worst = d, k = m;
+  }
+  if (worst <= kSimplify && lineInside(ids, pts[i], pts[j], a, b)) {
+    out.push_back(pts[j]);
+    return;
+  }
+  if (worst <= kSimplify) k = (i + j) / 2;  // close to straight but the chord touches a wall: split in the middle
+  simplify(pts, i, k, ids, a, b, out);
+  simplify(pts, k, j, ids, a, b, out);
+}
+}  // namespace
+
+std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
+  std::vector<cv::Point> anchors(rm.regions.size());
+  for (const Region& r : rm.regions) {
+    if (r.cells <= 0) continue;
+    const cv::Rect roi = r.bbox;
+    cv::Mat mask(roi.height + 2, roi.width + 2, CV_8U, cv::Scalar(0));
+    cv::Mat(mask, cv::Rect(1, 1, roi.width, roi.height)).setTo(255, rm.ids(roi) == r.id);
+    cv::Mat dist;
+    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    double deepest = 0;
+    cv::minMaxLoc(dist, nullptr, &deepest);
+    double best = kInf;
+    cv::Point at;
+    for (int y = 1; y <= roi.height; ++y)
+      for (int x = 1; x <= roi.width; ++x) {
+        if (!mask.at<unsigned char>(y, x) || dist.at<float>(y, x) < 0.5 * deepest) continue;
+        const double dx = roi.x + x - 1 - r.centroid.x, dy = roi.y + y - 1 - r.centroid.y;
+        const double d = dx * dx + dy * dy;
+        if (d < best) best = d, at = cv::Point(roi.x + x - 1, roi.y + y - 1);
+      }
+    anchors[static_cast<std::size_t>(r.id - 1)] = at;
+  }
+  return anchors;
+}
+
+EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
+    : rm_(rm), anchors_(anchors) {
+  const cv::Mat& ids = rm.ids;
+  const double scale = kClearanceScale / resolution;  // cells
+  cv::Mat inside = ids > 0, clearance;
+  cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
+  cost_ = cv::Mat(ids.size(), CV_32F, cv::Scalar(kInf));
+  parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
+  using Item = std::pair<float, int>;  // (cost, row-major index): ties broken by the index, so results are fixed
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  for (const Region& r : rm.regions) {
+    if (r.cells <= 0) continue;
+    const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)];
+    cost_.at<float>(s) = 0;
+    open.emplace(0.f, s.y * ids.cols + s.x);
+  }
+  // One Dijkstra for all regions at once: a cell is only entered from a cell of its own region.
+  while (!open.empty()) {
+    const auto [c, i] = open.top();
+    open.pop();
+    const int y = i / ids.cols, x = i % ids.cols;
+    if (c > cost_.at<float>(y, x)) continue;
+    const int id = ids.at<int>(y, x);
+    for (int k = 0; k < 8; ++k) {
+      const int yy = y + kDy[k], xx = x + kDx[k];
+      if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
+      const double q = scale / std::max(1.0f, clearance.at<float>(yy, xx));
+      const double step = (k % 2 ? M_SQRT2 : 1.0) * (1.0 + q * q);
+      const float nc = static_cast<float>(c + step);
+      if (nc < cost_.at<float>(yy, xx)) {
+        cost_.at<float>(yy, xx) = nc;
+        parent_.at<int>(yy, xx) = i;
+        open.emplace(nc, yy * ids.cols + xx);
+      }
+    }
+  }
+}
+
+std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
+  const cv::Mat& ids = rm_.ids;
+  // The border pair (p in a, q in b) with the least total cost, searched over the two bounding boxes.
+  const cv::Rect box = (rm_.region(a).bbox | rm_.region(b).bbox) & cv::Rect(0, 0, ids.cols, ids.rows);
+  double best = kInf;
+  cv::Point bp, bq;
+  for (int y = box.y; y < box.br().y; ++y)
+    for (int x = box.x; x < box.br().x; ++x) {
+      if (ids.at<int>(y, x) != a || !std::isfinite(cost_.at<float>(y, x))) continue;
+      for (int k = 0; k < 8; ++k) {
+        const int yy = y + kDy[k], xx = x + kDx[k];
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != b) continue;
+        const double c = static_cast<double>(cost_.at<float>(y, x)) + cost_.at<float>(yy, xx);
+        if (c < best) best = c, bp = {x, y}, bq = {xx, yy};
+      }
+    }
+  if (!std::isfinite(best)) return {};
+  std::vector<cv::Point> half_a, half_b;
+  for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
+    half_a.emplace_back(i % ids.cols, i / ids.cols);
+  for (int i = bq.y * ids.cols + bq.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
+    half_b.emplace_back(i % ids.cols, i / ids.cols);
+  std::vector<cv::Point> full(half_a.rbegin(), half_a.rend());
+  full.insert(full.end(), half_b.begin(), half_b.end());
+  std::vector<cv::Point> out{full.front()};
+  simplify(full, 0, full.size() - 1, ids, a, b, out);
+  return out;
+}
+
+}  // namespace gridtopo::topology
