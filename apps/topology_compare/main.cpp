@@ -19,6 +19,7 @@
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
+#include "gridtopo/topology/graph_evaluation.h"
 #include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/reference_alignment.h"
 
@@ -96,13 +97,34 @@ int main(int argc, char** argv) {
 
     const auto s = topology::scoreAgainstReference(map_free, labels, seg, ref_free, rcodes, rooms, 100, ref_map.getValue());
     const auto& a = s.alignment;
+    // The graph, rebuilt from labels.png with the run's options: the regions gridtopo-topology built it from.
+    const double res = grid->getResolution();
+    const topology::RegionMap graph_regions = topology::graphRegions(labels, res, opt.corridor_split, opt.graph_rules);
+    const topology::TopologicalGraph graph = topology::buildGraph(graph_regions, res);
+    if (std::filesystem::is_regular_file(dir + "/topology.json")) {
+      const auto written = topology::graphFromJson(dir + "/topology.json");
+      if (written.nodes.size() != graph.nodes.size() || written.edges.size() != graph.edges.size())
+        throw InputError(dir + "/topology.json", 0, "nodes",
+                         "the graph rebuilt from labels.png with these options has " + std::to_string(graph.nodes.size()) +
+                             " nodes and " + std::to_string(graph.edges.size()) + " edges, the file " +
+                             std::to_string(written.nodes.size()) + " and " + std::to_string(written.edges.size()) +
+                             ": give gridtopo-topology-compare the INI gridtopo-topology ran with");
+    }
+    const auto plan = topology::planGraphFromReference(map_free, ref_free, rcodes, rooms, a, res);
+    const auto gs = topology::scoreGraph(graph, graph_regions, plan);
+    // Ceiling: the graph the same steps (correction, regions, graph rules) make of the plan's own labels.
+    topology::TopologyOptions no_vote = opt;
+    no_vote.blob_vote.enabled = false;
+    const auto ceiling = topology::buildTopology(topology::planLabelsOnMap(map_free, rcodes, a), res, no_vote);
+    const auto gs_ceiling = topology::scoreGraph(ceiling.graph, ceiling.regions, plan);
     std::ostringstream js;
     js << std::setprecision(6) << "{\n  \"format\": \"gridtopo-topology-compare\",\n  \"map\": \"" << map_arg.getValue()
        << "\",\n  \"alignment\": {\"correlation\": " << a.correlation << ", \"start\": " << a.start
        << ", \"map_to_reference\": [" << a.map_to_reference(0, 0) << ", " << a.map_to_reference(0, 1) << ", "
        << a.map_to_reference(0, 2) << ", " << a.map_to_reference(1, 0) << ", " << a.map_to_reference(1, 1) << ", "
        << a.map_to_reference(1, 2) << "]},\n  \"cell_accuracy\": " << s.labels.accuracy()
-       << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson() << "\n}\n";
+       << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson() << ",\n  \"graph\": " << gs.toJson()
+       << ",\n  \"graph_of_plan_labels\": " << gs_ceiling.toJson() << "\n}\n";
     OutputSet outs;
     if (!json.getValue().empty())
       outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, js.str()); });
@@ -129,7 +151,11 @@ int main(int argc, char** argv) {
               << pct(s.labels.accuracy()) << " % (room / corridor / doorway recall " << pct(s.labels.recall(0))
               << " / " << pct(s.labels.recall(1)) << " / " << pct(s.labels.recall(2)) << " %); segmentation: "
               << s.segmentation.segments << " segments, " << s.segmentation.rooms << " rooms, recall "
-              << pct(s.segmentation.recall) << " %, precision " << pct(s.segmentation.precision) << " %\n";
+              << pct(s.segmentation.recall) << " %, precision " << pct(s.segmentation.precision) << " %; graph: "
+              << gs.attached << " of " << gs.plan_rooms << " plan rooms one room node attached through a doorway ("
+              << pct(gs.attachedFraction()) << " %), " << gs.loops_closed << " of " << gs.plan_loops
+              << " plan corridor loops a cycle of corridor nodes (with the plan's labels: " << pct(gs_ceiling.attachedFraction())
+              << " %, " << gs_ceiling.loops_closed << " of " << gs_ceiling.plan_loops << ")\n";
     return 0;
   });
 }
