@@ -6,12 +6,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
 
 namespace gridtopo::topology {
 
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kUnreached = std::numeric_limits<int>::max();
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr double kClearanceScale = 0.7;  // m: a step costs 1 + (kClearanceScale / clearance)^2
@@ -91,54 +91,81 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
-  cost_ = cv::Mat(ids.size(), CV_32F, cv::Scalar(kInf));
+  // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
+  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
+  cv::Mat step(ids.size(), CV_32S, cv::Scalar(0)), diag(ids.size(), CV_32S, cv::Scalar(0));
+  int max_step = 1;
+  for (int y = 0; y < ids.rows; ++y)
+    for (int x = 0; x < ids.cols; ++x) {
+      if (ids.at<int>(y, x) <= 0) continue;
+      const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
+      step.at<int>(y, x) = static_cast<int>(std::lround(16.0 * (1.0 + q * q)));
+      diag.at<int>(y, x) = static_cast<int>(std::lround(16.0 * M_SQRT2 * (1.0 + q * q)));
+      max_step = std::max(max_step, diag.at<int>(y, x));
+    }
+  cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
   parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
-  using Item = std::pair<float, int>;  // (cost, row-major index): ties broken by the index, so results are fixed
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
+  // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
+  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(max_step) + 1);
+  std::size_t queued = 0;
   for (const Region& r : rm.regions) {
     if (r.cells <= 0) continue;
     const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)];
-    cost_.at<float>(s) = 0;
-    open.emplace(0.f, s.y * ids.cols + s.x);
+    cost_.at<int>(s) = 0;
+    bucket[0].push_back(s.y * ids.cols + s.x);
+    ++queued;
   }
-  // One Dijkstra for all regions at once: a cell is only entered from a cell of its own region.
-  while (!open.empty()) {
-    const auto [c, i] = open.top();
-    open.pop();
-    const int y = i / ids.cols, x = i % ids.cols;
-    if (c > cost_.at<float>(y, x)) continue;
-    const int id = ids.at<int>(y, x);
-    for (int k = 0; k < 8; ++k) {
-      const int yy = y + kDy[k], xx = x + kDx[k];
-      if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
-      const double q = scale / std::max(1.0f, clearance.at<float>(yy, xx));
-      const double step = (k % 2 ? M_SQRT2 : 1.0) * (1.0 + q * q);
-      const float nc = static_cast<float>(c + step);
-      if (nc < cost_.at<float>(yy, xx)) {
-        cost_.at<float>(yy, xx) = nc;
-        parent_.at<int>(yy, xx) = i;
-        open.emplace(nc, yy * ids.cols + xx);
+  for (long long c = 0; queued > 0; ++c) {
+    auto& b = bucket[static_cast<std::size_t>(c % (max_step + 1))];
+    for (std::size_t h = 0; h < b.size(); ++h) {  // steps cost 16..max_step: nothing is added to b meanwhile
+      const int i = b[h];
+      const int y = i / ids.cols, x = i % ids.cols;
+      if (cost_.at<int>(y, x) != c) continue;  // stale entry
+      const int id = ids.at<int>(y, x);
+      for (int k = 0; k < 8; ++k) {
+        const int yy = y + kDy[k], xx = x + kDx[k];
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
+        const long long nc = c + (k % 2 ? diag.at<int>(yy, xx) : step.at<int>(yy, xx));
+        if (nc < cost_.at<int>(yy, xx)) {
+          cost_.at<int>(yy, xx) = static_cast<int>(nc);
+          parent_.at<int>(yy, xx) = i;
+          bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
+          ++queued;
+        }
       }
     }
+    queued -= b.size();
+    b.clear();
   }
+  // For every pair of touching regions, the border cell pair with the least total cost (one pass over the image,
+  // half of the 8-neighbourhood; the first such pair in row-major order wins ties).
+  static const int half[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};  // (dy, dx)
+  for (int y = 0; y < ids.rows; ++y)
+    for (int x = 0; x < ids.cols; ++x) {
+      const int a = ids.at<int>(y, x);
+      if (a <= 0 || cost_.at<int>(y, x) == kUnreached) continue;
+      for (const auto& o : half) {
+        const int yy = y + o[0], xx = x + o[1];
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
+        const int b = ids.at<int>(yy, xx);
+        if (b <= 0 || b == a || cost_.at<int>(yy, xx) == kUnreached) continue;
+        const double c = static_cast<double>(cost_.at<int>(y, x)) + cost_.at<int>(yy, xx);
+        const cv::Point p(x, y), q(xx, yy);
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        auto it = joins_.find(key);
+        if (it == joins_.end() || c < std::get<0>(it->second))
+          joins_[key] = a < b ? std::make_tuple(c, p, q) : std::make_tuple(c, q, p);
+      }
+    }
 }
 
 std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
   const cv::Mat& ids = rm_.ids;
-  // The border pair (p in a, q in b) with the least total cost, searched over the two bounding boxes.
-  const cv::Rect box = (rm_.region(a).bbox | rm_.region(b).bbox) & cv::Rect(0, 0, ids.cols, ids.rows);
-  double best = kInf;
-  cv::Point bp, bq;
-  for (int y = box.y; y < box.br().y; ++y)
-    for (int x = box.x; x < box.br().x; ++x) {
-      if (ids.at<int>(y, x) != a || !std::isfinite(cost_.at<float>(y, x))) continue;
-      for (int k = 0; k < 8; ++k) {
-        const int yy = y + kDy[k], xx = x + kDx[k];
-        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != b) continue;
-        const double c = static_cast<double>(cost_.at<float>(y, x)) + cost_.at<float>(yy, xx);
-        if (c < best) best = c, bp = {x, y}, bq = {xx, yy};
-      }
-    }
+  const auto found = joins_.find({std::min(a, b), std::max(a, b)});
+  if (found == joins_.end()) return {};
+  const auto& [best, p_lo, p_hi] = found->second;
+  const cv::Point bp = a < b ? p_lo : p_hi, bq = a < b ? p_hi : p_lo;
   if (!std::isfinite(best)) return {};
   std::vector<cv::Point> half_a, half_b;
   for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))

@@ -10,6 +10,9 @@
 //    joined at the border cell pair of the two regions that minimises the sum of the two costs, then simplified
 //    (Douglas-Peucker, 1 cell) keeping every straight piece on cells of the two regions.
 #include <opencv2/core.hpp>
+#include <map>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "gridtopo/topology/regions.h"
@@ -29,8 +32,10 @@ struct EdgeRouter {
  private:
   const RegionMap& rm_;
   std::vector<cv::Point> anchors_;
-  cv::Mat cost_;    ///< CV_32F cost from the cell's region anchor (inf = not reached)
+  cv::Mat cost_;    ///< CV_32S cost (1/16 cells) from the cell's region anchor (INT_MAX = not reached)
   cv::Mat parent_;  ///< CV_32S row-major index of the previous cell (-1 at the anchor)
+  /// (a, b), a < b -> (total cost, cell in a, cell in b) of the cheapest border cell pair
+  std::map<std::pair<int, int>, std::tuple<double, cv::Point, cv::Point>> joins_;
 };
 
 }  // namespace gridtopo::topology
