@@ -97,26 +97,17 @@ int main(int argc, char** argv) {
 
     const auto s = topology::scoreAgainstReference(map_free, labels, seg, ref_free, rcodes, rooms, 100, ref_map.getValue());
     const auto& a = s.alignment;
-    // The graph, rebuilt from labels.png with the run's options: the regions gridtopo-topology built it from.
-    const double res = grid->getResolution();
-    const topology::RegionMap graph_regions = topology::graphRegions(labels, res, opt.corridor_split, opt.graph_rules);
-    const topology::TopologicalGraph graph = topology::buildGraph(graph_regions, res);
+    // The graph as gridtopo-topology built it from labels.png (the same INI is needed: checked on topology.json).
+    const auto gc = topology::compareGraphWithPlan(map_free, labels, grid->getResolution(), opt, ref_free, rcodes, rooms, a);
+    const auto &gs = gc.score, &gs_ceiling = gc.plan_labels;
     if (std::filesystem::is_regular_file(dir + "/topology.json")) {
       const auto written = topology::graphFromJson(dir + "/topology.json");
-      if (written.nodes.size() != graph.nodes.size() || written.edges.size() != graph.edges.size())
+      if (written.nodes.size() != gc.graph.nodes.size() || written.edges.size() != gc.graph.edges.size())
         throw InputError(dir + "/topology.json", 0, "nodes",
-                         "the graph rebuilt from labels.png with these options has " + std::to_string(graph.nodes.size()) +
-                             " nodes and " + std::to_string(graph.edges.size()) + " edges, the file " +
-                             std::to_string(written.nodes.size()) + " and " + std::to_string(written.edges.size()) +
-                             ": give gridtopo-topology-compare the INI gridtopo-topology ran with");
+                         std::to_string(written.nodes.size()) + " nodes, " + std::to_string(written.edges.size()) +
+                             " edges, but labels.png with this INI gives " + std::to_string(gc.graph.nodes.size()) +
+                             " and " + std::to_string(gc.graph.edges.size()) + ": use the INI gridtopo-topology ran with");
     }
-    const auto plan = topology::planGraphFromReference(map_free, ref_free, rcodes, rooms, a, res);
-    const auto gs = topology::scoreGraph(graph, graph_regions, plan);
-    // Ceiling: the graph the same steps (correction, regions, graph rules) make of the plan's own labels.
-    topology::TopologyOptions no_vote = opt;
-    no_vote.blob_vote.enabled = false;
-    const auto ceiling = topology::buildTopology(topology::planLabelsOnMap(map_free, rcodes, a), res, no_vote);
-    const auto gs_ceiling = topology::scoreGraph(ceiling.graph, ceiling.regions, plan);
     std::ostringstream js;
     js << std::setprecision(6) << "{\n  \"format\": \"gridtopo-topology-compare\",\n  \"map\": \"" << map_arg.getValue()
        << "\",\n  \"alignment\": {\"correlation\": " << a.correlation << ", \"start\": " << a.start

@@ -8,6 +8,7 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/pipeline.h"
 
 namespace gridtopo::topology {
 
@@ -259,6 +260,24 @@ GraphScore scoreGraph(const TopologicalGraph& g, const RegionMap& rm, const Plan
   s.plan_loops = static_cast<int>(plan.loop_points.size());
   s.loops_closed = static_cast<int>(std::count(closed.begin(), closed.end(), true));
   return s;
+}
+
+GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& labels, double resolution,
+                                     const TopologyOptions& options, const cv::Mat& reference_free,
+                                     const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
+                                     const ReferenceAlignment& alignment) {
+  GraphComparison c;
+  const RegionMap regions = graphRegions(labels, resolution, options.corridor_split, options.graph_rules);
+  c.graph = buildGraph(regions, resolution);
+  const PlanGraph plan =
+      planGraphFromReference(map_free, reference_free, reference_codes, reference_rooms, alignment, resolution);
+  c.score = scoreGraph(c.graph, regions, plan);
+  TopologyOptions no_vote = options;
+  no_vote.blob_vote.enabled = false;
+  const TopologyResult ceiling =
+      buildTopology(planLabelsOnMap(map_free, reference_codes, alignment), resolution, no_vote);
+  c.plan_labels = scoreGraph(ceiling.graph, ceiling.regions, plan);
+  return c;
 }
 
 std::string GraphScore::toJson() const {

@@ -83,4 +83,21 @@ struct GraphScore {
 GraphScore scoreGraph(const TopologicalGraph& g, const RegionMap& regions, const PlanGraph& plan,
                       const GraphScoreOptions& options = {});
 
+struct TopologyOptions;
+
+struct GraphComparison {
+  TopologicalGraph graph;   ///< the graph of the labels, rebuilt as gridtopo-topology builds it
+  GraphScore score;         ///< that graph against the plan
+  GraphScore plan_labels;   ///< the ceiling: the graph the same steps make of the plan's own labels on the map
+};
+
+/// What gridtopo-topology-compare reports on the graph: the graph of `labels` (the final labels of a
+/// gridtopo-topology run on a map with free cells `map_free`: graphRegions with `options`, then buildGraph), scored
+/// against the plan (planGraphFromReference), and the ceiling: buildTopology of planLabelsOnMap with `options`
+/// (blob vote off: it needs a labelling), scored the same way.
+GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& labels, double resolution,
+                                     const TopologyOptions& options, const cv::Mat& reference_free,
+                                     const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
+                                     const ReferenceAlignment& alignment);
+
 }  // namespace gridtopo::topology
