@@ -180,12 +180,13 @@ TEST(TopologyCompareApp, ScoresAMapInAnotherFrameAgainstTheReference) {
   EXPECT_GT(jsonNumber(j, "precision", "\"segmentation\""), 0.93) << j;
   EXPECT_TRUE(fs::exists(d / "c.png"));
   // Graph quality (doc/topology.md, "Graph quality against the plan"): 20 plan rooms, 2 corridor loops, both
-  // cycles of corridor nodes; 17 of 20 rooms attached on the unturned plan (2026-12-02), a regression bound here.
+  // cycles of corridor nodes; 18 of 20 rooms attached (95 % with the plan's labels) on the unturned plan (2026-12-02),
+  // regression bounds here.
   EXPECT_EQ(jsonNumber(j, "plan_rooms", "\"graph\""), 20) << j;
   EXPECT_EQ(jsonNumber(j, "plan_loops", "\"graph\""), 2) << j;
   EXPECT_EQ(jsonNumber(j, "loops_closed", "\"graph\""), 2) << j;
   EXPECT_GE(jsonNumber(j, "attached_fraction", "\"graph\""), 0.8) << j;
-  EXPECT_GE(jsonNumber(j, "attached_fraction", "\"graph_of_plan_labels\""), 0.85) << j;
+  EXPECT_GE(jsonNumber(j, "attached_fraction", "\"graph_of_plan_labels\""), 0.9) << j;
   // Scoring with other graph options than the run's is refused, naming topology.json.
   std::ofstream(d / "other.ini") << "[topology]\ngraph_merge_doorways = false\n";
   EXPECT_EQ(std::system((cmp + " -c " + (d / "other.ini").string() + " -j " + (d / "other.json").string() + " > " +

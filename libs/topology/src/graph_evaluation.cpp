@@ -138,9 +138,10 @@ GraphScore scoreGraph(const TopologicalGraph& g, const RegionMap& rm, const Plan
       ++plan_cells[p];
       if (const int n = rm.ids.at<int>(y, x); n > 0) ++count[n][p], ++in_plan[n];
     }
-  std::map<int, int> lies_in;  // node -> plan region
+  std::map<int, int> lies_in, mostly_in;  // node -> plan region holding >= purity / the most of its cells
   for (const auto& [n, per] : count) {
     const auto best = std::max_element(per.begin(), per.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    mostly_in[n] = best->first;
     if (best->second >= o.purity * static_cast<double>(in_plan[n])) lies_in[n] = best->first;
   }
   std::map<int, std::vector<const GraphEdge*>> incident;
@@ -160,10 +161,12 @@ GraphScore scoreGraph(const TopologicalGraph& g, const RegionMap& rm, const Plan
     if (m.one_room_node) m.node = inside;
     for (const auto& [ab, door] : plan.links)
       if (ab.first == p || ab.second == p) m.has_plan_opening = true;
-    // Is node t the right end of an opening from p (through a doorway node when `via_door`)?
+    // Is node t the right end of an opening from p (through a doorway node when `via_door`)? The far end only has
+    // to hold more of its cells in Q than in any other plan region: a corridor piece at a junction spans the plan's
+    // corridor regions that meet there.
     auto right_end = [&](int t, bool via_door) {
-      if (t == m.node || label(t) == kDoorway || !lies_in.count(t)) return false;
-      const int q = lies_in[t];
+      if (t == m.node || label(t) == kDoorway || !mostly_in.count(t)) return false;
+      const int q = mostly_in[t];
       const auto it = plan.links.find({std::min(p, q), std::max(p, q)});
       return it != plan.links.end() && (via_door || !it->second);
     };

@@ -59,7 +59,8 @@ struct PlanRoomMatch {
   bool one_room_node = false;
   bool has_plan_opening = false;  ///< the plan has an opening from this room to another scored plan region
   /// one_room_node, and for some opening of the plan room to a plan region Q: an edge through a doorway node (for a
-  /// doorway; for an open passage also a direct edge) to a node that lies in Q
+  /// doorway; for an open passage also a direct edge) to a node that holds more of its cells in Q than in any other
+  /// plan region
   bool attached = false;
 };
 
