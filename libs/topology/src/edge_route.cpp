@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 namespace gridtopo::topology {
@@ -17,7 +16,7 @@ constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr double kClearanceScale = 0.7;  // m: a step costs 1 + (kClearanceScale / clearance)^2
 constexpr double kSimplify = 1.0;        // cells
 
-// Every cell of the straight 8-connected line a -> b lies in region a_id or b_id.
+// Every cell of the straight 8-connected line p -> q lies in region a or b.
 bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
   cv::LineIterator it(ids, p, q, 8);
   for (int i = 0; i < it.count; ++i, ++it) {
@@ -84,7 +83,7 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
 }
 
 EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
-    : rm_(rm), anchors_(anchors) {
+    : rm_(rm) {
   const cv::Mat& ids = rm.ids;
   const double scale = kClearanceScale / resolution;  // cells
   cv::Mat inside = ids > 0, clearance;
@@ -164,9 +163,8 @@ std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
   const cv::Mat& ids = rm_.ids;
   const auto found = joins_.find({std::min(a, b), std::max(a, b)});
   if (found == joins_.end()) return {};
-  const auto& [best, p_lo, p_hi] = found->second;
-  const cv::Point bp = a < b ? p_lo : p_hi, bq = a < b ? p_hi : p_lo;
-  if (!std::isfinite(best)) return {};
+  const cv::Point lo = std::get<1>(found->second), hi = std::get<2>(found->second);  // cells in min(a, b), max(a, b)
+  const cv::Point bp = a < b ? lo : hi, bq = a < b ? hi : lo;
   std::vector<cv::Point> half_a, half_b;
   for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
     half_a.emplace_back(i % ids.cols, i / ids.cols);

@@ -31,7 +31,6 @@ struct EdgeRouter {
 
  private:
   const RegionMap& rm_;
-  std::vector<cv::Point> anchors_;
   cv::Mat cost_;    ///< CV_32S cost (1/16 cells) from the cell's region anchor (INT_MAX = not reached)
   cv::Mat parent_;  ///< CV_32S row-major index of the previous cell (-1 at the anchor)
   /// (a, b), a < b -> (total cost, cell in a, cell in b) of the cheapest border cell pair
