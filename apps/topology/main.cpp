@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
         "topological graph, and write them to an output directory: topology.graphml, topology.json, topology.dot, "
         "overlay.png, labels.png (room 77, corridor 115, doorway 179, other 0; pixel-aligned with the input), "
         "segmentation.png (16-bit room ids, 0 = not free), segmentation_colour.png, topology_posegraph.graph (MRPT "
-        "CNetworkOfPoses2D text format: nodes at region centroids), options.ini.",
+        "CNetworkOfPoses2D text format: nodes at their anchors inside the regions), options.ini.",
         ' ', "0.1");
     TCLAP::UnlabeledValueArg<std::string> map_arg(
         "map", "map: .png/.pgm/.jpg (+ ROS .yaml beside it), .yaml, .gridmap(.gz); or a RUN.ini ([topology_run] map, "

@@ -19,6 +19,7 @@
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/topology/evaluation.h"
 #include "gridtopo/topology/export.h"
+#include "gridtopo/topology/graph_evaluation.h"
 #include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/reference_alignment.h"
 
@@ -96,13 +97,25 @@ int main(int argc, char** argv) {
 
     const auto s = topology::scoreAgainstReference(map_free, labels, seg, ref_free, rcodes, rooms, 100, ref_map.getValue());
     const auto& a = s.alignment;
+    // The graph as gridtopo-topology built it from labels.png (the same INI is needed: checked on topology.json).
+    const auto gc = topology::compareGraphWithPlan(map_free, labels, grid->getResolution(), opt, ref_free, rcodes, rooms, a);
+    const auto &gs = gc.score, &gs_ceiling = gc.plan_labels;
+    if (std::filesystem::is_regular_file(dir + "/topology.json")) {
+      const auto written = topology::graphFromJson(dir + "/topology.json");
+      if (written.nodes.size() != gc.graph.nodes.size() || written.edges.size() != gc.graph.edges.size())
+        throw InputError(dir + "/topology.json", 0, "nodes",
+                         std::to_string(written.nodes.size()) + " nodes, " + std::to_string(written.edges.size()) +
+                             " edges, but labels.png with this INI gives " + std::to_string(gc.graph.nodes.size()) +
+                             " and " + std::to_string(gc.graph.edges.size()) + ": use the INI gridtopo-topology ran with");
+    }
     std::ostringstream js;
     js << std::setprecision(6) << "{\n  \"format\": \"gridtopo-topology-compare\",\n  \"map\": \"" << map_arg.getValue()
        << "\",\n  \"alignment\": {\"correlation\": " << a.correlation << ", \"start\": " << a.start
        << ", \"map_to_reference\": [" << a.map_to_reference(0, 0) << ", " << a.map_to_reference(0, 1) << ", "
        << a.map_to_reference(0, 2) << ", " << a.map_to_reference(1, 0) << ", " << a.map_to_reference(1, 1) << ", "
        << a.map_to_reference(1, 2) << "]},\n  \"cell_accuracy\": " << s.labels.accuracy()
-       << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson() << "\n}\n";
+       << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson() << ",\n  \"graph\": " << gs.toJson()
+       << ",\n  \"graph_of_plan_labels\": " << gs_ceiling.toJson() << "\n}\n";
     OutputSet outs;
     if (!json.getValue().empty())
       outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, js.str()); });
@@ -129,7 +142,11 @@ int main(int argc, char** argv) {
               << pct(s.labels.accuracy()) << " % (room / corridor / doorway recall " << pct(s.labels.recall(0))
               << " / " << pct(s.labels.recall(1)) << " / " << pct(s.labels.recall(2)) << " %); segmentation: "
               << s.segmentation.segments << " segments, " << s.segmentation.rooms << " rooms, recall "
-              << pct(s.segmentation.recall) << " %, precision " << pct(s.segmentation.precision) << " %\n";
+              << pct(s.segmentation.recall) << " %, precision " << pct(s.segmentation.precision) << " %; graph: "
+              << gs.attached << " of " << gs.plan_rooms << " plan rooms one room node attached through a doorway ("
+              << pct(gs.attachedFraction()) << " %), " << gs.loops_closed << " of " << gs.plan_loops
+              << " plan corridor loops a cycle of corridor nodes (with the plan's labels: " << pct(gs_ceiling.attachedFraction())
+              << " %, " << gs_ceiling.loops_closed << " of " << gs_ceiling.plan_loops << ")\n";
     return 0;
   });
 }

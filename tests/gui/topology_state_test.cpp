@@ -147,6 +147,10 @@ TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
       EXPECT_NEAR(s.topology()->topo.graph.nodes[i].area_m2, t->topo.graph.nodes[i].area_m2, 1e-6);  // 9 digits
       EXPECT_EQ(s.topology()->topo.graph.nodes[i].anchor_px, t->topo.graph.nodes[i].anchor_px) << g;
     }
+    for (std::size_t i = 0; i < t->topo.graph.edges.size(); ++i) {  // the routed paths come back from both files
+      EXPECT_GE(t->topo.graph.edges[i].path_px.size(), 2u);
+      EXPECT_EQ(s.topology()->topo.graph.edges[i].path_px, t->topo.graph.edges[i].path_px) << g;
+    }
     EXPECT_EQ(cv::countNonZero(s.topology()->topo.labels != t->topo.labels), 0) << g;
     // Inspecting a loaded output: the label is known, the probabilities are not.
     const auto ci = session::inspectCell(*s.topology(), 40, 50);

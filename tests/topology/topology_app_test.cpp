@@ -282,6 +282,23 @@ TEST(TopologyCompareApp, ScoresAMapInAnotherFrameAgainstTheReference) {
   EXPECT_GT(jsonNumber(j, "recall", "\"segmentation\""), 0.95) << j;
   EXPECT_GT(jsonNumber(j, "precision", "\"segmentation\""), 0.93) << j;
   EXPECT_TRUE(fs::exists(d / "c.png"));
+  // Graph quality (doc/topology.md, "Graph quality against the plan"): 20 plan rooms, 2 corridor loops, both
+  // cycles of corridor nodes; 18 of 20 rooms attached (95 % with the plan's labels) on the unturned plan (2026-12-02),
+  // regression bounds here.
+  EXPECT_EQ(jsonNumber(j, "plan_rooms", "\"graph\""), 20) << j;
+  EXPECT_EQ(jsonNumber(j, "plan_loops", "\"graph\""), 2) << j;
+  EXPECT_EQ(jsonNumber(j, "loops_closed", "\"graph\""), 2) << j;
+  EXPECT_GE(jsonNumber(j, "attached_fraction", "\"graph\""), 0.8) << j;
+  EXPECT_GE(jsonNumber(j, "attached_fraction", "\"graph_of_plan_labels\""), 0.9) << j;
+  // Scoring with other graph options than the run's is refused, naming topology.json.
+  std::ofstream(d / "other.ini") << "[topology]\ngraph_merge_doorways = false\n";
+  EXPECT_EQ(std::system((cmp + " -c " + (d / "other.ini").string() + " -j " + (d / "other.json").string() + " > " +
+                         (d / "other.txt").string() + " 2>&1")
+                            .c_str()),
+            1 << 8)
+      << slurp(d / "other.txt");
+  EXPECT_NE(slurp(d / "other.txt").find("topology.json"), std::string::npos) << slurp(d / "other.txt");
+  EXPECT_FALSE(fs::exists(d / "other.json"));
   // A missing reference is a clear error naming the file, and nothing is written.
   std::string bad = cmp;
   bad.replace(bad.find("--reference-map " + ref), 16 + ref.size(), "--reference-map /nonexistent/ref.png");

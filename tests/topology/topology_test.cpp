@@ -222,6 +222,12 @@ TEST(Export, FilesParseBack) {
     EXPECT_EQ(back.edges[i].a, g.edges[i].a);
     EXPECT_EQ(back.edges[i].b, g.edges[i].b);
     EXPECT_EQ(back.edges[i].via_doorway, g.edges[i].via_doorway);
+    EXPECT_GE(g.edges[i].path_px.size(), 2u);
+    EXPECT_EQ(back.edges[i].path_px, g.edges[i].path_px);  // the routed path survives the round trip
+  }
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    EXPECT_NEAR(back.nodes[i].anchor_m.x, g.nodes[i].anchor_m.x, 1e-9);
+    EXPECT_NEAR(back.nodes[i].anchor_m.y, g.nodes[i].anchor_m.y, 1e-9);
   }
   // GraphML: one <node> per node, one <edge> per edge, every edge endpoint declared.
   const std::string gml = toGraphML(g);
@@ -303,6 +309,6 @@ TEST(Export, MrptPoseGraphRoundTrip) {
   back.loadFromTextFile(p.string());
   ASSERT_EQ(back.nodes.size(), g.nodes.size());
   const auto& n0 = g.nodes.front();
-  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.centroid_m.x, 1e-6);
+  EXPECT_NEAR(back.nodes.at(static_cast<mrpt::graphs::TNodeID>(n0.id)).x(), n0.anchor_m.x, 1e-6);
   EXPECT_EQ(back.edgeCount(), g.edges.size());
 }

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFile.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -580,6 +581,16 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
         for (const auto& e : g.edges) {
           const auto *a = g.node(e.a), *b = g.node(e.b);
           if (!a || !b) continue;
+          if (e.path_px.size() >= 2) {  // as in overlay.png: along the routed free path
+            std::vector<cv::Point> line;
+            for (const cv::Point& q : e.path_px) {
+              const cv::Point2d w = pixelWorld(*topology_, cv::Point2d(q));
+              const cv::Point2d s = v.toScreen(w.x, w.y);
+              line.emplace_back(static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y)));
+            }
+            cv::polylines(screen, line, false, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+            continue;
+          }
           const cv::Point2d wa = nodeAnchorWorld(*topology_, *a), wb = nodeAnchorWorld(*topology_, *b);
           const cv::Point2d pa = v.toScreen(wa.x, wa.y), pb = v.toScreen(wb.x, wb.y);
           if (!topology_->has_labelling) {  // a loaded graph has no contact points: straight lines

@@ -103,6 +103,18 @@ topology::TopologicalGraph graphFromGraphML(const std::string& path) {
       e.b = std::stoi(m[2]);
       e.border_cells = data.count("border_cells") ? static_cast<int>(num("border_cells")) : 0;
       e.via_doorway = data.count("via_doorway") && data["via_doorway"] == "true";
+      if (data.count("path_px")) {  // the drawn route: "col,row col,row ..."
+        std::istringstream points(data["path_px"]);
+        std::string point;
+        while (points >> point) {
+          int x = 0, y = 0;
+          char comma = 0, extra = 0;
+          std::istringstream one(point);
+          if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra))
+            throw InputError(path, ln, "path_px", "'" + point + "' is not col,row");
+          e.path_px.emplace_back(x, y);
+        }
+      }
       g.edges.push_back(e);
     }
   }

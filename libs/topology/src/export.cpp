@@ -15,6 +15,17 @@ std::string num(double v) {
   s << std::setprecision(10) << v;
   return s.str();
 }
+// "x0,y0 x1,y1 ..." for GraphML, [[x0, y0], [x1, y1], ...] for JSON.
+std::string pathText(const std::vector<cv::Point>& path, bool json) {
+  std::ostringstream o;
+  if (json) o << "[";
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (json) o << (i ? ", " : "") << "[" << path[i].x << ", " << path[i].y << "]";
+    else o << (i ? " " : "") << path[i].x << "," << path[i].y;
+  }
+  if (json) o << "]";
+  return o.str();
+}
 }  // namespace
 
 std::string toGraphML(const TopologicalGraph& g) {
@@ -28,7 +39,8 @@ std::string toGraphML(const TopologicalGraph& g) {
                            {"bbox_y", "node", "int"},     {"bbox_w", "node", "int"},
                            {"bbox_h", "node", "int"},     {"anchor_col", "node", "int"},
                            {"anchor_row", "node", "int"}, {"border_cells", "edge", "int"},
-                           {"via_doorway", "edge", "boolean"}};
+                           {"via_doorway", "edge", "boolean"},
+                           {"path_px", "edge", "string"}};
   for (const auto& k : keys)
     o << "  <key id=\"" << k[0] << "\" for=\"" << k[1] << "\" attr.name=\"" << k[0] << "\" attr.type=\"" << k[2]
       << "\"/>\n";
@@ -52,7 +64,8 @@ std::string toGraphML(const TopologicalGraph& g) {
   for (const auto& e : g.edges)
     o << "    <edge source=\"n" << e.a << "\" target=\"n" << e.b << "\">"
       << "<data key=\"border_cells\">" << e.border_cells << "</data>"
-      << "<data key=\"via_doorway\">" << (e.via_doorway ? "true" : "false") << "</data></edge>\n";
+      << "<data key=\"via_doorway\">" << (e.via_doorway ? "true" : "false") << "</data>"
+      << "<data key=\"path_px\">" << pathText(e.path_px, false) << "</data></edge>\n";
   o << "  </graph>\n</graphml>\n";
   return o.str();
 }
@@ -74,7 +87,7 @@ std::string toJson(const TopologicalGraph& g) {
     const auto& e = g.edges[i];
     o << (i ? "," : "") << "\n    {\"a\": " << e.a << ", \"b\": " << e.b << ", \"border_cells\": " << e.border_cells
       << ", \"via_doorway\": " << (e.via_doorway ? 1 : 0) << ", \"contact_px\": [" << num(e.contact_px.x) << ", "
-      << num(e.contact_px.y) << "]}";
+      << num(e.contact_px.y) << "], \"path_px\": " << pathText(e.path_px, true) << "}";
   }
   o << "\n  ]\n}\n";
   return o.str();
@@ -123,6 +136,10 @@ TopologicalGraph graphFromJson(const std::string& path) {
     gn.anchor_px = n["anchor_px"].empty()
                        ? cv::Point(cvRound(gn.centroid_px.x), cvRound(gn.centroid_px.y))
                        : cv::Point(static_cast<int>(n["anchor_px"][0]), static_cast<int>(n["anchor_px"][1]));
+    // The anchor in metres, with the map origin the centroid's two coordinates imply.
+    const cv::Point2d origin = gn.centroid_m - cv::Point2d((gn.centroid_px.x + 0.5) * g.resolution,
+                                                           (g.rows - gn.centroid_px.y - 0.5) * g.resolution);
+    gn.anchor_m = origin + cv::Point2d((gn.anchor_px.x + 0.5) * g.resolution, (g.rows - gn.anchor_px.y - 0.5) * g.resolution);
     g.nodes.push_back(gn);
   }
   for (const auto& e : fs["edges"]) {
@@ -132,6 +149,7 @@ TopologicalGraph graphFromJson(const std::string& path) {
     ge.border_cells = static_cast<int>(e["border_cells"]);
     ge.via_doorway = static_cast<int>(e["via_doorway"]) != 0;
     ge.contact_px = cv::Point2d(static_cast<double>(e["contact_px"][0]), static_cast<double>(e["contact_px"][1]));
+    for (const auto& q : e["path_px"]) ge.path_px.emplace_back(static_cast<int>(q[0]), static_cast<int>(q[1]));
     g.edges.push_back(ge);
   }
   return g;
@@ -160,9 +178,15 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   cv::resize(img, big, cv::Size(), scale, scale, cv::INTER_NEAREST);
   auto px = [&](cv::Point2d p) { return cv::Point(static_cast<int>((p.x + 0.5) * scale), static_cast<int>((p.y + 0.5) * scale)); };
   auto pt = [&](const GraphNode& n) { return px(cv::Point2d(n.anchor_px)); };
-  // Each edge runs node -> contact point -> node. The half at a node whose centroid lies outside its region (a
-  // corridor loop) is left out: a straight line would cross walls; the coloured region shows the connection.
+  // Each edge along its routed free path. Graphs without paths (read from older files) fall back to node ->
+  // contact point -> node, leaving out the half at a node whose centroid lies outside its region.
   for (const auto& e : g.edges) {
+    if (e.path_px.size() >= 2) {
+      std::vector<cv::Point> line;
+      for (const cv::Point& q : e.path_px) line.push_back(px(cv::Point2d(q)));
+      cv::polylines(big, line, false, cv::Scalar(30, 30, 30), std::max(1, scale), cv::LINE_AA);
+      continue;
+    }
     const GraphNode *a = g.node(e.a), *b = g.node(e.b);
     if (!a || !b) continue;
     const cv::Point c = px(e.contact_px);

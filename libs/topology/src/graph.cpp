@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/edge_route.h"
 
 namespace gridtopo::topology {
 
@@ -44,21 +45,14 @@ TopologicalGraph buildGraph(const RegionMap& rm, double resolution, cv::Point2d 
     n.bbox_px = r.bbox;
     g.nodes.push_back(n);
   }
-  // Anchors: centroid cell if inside the region, else the region cell nearest to the centroid.
-  std::vector<double> best(rm.regions.size(), 1e300);
+  // Anchors: a cell well inside every region (the centroid when the region is compact around it).
+  const std::vector<cv::Point> anchors = regionAnchors(rm);
   for (auto& n : g.nodes) {
     const cv::Point c(static_cast<int>(std::lround(n.centroid_px.x)), static_cast<int>(std::lround(n.centroid_px.y)));
     n.centroid_inside = c.inside(cv::Rect(0, 0, rm.ids.cols, rm.ids.rows)) && rm.ids.at<int>(c) == n.id;
-    if (n.centroid_inside) n.anchor_px = c, best[static_cast<std::size_t>(n.id - 1)] = -1;
+    n.anchor_px = anchors[static_cast<std::size_t>(n.id - 1)];
+    n.anchor_m = origin + cv::Point2d((n.anchor_px.x + 0.5) * resolution, (g.rows - n.anchor_px.y - 0.5) * resolution);
   }
-  for (int y = 0; y < rm.ids.rows; ++y)
-    for (int x = 0; x < rm.ids.cols; ++x) {
-      const int id = rm.ids.at<int>(y, x);
-      if (id <= 0) continue;
-      GraphNode& n = g.nodes[static_cast<std::size_t>(id - 1)];
-      const double d = (x - n.centroid_px.x) * (x - n.centroid_px.x) + (y - n.centroid_px.y) * (y - n.centroid_px.y);
-      if (d < best[static_cast<std::size_t>(id - 1)]) best[static_cast<std::size_t>(id - 1)] = d, n.anchor_px = cv::Point(x, y);
-    }
   // Edges with their contact points (same half-neighbourhood scan as regionAdjacency).
   struct Acc {
     int n = 0;
@@ -87,6 +81,8 @@ TopologicalGraph buildGraph(const RegionMap& rm, double resolution, cv::Point2d 
     e.via_doorway = rm.region(e.a).label == door || rm.region(e.b).label == door;
     g.edges.push_back(e);
   }
+  const EdgeRouter router(rm, anchors, resolution);
+  for (auto& e : g.edges) e.path_px = router.route(e.a, e.b);
   return g;
 }
 

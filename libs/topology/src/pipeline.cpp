@@ -42,6 +42,8 @@ void forEachTopologyKey(Options& o, F&& f) {
   f("corridor_split", o.corridor_split.enabled);
   f("corridor_min_branch", o.corridor_split.min_branch);
   f("corridor_min_piece_area", o.corridor_split.min_piece_area);
+  f("graph_min_node_area", o.graph_rules.min_node_area);
+  f("graph_merge_doorways", o.graph_rules.merge_doorways);
 }
 }  // namespace
 
@@ -81,6 +83,8 @@ void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
     throw InputError(where, 0, "corridor_min_branch", "must be in [0, 100] metres");
   if (!(corridor_split.min_piece_area >= 0 && corridor_split.min_piece_area <= 1000))
     throw InputError(where, 0, "corridor_min_piece_area", "must be in [0, 1000] square metres");
+  if (!(graph_rules.min_node_area >= 0 && graph_rules.min_node_area <= 100))
+    throw InputError(where, 0, "graph_min_node_area", "must be in [0, 100] square metres (0 = off)");
   if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
@@ -114,7 +118,9 @@ void TopologyOptions::dumpToTextStream(std::ostream& out) const {
       << "\nblob_vote_min_share = " << blob_vote.min_share
       << "\ncorridor_split = " << (corridor_split.enabled ? "true" : "false")
       << "\ncorridor_min_branch = " << corridor_split.min_branch
-      << "\ncorridor_min_piece_area = " << corridor_split.min_piece_area << "\n[relaxation]\n";
+      << "\ncorridor_min_piece_area = " << corridor_split.min_piece_area
+      << "\ngraph_min_node_area = " << graph_rules.min_node_area
+      << "\ngraph_merge_doorways = " << (graph_rules.merge_doorways ? "true" : "false") << "\n[relaxation]\n";
   relaxation.dumpToTextStream(out);
   out << "[correction]\n";
   correction.dumpToTextStream(out);
@@ -171,7 +177,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
-  r.regions = splitCorridors(r.regions, resolution, o.corridor_split);
+  r.regions = applyGraphRules(splitCorridors(r.regions, resolution, o.corridor_split), resolution, o.graph_rules);
   r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }

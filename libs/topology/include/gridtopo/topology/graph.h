@@ -1,6 +1,7 @@
 #pragma once
 // The topological graph of Mozos et al.: one node per region, one edge per pair of regions that share a border
-// (rooms and corridors are joined through doorway nodes where the labels have them).
+// (rooms and corridors are joined through doorway nodes where the labels have them). Nodes sit at an anchor cell
+// inside their region and edges carry the free path between their anchors (edge_route.h).
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -17,7 +18,8 @@ struct GraphNode {
   cv::Point2d centroid_px;  ///< pixels (x = column, y = row, row 0 at the top)
   cv::Point2d centroid_m;   ///< metres, x right, y up: origin + ((col + 0.5) res, (rows - row - 0.5) res)
   cv::Rect bbox_px;
-  cv::Point anchor_px;      ///< a cell of the region: the centroid if it lies inside, else the nearest region cell
+  cv::Point anchor_px;      ///< where the node is drawn: a cell well inside the region (edge_route.h, regionAnchors)
+  cv::Point2d anchor_m;     ///< the anchor cell's centre in metres (same convention as centroid_m)
   bool centroid_inside = true;  ///< false for non-convex regions (a corridor loop) whose centroid lies outside
 };
 
@@ -26,6 +28,9 @@ struct GraphEdge {
   int border_cells = 0;   ///< 8-neighbour cell pairs along the shared border
   bool via_doorway = false;  ///< one end is a doorway node
   cv::Point2d contact_px;    ///< mean position of the border cells (pixels): where the two regions meet
+  /// The edge as drawn: cells from a's anchor to b's anchor along the free path through the shared border, every
+  /// straight piece on cells of the two regions (EdgeRouter::route). Empty for graphs read from files without it.
+  std::vector<cv::Point> path_px;
 };
 
 struct TopologicalGraph {

@@ -12,6 +12,7 @@
 #include "gridtopo/topology/correction.h"
 #include "gridtopo/topology/corridor_split.h"
 #include "gridtopo/topology/graph.h"
+#include "gridtopo/topology/graph_rules.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/topology/segmentation.h"
 
@@ -38,6 +39,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
   CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
+  GraphRuleOptions graph_rules;          ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -83,7 +85,7 @@ places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resoluti
 /// segmentation from per-cell labels (e.g. LabellingResult::labels) with the run's options (`o.correction`,
 /// `o.segmentation`, `o.seg_rules`, `o.corridor_split`, `o.blob_vote`). The segmentation is made from the
 /// 8-connected regions; the returned regions and graph then have corridors split into pieces at their junctions
-/// (corridor_split.h). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
+/// (corridor_split.h) and the graph rules G1, G2 applied (graph_rules.h): they are graphRegions(result.labels, ...). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
 /// (step 7b), which needs the labelling the labels come from (its lattice and relaxed probabilities): throws
 /// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,

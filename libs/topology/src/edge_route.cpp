@@ -1,0 +1,180 @@
+#include "gridtopo/topology/edge_route.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gridtopo::topology {
+
+namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kUnreached = std::numeric_limits<int>::max();
+constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+constexpr double kClearanceScale = 0.7;  // m: a step costs 1 + (kClearanceScale / clearance)^2
+constexpr double kSimplify = 1.0;        // cells
+
+// Every cell of the straight 8-connected line p -> q lies in region a or b.
+bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
+  cv::LineIterator it(ids, p, q, 8);
+  for (int i = 0; i < it.count; ++i, ++it) {
+    const int v = ids.at<int>(it.pos());
+    if (v != a && v != b) return false;
+  }
+  return true;
+}
+
+double distanceToSegment(cv::Point2d p, cv::Point2d a, cv::Point2d b) {
+  const cv::Point2d d = b - a;
+  const double l2 = d.dot(d);
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  const cv::Point2d c = a + t * d;
+  return std::hypot(p.x - c.x, p.y - c.y);
+}
+
+void simplify(const std::vector<cv::Point>& pts, std::size_t i, std::size_t j, const cv::Mat& ids, int a, int b,
+              std::vector<cv::Point>& out) {
+  // Appends pts[i + 1 .. j] (simplified); pts[i] is already in `out`.
+  if (j <= i + 1) {
+    if (j > i) out.push_back(pts[j]);
+    return;
+  }
+  double worst = -1;
+  std::size_t k = i + 1;
+  for (std::size_t m = i + 1; m < j; ++m) {
+    const double d = distanceToSegment(pts[m], pts[i], pts[j]);
+    if (d > worst) worst = d, k = m;
+  }
+  if (worst <= kSimplify && lineInside(ids, pts[i], pts[j], a, b)) {
+    out.push_back(pts[j]);
+    return;
+  }
+  if (worst <= kSimplify) k = (i + j) / 2;  // close to straight but the chord touches a wall: split in the middle
+  simplify(pts, i, k, ids, a, b, out);
+  simplify(pts, k, j, ids, a, b, out);
+}
+}  // namespace
+
+std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
+  std::vector<cv::Point> anchors(rm.regions.size());
+  for (const Region& r : rm.regions) {
+    if (r.cells <= 0) continue;
+    const cv::Rect roi = r.bbox;
+    cv::Mat mask(roi.height + 2, roi.width + 2, CV_8U, cv::Scalar(0));
+    cv::Mat(mask, cv::Rect(1, 1, roi.width, roi.height)).setTo(255, rm.ids(roi) == r.id);
+    cv::Mat dist;
+    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    double deepest = 0;
+    cv::minMaxLoc(dist, nullptr, &deepest);
+    double best = kInf;
+    cv::Point at;
+    for (int y = 1; y <= roi.height; ++y)
+      for (int x = 1; x <= roi.width; ++x) {
+        if (!mask.at<unsigned char>(y, x) || dist.at<float>(y, x) < 0.5 * deepest) continue;
+        const double dx = roi.x + x - 1 - r.centroid.x, dy = roi.y + y - 1 - r.centroid.y;
+        const double d = dx * dx + dy * dy;
+        if (d < best) best = d, at = cv::Point(roi.x + x - 1, roi.y + y - 1);
+      }
+    anchors[static_cast<std::size_t>(r.id - 1)] = at;
+  }
+  return anchors;
+}
+
+EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
+    : rm_(rm) {
+  const cv::Mat& ids = rm.ids;
+  const double scale = kClearanceScale / resolution;  // cells
+  cv::Mat inside = ids > 0, clearance;
+  cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
+  // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
+  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
+  cv::Mat step(ids.size(), CV_32S, cv::Scalar(0)), diag(ids.size(), CV_32S, cv::Scalar(0));
+  int max_step = 1;
+  for (int y = 0; y < ids.rows; ++y)
+    for (int x = 0; x < ids.cols; ++x) {
+      if (ids.at<int>(y, x) <= 0) continue;
+      const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
+      step.at<int>(y, x) = static_cast<int>(std::lround(16.0 * (1.0 + q * q)));
+      diag.at<int>(y, x) = static_cast<int>(std::lround(16.0 * M_SQRT2 * (1.0 + q * q)));
+      max_step = std::max(max_step, diag.at<int>(y, x));
+    }
+  cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
+  parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
+  // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
+  // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
+  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(max_step) + 1);
+  std::size_t queued = 0;
+  for (const Region& r : rm.regions) {
+    if (r.cells <= 0) continue;
+    const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)];
+    cost_.at<int>(s) = 0;
+    bucket[0].push_back(s.y * ids.cols + s.x);
+    ++queued;
+  }
+  for (long long c = 0; queued > 0; ++c) {
+    auto& b = bucket[static_cast<std::size_t>(c % (max_step + 1))];
+    for (std::size_t h = 0; h < b.size(); ++h) {  // steps cost 16..max_step: nothing is added to b meanwhile
+      const int i = b[h];
+      const int y = i / ids.cols, x = i % ids.cols;
+      if (cost_.at<int>(y, x) != c) continue;  // stale entry
+      const int id = ids.at<int>(y, x);
+      for (int k = 0; k < 8; ++k) {
+        const int yy = y + kDy[k], xx = x + kDx[k];
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
+        const long long nc = c + (k % 2 ? diag.at<int>(yy, xx) : step.at<int>(yy, xx));
+        if (nc < cost_.at<int>(yy, xx)) {
+          cost_.at<int>(yy, xx) = static_cast<int>(nc);
+          parent_.at<int>(yy, xx) = i;
+          bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
+          ++queued;
+        }
+      }
+    }
+    queued -= b.size();
+    b.clear();
+  }
+  // For every pair of touching regions, the border cell pair with the least total cost (one pass over the image,
+  // half of the 8-neighbourhood; the first such pair in row-major order wins ties).
+  static const int half[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};  // (dy, dx)
+  for (int y = 0; y < ids.rows; ++y)
+    for (int x = 0; x < ids.cols; ++x) {
+      const int a = ids.at<int>(y, x);
+      if (a <= 0 || cost_.at<int>(y, x) == kUnreached) continue;
+      for (const auto& o : half) {
+        const int yy = y + o[0], xx = x + o[1];
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
+        const int b = ids.at<int>(yy, xx);
+        if (b <= 0 || b == a || cost_.at<int>(yy, xx) == kUnreached) continue;
+        const double c = static_cast<double>(cost_.at<int>(y, x)) + cost_.at<int>(yy, xx);
+        const cv::Point p(x, y), q(xx, yy);
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        auto it = joins_.find(key);
+        if (it == joins_.end() || c < std::get<0>(it->second))
+          joins_[key] = a < b ? std::make_tuple(c, p, q) : std::make_tuple(c, q, p);
+      }
+    }
+}
+
+std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
+  const cv::Mat& ids = rm_.ids;
+  const auto found = joins_.find({std::min(a, b), std::max(a, b)});
+  if (found == joins_.end()) return {};
+  const cv::Point lo = std::get<1>(found->second), hi = std::get<2>(found->second);  // cells in min(a, b), max(a, b)
+  const cv::Point bp = a < b ? lo : hi, bq = a < b ? hi : lo;
+  std::vector<cv::Point> half_a, half_b;
+  for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
+    half_a.emplace_back(i % ids.cols, i / ids.cols);
+  for (int i = bq.y * ids.cols + bq.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
+    half_b.emplace_back(i % ids.cols, i / ids.cols);
+  std::vector<cv::Point> full(half_a.rbegin(), half_a.rend());
+  full.insert(full.end(), half_b.begin(), half_b.end());
+  std::vector<cv::Point> out{full.front()};
+  simplify(full, 0, full.size() - 1, ids, a, b, out);
+  return out;
+}
+
+}  // namespace gridtopo::topology
