@@ -39,8 +39,13 @@ std::string statsRow(const StepStats& s) {
 }
 
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
-  const fs::path d(dir);
   OutputSet out;
+  addSlamOutputs(out, dir, o);
+  out.commit();
+}
+
+void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o) {
+  const fs::path d(dir);
   out.write((d / "trajectory.txt").string(),
             [&](const std::string& p) { io::writeTrajectory(p, o.trajectory, o.trajectory_header); });
   out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.stats); });
@@ -63,7 +68,6 @@ void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
   }
   out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(o.simplemap, p); });
   out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.options_ini); });
-  out.commit();
 }
 
 }  // namespace gridtopo::slam

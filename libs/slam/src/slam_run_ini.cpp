@@ -17,16 +17,15 @@ namespace fs = std::filesystem;
 
 namespace gridtopo::slam {
 
-namespace {
-
-/// The keys SlamOptions reads and writes: those of its saved INI.
-std::vector<std::string> optionKeys() {
+std::vector<std::string> slamOptionKeys() {
   mrpt::config::CConfigFileMemory mem;
   SlamOptions().saveToConfigFile(mem, "slam");
   std::vector<std::string> keys;
   mem.getAllKeys("slam", keys);
   return keys;
 }
+
+namespace {
 
 /// Loads the options of `section` from `path`, naming the line of the key in the error when the INI has it.
 SlamOptions loadOptions(const std::string& path, const IniFile& layout, const std::string& section) {
@@ -48,7 +47,7 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
   const IniFile ini = IniFile::read(path);
   ini.requireKnownSections({kSlamRunSection, options_section});
   ini.requireKnownKeys(kSlamRunSection, {"input", "output", "max_scans"});
-  ini.requireKnownKeys(options_section, optionKeys(), "not an option of the filter; see config-ini/slam.ini");
+  ini.requireKnownKeys(options_section, slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
   SlamRunSpec spec;
   spec.ini = path;
   const std::string run = kSlamRunSection;

@@ -14,6 +14,13 @@ namespace gridtopo::topology {
 void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& occ, const TopologyResult& topo,
                           const cv::Mat& labels_before_correction, int overlay_scale, const std::string& options_ini) {
   OutputSet outs;
+  addTopologyOutputs(outs, dir, occ, topo, labels_before_correction, overlay_scale, options_ini);
+  outs.commit();
+}
+
+void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::OccupancyImage& occ,
+                        const TopologyResult& topo, const cv::Mat& labels_before_correction, int overlay_scale,
+                        const std::string& options_ini) {
   outs.write(dir + "/topology.graphml", [&](const std::string& p) { writeTextFileAtomically(p, toGraphML(topo.graph)); });
   outs.write(dir + "/topology.json", [&](const std::string& p) { writeTextFileAtomically(p, toJson(topo.graph)); });
   outs.write(dir + "/topology.dot", [&](const std::string& p) { writeTextFileAtomically(p, toDot(topo.graph)); });
@@ -33,7 +40,6 @@ void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& 
     png("segmentation_colour.png", colourSegmentation(topo.segmentation));
   }
   outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, options_ini); });
-  outs.commit();
 }
 
 }  // namespace gridtopo::topology

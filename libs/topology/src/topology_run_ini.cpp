@@ -12,18 +12,15 @@ namespace fs = std::filesystem;
 
 namespace gridtopo::topology {
 
-namespace {
-
-const char* const kOptionSections[] = {"topology", "relaxation", "correction"};
-
-/// The keys of each option section: those TopologyOptions saves.
-std::vector<std::string> optionKeys(const std::string& section) {
+std::vector<std::string> topologyOptionKeys(const std::string& section) {
   mrpt::config::CConfigFileMemory mem;
   TopologyOptions().saveToConfigFile(mem, "topology");
   std::vector<std::string> keys;
   mem.getAllKeys(section, keys);
   return keys;
 }
+
+namespace {
 
 std::string absolute(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal().string(); }
 
@@ -35,8 +32,8 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
   const std::string run = kTopologyRunSection;
   ini.requireKnownSections({run, "topology", "relaxation", "correction"});
   ini.requireKnownKeys(run, {"map", "model", "output"});
-  for (const char* s : kOptionSections)
-    ini.requireKnownKeys(s, optionKeys(s), "not an option of this section; see config-ini/topology.ini");
+  for (const char* s : kTopologyOptionSections)
+    ini.requireKnownKeys(s, topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
   TopologyRunSpec spec;
   spec.ini = path;
   if (const auto v = ini.value(run, "map"); v && !v->empty()) {

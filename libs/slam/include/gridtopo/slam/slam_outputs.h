@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/io/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/rbpf_slam.h"
@@ -35,5 +36,8 @@ struct SlamOutputs {
 
 /// Writes the whole set into `dir` (created if needed), or nothing: throws on the first failure.
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& out);
+/// Writes the set's files into `dir` as temporary files of `set`, which the caller commits with its other files
+/// (gridtopo-map: the SLAM and the topology output sets land together or not at all).
+void addSlamOutputs(OutputSet& set, const std::string& dir, const SlamOutputs& out);
 
 }  // namespace gridtopo::slam

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gridtopo/slam/slam_options.h"
 
@@ -25,6 +26,10 @@ struct SlamRunSpec {
   bool input_from_ini = false;   ///< `input` is the RUN.ini's (no flag replaced it)
   bool output_from_ini = false;  ///< `output` is the RUN.ini's
 };
+
+/// The keys of the filter's options section ([slam]): those SlamOptions saves. For the strict checks of RUN.ini
+/// files that hold a [slam] section (gridtopo-slam's, gridtopo-map's).
+std::vector<std::string> slamOptionKeys();
 
 /// Reads a RUN.ini: [slam_run] and the options section `options_section` (either may be missing; the options
 /// keep their defaults then). InputError for an unreadable file, another section, an unknown key or a bad value.

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/topology/pipeline.h"
 
@@ -15,5 +16,9 @@ namespace gridtopo::topology {
 /// and an empty `topo.segmentation` leave their pictures out; `options_ini` is the text of options.ini.
 void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& occ, const TopologyResult& topo,
                           const cv::Mat& labels_before_correction, int overlay_scale, const std::string& options_ini);
+/// The same files as temporary files of `set`, which the caller commits with its other files (gridtopo-map).
+void addTopologyOutputs(OutputSet& set, const std::string& dir, const places::OccupancyImage& occ,
+                        const TopologyResult& topo, const cv::Mat& labels_before_correction, int overlay_scale,
+                        const std::string& options_ini);
 
 }  // namespace gridtopo::topology

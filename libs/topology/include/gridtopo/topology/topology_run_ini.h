@@ -8,6 +8,7 @@
 // the paths absolute, so loading it again as RUN.ini (or its options with -c) reproduces the run.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gridtopo/topology/pipeline.h"
 
@@ -24,6 +25,13 @@ struct TopologyRunSpec {
   std::string ini;     ///< the RUN.ini this was read from; empty when none
   bool map_from_ini = false, model_from_ini = false;  ///< the value is the RUN.ini's (no flag replaced it)
 };
+
+/// The option sections of a topology run, in the order topologyOptionsIni writes them.
+inline constexpr const char* kTopologyOptionSections[] = {"topology", "relaxation", "correction"};
+
+/// The keys of one option section ("topology", "relaxation" or "correction"): those TopologyOptions saves. For the
+/// strict checks of RUN.ini files that hold the topology options (gridtopo-topology's, gridtopo-map's).
+std::vector<std::string> topologyOptionKeys(const std::string& section);
 
 /// Reads a RUN.ini: [topology_run] and the option sections (each may be missing: defaults). InputError for an
 /// unreadable file, another section, an unknown key or a bad value.
