@@ -64,6 +64,21 @@ TEST(OutputSet, FailedRunLeavesNothing) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// The directories made for a set that is not committed go with it (gridtopo-map: OUT/slam of a failed run).
+TEST(OutputSet, FailedRunLeavesNoNewDirectory) {
+  const auto dir = freshDir("dirs");
+  fs::create_directories(dir / "kept");
+  {
+    OutputSet set;
+    set.write((dir / "new/deeper/a.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "A"; });
+    set.write((dir / "kept/b.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "B"; });
+    EXPECT_TRUE(fs::is_directory(dir / "new/deeper"));
+  }
+  EXPECT_FALSE(fs::exists(dir / "new"));
+  EXPECT_TRUE(fs::is_directory(dir / "kept"));
+  EXPECT_TRUE(fs::is_empty(dir / "kept"));
+}
+
 // A commit that cannot complete (here: a directory where a file must go) leaves the outputs of an earlier run as
 // they were, and no new or temporary file: before, the files renamed ahead of the failing one stayed.
 TEST(OutputSet, FailedCommitKeepsThePreviousOutputs) {

@@ -28,11 +28,22 @@ OutputSet::~OutputSet() {
     std::error_code ec;
     fs::remove(t, ec);
   }
+  // The directories add() created, deepest first: removed when empty (fs::remove leaves a non-empty one).
+  for (auto it = created_dirs_.rbegin(); it != created_dirs_.rend(); ++it) {
+    std::error_code ec;
+    fs::remove(*it, ec);
+  }
 }
 
 std::string OutputSet::add(const std::string& final_path) {
   const fs::path p(final_path);
-  if (p.has_parent_path()) fs::create_directories(p.parent_path());
+  if (p.has_parent_path()) {
+    // The directories about to be made, outermost first, so that an uncommitted set can take them away again.
+    std::vector<fs::path> missing;
+    for (fs::path d = p.parent_path(); !d.empty() && !fs::exists(d); d = d.parent_path()) missing.push_back(d);
+    fs::create_directories(p.parent_path());
+    created_dirs_.insert(created_dirs_.end(), missing.rbegin(), missing.rend());
+  }
   const std::string name = p.filename().string();
   const std::string tmp_name = "." + name + ".tmp-" + std::to_string(::getpid()) + "-" +
                                std::to_string(g_counter++) + extensionsOf(name);

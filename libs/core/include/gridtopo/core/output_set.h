@@ -12,11 +12,12 @@ class OutputSet {
   OutputSet() = default;
   OutputSet(const OutputSet&) = delete;
   OutputSet& operator=(const OutputSet&) = delete;
-  /// Removes the temporary files of an uncommitted set.
+  /// Removes the temporary files of an uncommitted set, and the directories add() created for them if they are
+  /// empty then.
   ~OutputSet();
 
   /// Reserves `final_path` and returns the temporary path to write it to (same directory, so the final
-  /// rename is atomic). Creates the parent directory if needed. The temporary name keeps the final
+  /// rename is atomic). Creates the parent directory if needed (removed again if the set is not committed). The temporary name keeps the final
   /// extension(s) (e.g. "map.gridmap.gz" -> ".map.gridmap.gz.tmp-123-0.gridmap.gz") for writers that pick
   /// the format from the name.
   std::string add(const std::string& final_path);
@@ -31,6 +32,7 @@ class OutputSet {
 
  private:
   std::vector<std::string> finals_, temps_;
+  std::vector<std::string> created_dirs_;  ///< outermost first
   bool committed_ = false;
 };
 
