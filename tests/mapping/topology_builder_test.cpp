@@ -18,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
+#include "common/rawlog_feed.h"
 #include "common/run_app.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/map_io.h"
@@ -50,22 +51,6 @@ std::shared_ptr<slam::CMetricMapBuilderGridRbpf> ourSlam() {
   return std::make_shared<slam::CMetricMapBuilderGridRbpf>(o);
 }
 
-/// Feeds the log in the action / sensory-frame rawlog layout (odometry increments as actions).
-void feedActionObservation(mrpt::slam::CMetricMapBuilder& builder, const sim::SimLog& log) {
-  mrpt::poses::CPose2D prev(log.records[0].odometry);
-  for (const auto& r : log.records) {
-    mrpt::obs::CActionCollection acts;
-    mrpt::obs::CActionRobotMovement2D mv;
-    const mrpt::poses::CPose2D odo(r.odometry);
-    mv.computeFromOdometry(odo - prev, mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
-    prev = odo;
-    acts.insert(mv);
-    mrpt::obs::CSensoryFrame sf;
-    sf.insert(io::toMrptScan(r.scan));
-    builder.processActionObservation(acts, sf);
-  }
-}
-
 std::array<int, 3> nodeCounts(const topology::TopologicalGraph& g) {
   std::array<int, 3> c{0, 0, 0};
   for (const auto& n : g.nodes) c[n.label]++;
@@ -80,7 +65,7 @@ TEST(TopologyBuilder, RecomputesOnScheduleAndLabelsTheOffice) {
   mapping::CMetricMapBuilderTopology builder(model(), topology::TopologyOptions(), schedule, ourSlam());
   std::vector<unsigned> update_sizes;
   builder.onTopologyUpdated = [&](const mapping::MapTopology& t) { update_sizes.push_back(t.map_size); };
-  feedActionObservation(builder, officeLog());
+  testing_feed::feedActionObservation(builder, officeLog().records);
 
   // Every 40 processed scans, at exactly the multiples of 40 (each processed scan grows the map by one).
   const unsigned size = builder.getCurrentlyBuiltMapSize();

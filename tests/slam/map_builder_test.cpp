@@ -9,6 +9,7 @@
 
 #include <filesystem>
 
+#include "common/rawlog_feed.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_builder.h"
@@ -33,20 +34,7 @@ slam::SlamOptions smallOptions() {
 TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
   const auto log = shortLog();
   slam::CMetricMapBuilderGridRbpf builder(smallOptions());
-  mrpt::poses::CPose2D prev(log.records[0].odometry);
-  for (const auto& r : log.records) {
-    mrpt::obs::CActionCollection acts;
-    mrpt::obs::CActionRobotMovement2D mv;
-    const mrpt::poses::CPose2D odo(r.odometry);
-    mv.computeFromOdometry(odo - prev, mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
-    prev = odo;
-    acts.insert(mv);
-    mrpt::obs::CSensoryFrame sf;
-    auto obs = io::toMrptScan(r.scan);
-    obs->timestamp = io::toMrptTime(r.scan.timestamp);
-    sf.insert(obs);
-    builder.processActionObservation(acts, sf);
-  }
+  testing_feed::feedActionObservation(builder, log.records);
   // The builder's odometry starts at (0,0,0) (rawlog actions carry increments only): compare the motion from
   // the first pose with the ground truth's.
   const auto traj = builder.filter().trajectory();
