@@ -1,4 +1,5 @@
-// The local runner with a stand-in for gridtopo-slam (a shell script that behaves by seed): ok runs are scored
+// The local runner with a stand-in for gridtopo-slam (a shell script that reads the run's RUN.ini, as
+// `gridtopo-slam RUN/options.ini -q` does, and behaves by seed): ok runs are scored
 // and recorded, a failing and a crashing run are recorded with their reason without stopping the others, finished
 // runs are skipped on the next call (resume) unless forced, and a stop request ends a running run by its pid and
 // records nothing for it.
@@ -25,9 +26,9 @@ namespace {
 
 // seed 1, 4: a three-step run; 2: exits 1 with an error line; 3: SIGSEGV; 5: sleeps (for the stop request).
 const char* kFakeSlam = R"(#!/bin/sh
-while [ $# -gt 0 ]; do
-  case $1 in -c) ini=$2; shift 2;; -i) log=$2; shift 2;; -o) out=$2; shift 2;; *) shift;; esac
-done
+ini=$1
+log=$(sed -n 's/^input = //p' "$ini")
+out=$(sed -n 's/^output = //p' "$ini")
 seed=$(sed -n 's/^seed = //p' "$ini")
 case $seed in
   2) echo "gridtopo-slam: error: $log:3: FLASER: malformed line" >&2; exit 1;;

@@ -9,10 +9,12 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/experiment/content_hash.h"
 #include "gridtopo/experiment/subprocess.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/slam_options.h"
+#include "gridtopo/slam/slam_run_ini.h"
 
 namespace fs = std::filesystem;
 
@@ -42,9 +44,9 @@ bool isRunKey(const std::string& k) {
 }  // namespace
 
 std::string optionValue(const std::string& options_ini, const std::string& key) {
-  const IniDocument doc = parseIniDocument(options_ini, "<options>");
-  for (const auto& s : doc.sections)
-    if (const IniEntry* e = s.find(key)) return e->value;
+  const IniFile doc = IniFile::parse(options_ini, "<options>");
+  for (const auto& s : doc.sections())
+    if (const auto v = doc.value(s, key)) return *v;
   return "";
 }
 
@@ -56,11 +58,11 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
     throw InputError(spec.path, 0, "[experiment] output", "no results folder: set output = ... or give -o");
   plan.output = fs::absolute(plan.output).lexically_normal().string();
 
-  const IniDocument defaults = parseIniDocument(slam::slamOptionsIni(slam::SlamOptions(), "slam"), "<defaults>");
+  const IniFile defaults = IniFile::parse(slam::slamOptionsIni(slam::SlamOptions(), "slam"), "<defaults>");
   std::set<std::string> known;
-  for (const auto& e : defaults.sections.at(0).entries) {
-    plan.slam_keys.push_back(e.key);
-    known.insert(e.key);
+  for (const auto& key : defaults.keys("slam")) {
+    plan.slam_keys.push_back(key);
+    known.insert(key);
   }
 
   // Where each option key is set in the experiment INI, to name it when its value is refused.
@@ -82,12 +84,13 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
   std::string base_text;
   if (!spec.base_ini.empty()) {
     base_text = readText(spec.base_ini);
-    const IniDocument base = parseIniDocument(base_text, spec.base_ini);
-    const IniSection* sec = base.find(spec.base_section);
-    if (!sec) throw InputError(spec.base_ini, 0, "[" + spec.base_section + "]", "section not found");
-    for (const auto& e : sec->entries)
-      if (!known.count(e.key))
-        throw InputError(spec.base_ini, e.line, "[" + spec.base_section + "] " + e.key,
+    const IniFile base = IniFile::parse(base_text, spec.base_ini);
+    base.requireNoRepeats();
+    if (!base.hasSection(spec.base_section))
+      throw InputError(spec.base_ini, 0, "[" + spec.base_section + "]", "section not found");
+    for (const auto& key : base.keys(spec.base_section))
+      if (!known.count(key))
+        throw InputError(spec.base_ini, base.line(spec.base_section, key), "[" + spec.base_section + "] " + key,
                          "unknown key (not an option of gridtopo-slam; see config-ini/slam.ini)");
   }
 
@@ -142,6 +145,7 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
                        e.message() + (it->second.first == "[sweep]" ? " (run " + std::to_string(i) + ")" : ""));
     }
     run.threads = o.threads;
+    run.options = o;
     run.options_ini = slam::slamOptionsIni(o, "slam");
 
     std::string label;
@@ -163,13 +167,7 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
 }
 
 std::vector<std::string> slamCommand(const PlannedRun& run, const std::string& slam_exe) {
-  std::vector<std::string> args = {slam_exe, "-c", (fs::path(run.dir) / "options.ini").string(), "-i", run.log,
-                                   "-o", (fs::path(run.dir) / "out").string(), "-q"};
-  if (run.max_scans > 0) {
-    args.push_back("--max-scans");
-    args.push_back(std::to_string(run.max_scans));
-  }
-  return args;
+  return {slam_exe, (fs::path(run.dir) / "options.ini").string(), "-q"};
 }
 
 std::string runIniText(const ExperimentPlan& plan, const PlannedRun& run, const std::string& slam_exe) {
@@ -182,7 +180,12 @@ std::string runIniText(const ExperimentPlan& plan, const PlannedRun& run, const 
   o << "# Reproduce with:\n#  ";
   for (const auto& a : slamCommand(run, slam_exe)) o << ' ' << shellQuote(a);
   o << "\n";
-  o << run.options_ini;
+  slam::SlamRunSpec spec;
+  spec.input = run.log;
+  spec.output = (fs::path(run.dir) / "out").string();
+  spec.max_scans = run.max_scans > 0 ? static_cast<std::size_t>(run.max_scans) : 0;
+  spec.options = run.options;
+  o << slam::slamRunIni(spec);
   return o.str();
 }
 

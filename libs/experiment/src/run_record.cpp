@@ -11,7 +11,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/experiment/ini_document.h"
+#include "gridtopo/core/ini_file.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
@@ -48,8 +48,8 @@ RunRecord recordOf(const PlannedRun& run) {
   r.relations = run.relations;
   r.max_scans = run.max_scans;
   r.params = run.params;
-  const IniDocument doc = parseIniDocument(run.options_ini, "<options>");
-  for (const auto& e : doc.sections.at(0).entries) r.options.emplace_back(e.key, e.value);
+  const IniFile doc = IniFile::parse(run.options_ini, "<options>");
+  for (const auto& key : doc.keys("slam")) r.options.emplace_back(key, *doc.value("slam", key));
   return r;
 }
 

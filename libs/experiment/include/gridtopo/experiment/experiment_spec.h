@@ -6,14 +6,21 @@
 //   [slam]            fixed [slam] options on top of base_ini
 //   [sweep]           key = value list (`a..b` ranges), zip = key key[, key key ...]
 // Relative paths are relative to the INI's folder. Every section, key and value is checked here, before anything
-// runs: an unknown one is an InputError naming the file, the line and "[section] key".
+// runs: an unknown one, or one given twice, is an InputError naming the file, the line and "[section] key". The file
+// is read by core's IniFile (the one INI reader of the apps' RUN.ini files).
 #include <string>
 #include <vector>
 
-#include "gridtopo/experiment/ini_document.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/experiment/sweep.h"
 
 namespace gridtopo::experiment {
+
+/// A key = value of the experiment INI with its line (to name it when its value is refused).
+struct IniSetting {
+  std::string key, value;
+  std::size_t line = 0;
+};
 
 struct DatasetSpec {
   std::string name;
@@ -34,7 +41,7 @@ struct ExperimentSpec {
   std::string base_ini;
   std::string base_section = "slam";
   std::vector<DatasetSpec> datasets;  ///< in file order
-  std::vector<IniEntry> slam;         ///< fixed [slam] options
+  std::vector<IniSetting> slam;        ///< fixed [slam] options
   std::vector<SweepKey> sweep;        ///< in file order; a key with one value is a fixed run parameter
   std::vector<std::vector<std::string>> zip_groups;
   SuccessMetric success_metric = SuccessMetric::TransMean;
@@ -51,6 +58,6 @@ constexpr const char* kRunKeys[] = {"dataset", "max_scans"};
 /// Reads and checks an experiment INI (sections, keys, value syntax, files exist). The [slam] values themselves are
 /// checked by planExperiment, which loads each run's options.
 ExperimentSpec loadExperimentSpec(const std::string& path);
-ExperimentSpec parseExperimentSpec(const IniDocument& doc);
+ExperimentSpec parseExperimentSpec(const IniFile& doc);
 
 }  // namespace gridtopo::experiment

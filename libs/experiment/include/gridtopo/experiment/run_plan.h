@@ -8,6 +8,7 @@
 
 #include "gridtopo/experiment/experiment_spec.h"
 #include "gridtopo/experiment/sweep.h"
+#include "gridtopo/slam/slam_options.h"
 
 namespace gridtopo::experiment {
 
@@ -20,7 +21,8 @@ struct PlannedRun {
   std::string dataset, log, relations;
   long max_scans = -1;      ///< -1: the whole log
   int threads = 0;          ///< of the run's [slam] options (0 = all cores)
-  std::string options_ini;  ///< the run's [slam] section, every key (slam::slamOptionsIni)
+  slam::SlamOptions options;  ///< the run's filter options (base INI, [slam], swept values)
+  std::string options_ini;    ///< their [slam] section, every key (slam::slamOptionsIni); the run id hashes it
 };
 
 struct ExperimentPlan {
@@ -39,10 +41,12 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
 /// The value of `key` in an options.ini text ("" when absent).
 std::string optionValue(const std::string& options_ini, const std::string& key);
 
-/// The run's options.ini: a comment block (experiment, run, the command that reproduces it) and the [slam] section.
+/// The run's options.ini, a RUN.ini that `gridtopo-slam RUN/options.ini` runs alone: a comment block (experiment,
+/// run, the command that reproduces it), then slam::slamRunIni: [slam_run] (the log, RUN/out, max_scans; 0 = every
+/// scan) and [slam] with every option.
 std::string runIniText(const ExperimentPlan& plan, const PlannedRun& run, const std::string& slam_exe);
 
-/// The gridtopo-slam arguments of a run (argv[0] = slam_exe).
+/// The gridtopo-slam arguments of a run (argv[0] = slam_exe): `gridtopo-slam RUN/options.ini -q`.
 std::vector<std::string> slamCommand(const PlannedRun& run, const std::string& slam_exe);
 
 }  // namespace gridtopo::experiment
