@@ -66,7 +66,7 @@ ExecutionOptions options(const Fixture& f, bool force = false) {
   ExecutionOptions o;
   o.jobs = 2;
   o.force = force;
-  o.slam_exe = f.slam;
+  o.exe.slam = f.slam;
   o.progress = 0;
   return o;
 }

@@ -54,6 +54,19 @@ const char* toString(SuccessMetric m) {
   return "?";
 }
 
+bool isTopologyKey(const std::string& k) {
+  for (const char* s : kTopologySections)
+    if (k.rfind(std::string(s) + ".", 0) == 0) return true;
+  return false;
+}
+
+bool ExperimentSpec::topologyRuns() const {
+  if (!topology_ini.empty() || !topology.empty()) return true;
+  for (const auto& k : sweep)
+    if (isTopologyKey(k.key)) return true;
+  return false;
+}
+
 const DatasetSpec* ExperimentSpec::dataset(const std::string& n) const {
   for (const auto& d : datasets)
     if (d.name == n) return &d;
@@ -84,8 +97,12 @@ ExperimentSpec parseExperimentSpec(const IniFile& doc) {
         } else if (e.key == "base_section") {
           if (e.value.empty()) throw InputError(doc.name(), e.line, field(e), "empty section name");
           spec.base_section = e.value;
+        } else if (e.key == "topology_ini") {
+          spec.topology_ini = existingFile(doc, e);
+        } else if (e.key == "places_model") {
+          spec.places_model = existingFile(doc, e);
         } else {
-          unknownKey(doc, e, "name, description, output, base_ini, base_section");
+          unknownKey(doc, e, "name, description, output, base_ini, base_section, topology_ini, places_model");
         }
       }
     } else if (section == "record") {
@@ -129,12 +146,28 @@ ExperimentSpec parseExperimentSpec(const IniFile& doc) {
       for (const auto& e : entries) {
         if (e.key == "log") d.log = existingFile(doc, e);
         else if (e.key == "relations") d.relations = existingFile(doc, e);
-        else unknownKey(doc, e, "log, relations");
+        else if (e.key == "map") d.map = existingFile(doc, e);
+        else if (e.key == "plan") d.plan = existingFile(doc, e);
+        else if (e.key == "plan_labels") d.plan_labels = existingFile(doc, e);
+        else if (e.key == "plan_segmentation") d.plan_segmentation = existingFile(doc, e);
+        else unknownKey(doc, e, "log, relations, map, plan, plan_labels, plan_segmentation");
       }
-      if (d.log.empty()) throw InputError(doc.name(), section_line, "[" + section + "] log", "missing: the dataset's log");
+      if (d.log.empty() && d.map.empty())
+        throw InputError(doc.name(), section_line, "[" + section + "] log", "missing: the dataset's log");
+      if (!d.log.empty() && !d.map.empty())
+        throw InputError(doc.name(), doc.line(section, "map"), "[" + section + "] map",
+                         "give a log (topology runs on the SLAM run's map) or a map, not both");
+      const int plan_keys = !d.plan.empty() + !d.plan_labels.empty() + !d.plan_segmentation.empty();
+      if (plan_keys != 0 && plan_keys != 3)
+        for (const char* k : {"plan", "plan_labels", "plan_segmentation"})
+          if (!doc.hasKey(section, k))
+            throw InputError(doc.name(), section_line, "[" + section + "] " + k,
+                             "missing: a labelled plan needs plan, plan_labels and plan_segmentation");
       spec.datasets.push_back(d);
     } else if (section == "slam") {
       for (const auto& e : entries) spec.slam.push_back({e.key, e.value, e.line});
+    } else if (section == "topology" || section == "relaxation" || section == "correction") {
+      for (const auto& e : entries) spec.topology.push_back({section, e.key, e.value, e.line});
     } else if (section == "sweep") {
       for (const auto& e : entries) {
         if (e.key == "zip") {
@@ -157,7 +190,8 @@ ExperimentSpec parseExperimentSpec(const IniFile& doc) {
       }
     } else {
       throw InputError(doc.name(), section_line, "[" + section + "]",
-                       "unknown section (expected [experiment], [record], [dataset.NAME], [slam], [sweep])");
+                       "unknown section (expected [experiment], [record], [dataset.NAME], [slam], [topology], [relaxation], "
+                       "[correction], [sweep])");
     }
   }
   if (spec.datasets.empty())
@@ -175,6 +209,15 @@ ExperimentSpec parseExperimentSpec(const IniFile& doc) {
       }
     }
   }
+  if (!spec.topologyRuns())
+    for (const auto& d : spec.datasets)
+      if (d.log.empty())
+        throw InputError(doc.name(), doc.line("dataset." + d.name, "map"), "[dataset." + d.name + "] map",
+                         "a map without a log needs topology runs (topology_ini, a [topology] section or a swept "
+                         "topology.KEY)");
+  if (spec.topologyRuns() && spec.places_model.empty())
+    throw InputError(doc.name(), doc.line("experiment"), "[experiment] places_model",
+                     "missing: topology runs need the place model (e.g. datasets/models/places_model.yml)");
   try {
     expandSweep(spec.sweep, spec.zip_groups);  // zip groups: known keys, equal lengths
   } catch (const std::invalid_argument& err) {
