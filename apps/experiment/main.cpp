@@ -17,8 +17,9 @@ using namespace gridtopo::experiment;
 
 int main(int argc, char** argv) {
   return runApp("gridtopo-experiment", [&]() -> int {
-    TCLAP::CmdLine cmd("Runs an experiment INI: every combination of its sweep is one gridtopo-slam run with its own "
-                       "folder and options.ini; finished runs are skipped when run again. See doc/experiments.md.",
+    TCLAP::CmdLine cmd("Runs an experiment INI: every combination of its sweep is one run (gridtopo-slam; with topology, "
+                       "then gridtopo-topology and gridtopo-topology-compare) with its own folder and RUN.ini files; "
+                       "finished runs are skipped when run again. See doc/experiments.md.",
                        ' ', "0.1");
     TCLAP::UnlabeledValueArg<std::string> ini("experiment", "experiment INI", true, "", "EXPERIMENT.ini", cmd);
     TCLAP::ValueArg<std::string> output("o", "output", "results folder (overrides [experiment] output)", false, "",
