@@ -153,7 +153,7 @@ std::string summaryMarkdown(const ExperimentPlan& plan, const std::vector<RunRec
       wall.push_back(r->wall_s);
       cpu.push_back(r->cpu_s);
       rss.push_back(r->peak_rss_mb);
-      res.push_back(static_cast<double>(r->resamplings));
+      if (r->steps > 0 || !r->topology) res.push_back(static_cast<double>(r->resamplings));  // not for a map alone
       if (r->topology) {
         nodes.push_back(static_cast<double>(r->graph_nodes));
         edges.push_back(static_cast<double>(r->graph_edges));
