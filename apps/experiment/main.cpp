@@ -17,8 +17,9 @@ using namespace gridtopo::experiment;
 
 int main(int argc, char** argv) {
   return runApp("gridtopo-experiment", [&]() -> int {
-    TCLAP::CmdLine cmd("Runs an experiment INI: every combination of its sweep is one gridtopo-slam run with its own "
-                       "folder and options.ini; finished runs are skipped when run again. See doc/experiments.md.",
+    TCLAP::CmdLine cmd("Runs an experiment INI: every combination of its sweep is one run (gridtopo-slam; with topology, "
+                       "then gridtopo-topology and gridtopo-topology-compare) with its own folder and RUN.ini files; "
+                       "finished runs are skipped when run again. See doc/experiments.md.",
                        ' ', "0.1");
     TCLAP::UnlabeledValueArg<std::string> ini("experiment", "experiment INI", true, "", "EXPERIMENT.ini", cmd);
     TCLAP::ValueArg<std::string> output("o", "output", "results folder (overrides [experiment] output)", false, "",
@@ -51,14 +52,17 @@ int main(int argc, char** argv) {
     if (!collect.getValue()) {
       if (run_index.isSet() && (run_index.getValue() < 0 || static_cast<std::size_t>(run_index.getValue()) >= plan.runs.size()))
         throw UsageError("--run-index must be in 0.." + std::to_string(plan.runs.size() - 1));
-      ExecutionOptions eo;  // gridtopo-slam is the one beside this program
+      ExecutionOptions eo;  // gridtopo-slam, gridtopo-topology, gridtopo-topology-compare: the ones beside this program
       eo.jobs = jobs.isSet() ? jobs.getValue() : defaultJobs(plan);
       if (eo.jobs < 1) throw UsageError("--jobs must be >= 1");
       eo.force = force.getValue();
-      eo.slam_exe = (fs::path(self).parent_path() / "gridtopo-slam").string();
+      const fs::path bin = fs::path(self).parent_path();
+      eo.exe = {(bin / "gridtopo-slam").string(), (bin / "gridtopo-topology").string(),
+                (bin / "gridtopo-topology-compare").string()};
       eo.progress = quiet.getValue() ? 0 : -1;
       eo.verbose = !quiet.getValue();
-      if (!fs::exists(eo.slam_exe)) throw InputError(eo.slam_exe, "gridtopo-slam not found beside gridtopo-experiment");
+      for (const auto& exe : {eo.exe.slam, eo.exe.topology, eo.exe.compare})
+        if (!fs::exists(exe)) throw InputError(exe, "not found beside gridtopo-experiment");
       installStopHandlers();
       std::vector<std::size_t> indices;
       if (run_index.isSet()) indices.push_back(static_cast<std::size_t>(run_index.getValue()));

@@ -386,7 +386,7 @@ void MainFrame::rebuildOptionGrid() {
     const wxString name = e.section + "_" + e.key;  // no '.': wxPropertyGrid reads it as a child path
     if (e.key == "proposal") {
       wxArrayString choices;
-      for (const char* c : {"informed", "mode-only", "odometry"}) choices.Add(c);
+      for (const char* c : {"informed", "mode-only", "hahnel", "odometry"}) choices.Add(c);
       p = new wxEnumProperty(e.key, name, choices);
       p->SetValueFromString(e.value);
     } else if (e.type == session::OptionEntry::Type::Bool) {

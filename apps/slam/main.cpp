@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<int> particles("p", "particles", "number of particles (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<long long> seed("s", "seed", "random seed (overrides the INI)", false, -1, "n", cmd);
     TCLAP::ValueArg<int> threads("t", "threads", "threads, 0 = all cores (overrides the INI)", false, -1, "n", cmd);
-    TCLAP::ValueArg<std::string> proposal("", "proposal", "informed | mode-only | odometry (overrides the INI)",
+    TCLAP::ValueArg<std::string> proposal("", "proposal", "informed | mode-only | hahnel | odometry (overrides the INI)",
                                           false, "", "name", cmd);
     TCLAP::ValueArg<long> max_scans("", "max-scans", "process only the first n scans (0 or less: all)", false, 0,
                                     "n", cmd);

@@ -87,9 +87,28 @@ TEST(IniFile, MalformedLinesAndMissingFilesAreInputErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("[run\nx = 1\n"), "bad.ini:1: a section header without ']'");
-  EXPECT_EQ(message("[run]\njust words\n"), "bad.ini:2: expected 'key = value' or '[section]'");
+  EXPECT_EQ(message("[run\nx = 1\n"), "bad.ini:1: [run: a section header without ']'");
+  EXPECT_EQ(message("[run]\njust words\n"), "bad.ini:2: just words: expected 'key = value' or '[section]'");
   EXPECT_EQ(message("[run]\n = 3\n"), "bad.ini:2: a value without a key");
   EXPECT_EQ(message("x = 1\n"), "bad.ini:1: x: a key before the first [section]");
   EXPECT_THROW(IniFile::read("/nonexistent/run.ini"), InputError);
+}
+
+TEST(IniFile, RepeatsAreAllowedUnlessRefused) {
+  const IniFile twice_key = IniFile::parse("[run]\nx = 1\n[slam]\ny = 2\n[run]\nz = 3\nx = 4\n", "r.ini");
+  EXPECT_EQ(twice_key.value("run", "x"), std::optional<std::string>("4"));  // the last wins, as in MRPT
+  try {
+    twice_key.requireNoRepeats();
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "r.ini:5: [run]: section given twice");
+  }
+  const IniFile twice = IniFile::parse("[run]\nx = 1\ny = 2\nx = 3\n", "r.ini");
+  try {
+    twice.requireNoRepeats();
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "r.ini:4: [run] x: key given twice");
+  }
+  EXPECT_NO_THROW(IniFile::parse("[run]\nx = 1\n[slam]\nx = 1\n", "r.ini").requireNoRepeats());
 }

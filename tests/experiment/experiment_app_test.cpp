@@ -11,7 +11,7 @@
 #include "common/run_app.h"
 #include "experiment/experiment_files.h"
 #include "gridtopo/eval/relations.h"
-#include "gridtopo/experiment/ini_document.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/experiment/run_scoring.h"
 #include "gridtopo/io/trajectory_io.h"
 
@@ -68,18 +68,24 @@ TEST(ExperimentApp, QuickExperimentEndToEnd) {
   EXPECT_EQ(test::countLines(neff), rows[0]["steps"].get<std::size_t>() + rows[1]["steps"].get<std::size_t>() + 4u);
   EXPECT_NE(test::readText(out / "summary.md").find("| intel | informed | 2 | 0 |"), std::string::npos);
 
-  // The run's options.ini reproduces the run: same trajectory, byte for byte.
+  // The run's options.ini is a RUN.ini that gridtopo-slam runs alone (here into another folder): same trajectory,
+  // byte for byte. gridtopo-slam's own options.ini in RUN/out is the same RUN.ini without the comment header.
   const fs::path run0 = rows[0]["dir"].get<std::string>();
   const fs::path again = out / "again";
-  const auto slam = runApp("gridtopo-slam", "-c " + (run0 / "options.ini").string() + " -i " + kIntel + " -o " +
-                                                again.string() + " -q --max-scans 600");
+  const std::string run_ini = test::readText(run0 / "options.ini");
+  EXPECT_EQ(run_ini.substr(run_ini.find("\n[slam_run]\n") + 1), test::readText(run0 / "out/options.ini"));
+  EXPECT_NE(run_ini.find("[slam_run]\ninput = " + kIntel + "\noutput = " + (run0 / "out").string() +
+                         "\nmax_scans = 600\n"),
+            std::string::npos)
+      << run_ini;
+  EXPECT_NE(run_ini.find("/gridtopo-slam " + (run0 / "options.ini").string() + " -q\n"), std::string::npos) << run_ini;
+  const auto slam = runApp("gridtopo-slam", (run0 / "options.ini").string() + " -o " + again.string() + " -q");
   ASSERT_EQ(slam.status, 0) << slam.output;
   EXPECT_EQ(test::readText(again / "trajectory.txt"), test::readText(run0 / "out/trajectory.txt"));
-  // gridtopo-slam's own options.ini holds the same [slam] section, key for key.
   auto slamSection = [](const fs::path& p) {
     std::vector<std::pair<std::string, std::string>> kv;
-    const auto doc = experiment::parseIniDocument(test::readText(p), p.string());
-    for (const auto& e : doc.find("slam")->entries) kv.emplace_back(e.key, e.value);
+    const auto doc = IniFile::read(p.string());
+    for (const auto& key : doc.keys("slam")) kv.emplace_back(key, *doc.value("slam", key));
     return kv;
   };
   EXPECT_EQ(slamSection(run0 / "options.ini"), slamSection(again / "options.ini"));
@@ -140,5 +146,5 @@ TEST(ExperimentApp, BadIniStopsBeforeAnythingRuns) {
   EXPECT_EQ(u.status, 2) << u.output;
   const auto missing = runApp("gridtopo-experiment", (dir / "nothing.ini").string());
   EXPECT_EQ(missing.status, 1) << missing.output;
-  EXPECT_NE(missing.output.find("nothing.ini: cannot open the INI file"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("nothing.ini: cannot read the INI file"), std::string::npos) << missing.output;
 }

@@ -127,6 +127,69 @@ TEST(ExperimentSpec, BadFilesNameFileLineSectionAndKey) {
   }
 }
 
+TEST(ExperimentSpec, BadTopologyKeysAndDatasetsAreNamed) {
+  const std::string plan = "plan = " + kData + "/places/maps/lab_intel.png\nplan_labels = " + kData +
+                           "/places/labelled/training_intel.png\nplan_segmentation = " + kData +
+                           "/places/groundtruth/lab_intel_gt_segmentation.png\n";
+  // Lines: 1 [experiment], 2 output, 3 places_model, 4 [dataset.p], 5 map, 6-8 plan, 9 the body.
+  auto topologyIni = [&](const std::string& body, bool model = true) {
+    const fs::path dir = test::scratch("topology");
+    test::writeText(dir / "exp.ini", "[experiment]\noutput = out\n" +
+                                         (model ? "places_model = " + kData + "/models/places_model.yml\n"
+                                                : std::string("# no model\n")) +
+                                         "[dataset.p]\nmap = " + kData + "/places/maps/lab_intel.png\n" + plan + body);
+    return dir / "exp.ini";
+  };
+  struct Case {
+    std::string body;
+    bool model;
+    std::string expected;  // what() after "<ini>:"
+  };
+  const std::vector<Case> cases = {
+      {"[sweep]\ntopology.segmentaton = regions\n", true,
+       "10: [sweep] topology.segmentaton: unknown key (not a topology option; see config-ini/topology.ini)"},
+      {"[sweep]\ntopology.segmentation = regions rooms\n", true,
+       "10: [sweep] topology.segmentation: must be regions or doorways (run 1)"},
+      {"[topology]\nsegmentation = rooms\n", true, "10: [topology] segmentation: must be regions or doorways"},
+      {"[relaxation]\nmax_iterations = many\n", true, "10: [relaxation] max_iterations: cannot parse 'many'"},
+      {"[correction]\nno_such_rule = 1\n", true, "10: [correction] no_such_rule: unknown key (not a topology option"},
+      {"[topology]\nthreads = 1\n", false, "1: [experiment] places_model: missing: topology runs need the place model"},
+      {"[sweep]\nseed = 1\n", true,
+       "5: [dataset.p] map: a map without a log needs topology runs (topology_ini, a [topology] section or a swept "
+       "topology.KEY)"},
+      {"[topology]\n[dataset.q]\nlog = " + kData + "/slam/intel.clf.gz\nmap = " + kData +
+           "/places/maps/lab_intel.png\n",
+       true, "12: [dataset.q] map: give a log (topology runs on the SLAM run's map) or a map, not both"},
+      {"[topology]\n[dataset.q]\nmap = " + kData + "/places/maps/lab_intel.png\nplan = " + kData +
+           "/places/maps/lab_intel.png\n",
+       true, "10: [dataset.q] plan_labels: missing: a labelled plan needs plan, plan_labels and plan_segmentation"},
+  };
+  for (const auto& c : cases) {
+    const fs::path ini = topologyIni(c.body, c.model);
+    const std::string what = errorOf(ini);
+    EXPECT_EQ(what.rfind(ini.string() + ":" + c.expected, 0), 0u) << "got: " << what << "\nwanted: " << c.expected;
+  }
+  // A good one: the plan's files, the map as the topology's input, the swept values in the options.
+  const ExperimentPlan p =
+      planExperiment(loadExperimentSpec(topologyIni("[topology]\nthreads = 1\n[sweep]\ntopology.segmentation = "
+                                                    "regions doorways\nrelaxation.max_iterations = 10\n")
+                                            .string()));
+  ASSERT_EQ(p.runs.size(), 2u);
+  EXPECT_FALSE(p.runs[1].slam);
+  EXPECT_TRUE(p.runs[1].topology);
+  EXPECT_EQ(p.runs[1].map, kData + "/places/maps/lab_intel.png");
+  EXPECT_EQ(p.runs[1].plan_segmentation, kData + "/places/groundtruth/lab_intel_gt_segmentation.png");
+  EXPECT_EQ(p.runs[1].model, kData + "/models/places_model.yml");
+  EXPECT_EQ(p.runs[1].topology_options.segmentation, "doorways");
+  EXPECT_EQ(p.runs[1].topology_options.relaxation.max_iterations, 10);
+  EXPECT_EQ(p.runs[1].topology_options.threads, 1);
+  EXPECT_EQ(p.runs[1].threads, 1);
+  EXPECT_EQ(p.runs[1].label, "p_topology.segmentation-doorways");
+  EXPECT_NE(p.runs[0].id, p.runs[1].id);
+  EXPECT_EQ(p.varied_keys, (std::vector<std::string>{"dataset", "topology.segmentation"}));
+  EXPECT_EQ(p.topology_keys.front(), "topology.threads");
+}
+
 TEST(ExperimentSpec, BadBaseIniIsNamed) {
   const fs::path dir = test::scratch("base");
   test::writeText(dir / "base.ini", "[slam]\nparticles = 30\nresolutoin = 0.05\n");

@@ -1,4 +1,5 @@
-// The local runner with a stand-in for gridtopo-slam (a shell script that behaves by seed): ok runs are scored
+// The local runner with a stand-in for gridtopo-slam (a shell script that reads the run's RUN.ini, as
+// `gridtopo-slam RUN/options.ini -q` does, and behaves by seed): ok runs are scored
 // and recorded, a failing and a crashing run are recorded with their reason without stopping the others, finished
 // runs are skipped on the next call (resume) unless forced, and a stop request ends a running run by its pid and
 // records nothing for it.
@@ -25,9 +26,9 @@ namespace {
 
 // seed 1, 4: a three-step run; 2: exits 1 with an error line; 3: SIGSEGV; 5: sleeps (for the stop request).
 const char* kFakeSlam = R"(#!/bin/sh
-while [ $# -gt 0 ]; do
-  case $1 in -c) ini=$2; shift 2;; -i) log=$2; shift 2;; -o) out=$2; shift 2;; *) shift;; esac
-done
+ini=$1
+log=$(sed -n 's/^input = //p' "$ini")
+out=$(sed -n 's/^output = //p' "$ini")
 seed=$(sed -n 's/^seed = //p' "$ini")
 case $seed in
   2) echo "gridtopo-slam: error: $log:3: FLASER: malformed line" >&2; exit 1;;
@@ -65,7 +66,7 @@ ExecutionOptions options(const Fixture& f, bool force = false) {
   ExecutionOptions o;
   o.jobs = 2;
   o.force = force;
-  o.slam_exe = f.slam;
+  o.exe.slam = f.slam;
   o.progress = 0;
   return o;
 }
@@ -191,4 +192,70 @@ TEST(RunExecutor, DefaultJobsAreCoresOverThreads) {
   EXPECT_EQ(defaultJobs(f.plan), 1);
   f.plan.runs[0].threads = static_cast<int>(cores) * 4;
   EXPECT_EQ(defaultJobs(f.plan), 1);
+}
+
+// A topology run's processes one after the other (stand-ins for gridtopo-topology and gridtopo-topology-compare):
+// the second starts only when the first exited with 0, the record holds compare.json's and topology.json's numbers
+// and both processes' CPU time; a failing gridtopo-topology ends the run with its error, and nothing is compared.
+TEST(RunExecutor, TopologyRunsChainTheirProcesses) {
+  const fs::path dir = test::scratch("topology");
+  const std::string topo = (dir / "fake-topology").string(), compare = (dir / "fake-compare").string();
+  test::writeText(topo, R"(#!/bin/sh
+out=$(sed -n 's/^output = //p' "$1")
+if grep -q '^segmentation = doorways' "$1"; then echo "gridtopo-topology: error: $1: boom" >&2; exit 1; fi
+mkdir -p "$out"
+printf '{"nodes": [{"id": 1}, {"id": 2}, {"id": 3}], "edges": [{"from": 1, "to": 2}]}\n' > "$out/topology.json"
+i=0; while [ $i -lt 200000 ]; do i=$((i+1)); done
+)");
+  test::writeText(compare, R"(#!/bin/sh
+while [ $# -gt 0 ]; do case $1 in -j) json=$2; shift 2;; *) shift;; esac; done
+printf '{"labels": {"accuracy": 0.75, "recall": [0.5, 0.25, 0.125]}, "segmentation": {"recall": 0.9, "precision": 0.8}, "graph": {"attached_fraction": 0.6, "loops_closed": 1, "plan_loops": 2}}\n' > "$json"
+)");
+  for (const auto& p : {topo, compare}) fs::permissions(p, fs::perms::owner_all);
+  test::writeText(dir / "map.png", "not read by the stand-ins\n");
+  test::writeText(dir / "exp.ini", "[experiment]\noutput = out\nplaces_model = map.png\n[record]\nplots = none\n"
+                                   "[dataset.d]\nmap = map.png\nplan = map.png\nplan_labels = map.png\n"
+                                   "plan_segmentation = map.png\n[topology]\nthreads = 1\n"
+                                   "[sweep]\ntopology.segmentation = regions doorways\n");
+  const ExperimentPlan plan = planExperiment(loadExperimentSpec((dir / "exp.ini").string()));
+  ExecutionOptions o;
+  o.jobs = 2;
+  o.exe = {"/nonexistent/gridtopo-slam", topo, compare};
+  o.progress = 0;
+  std::ostringstream log;
+  const ExecutionSummary s = executeRuns(plan, {}, o, log);
+  EXPECT_EQ(s.ok, 1u);
+  EXPECT_EQ(s.failed, 1u);
+  const auto records = collectRecords(plan);
+  ASSERT_EQ(records.size(), 2u);
+  const RunRecord& ok = records[0];
+  ASSERT_EQ(ok.status, "ok") << ok.error;
+  EXPECT_TRUE(ok.topology);
+  EXPECT_EQ(ok.graph_nodes, 3u);
+  EXPECT_EQ(ok.graph_edges, 1u);
+  EXPECT_EQ(ok.label_accuracy, 0.75);
+  EXPECT_EQ(ok.recall_room, 0.5);
+  EXPECT_EQ(ok.recall_corridor, 0.25);
+  EXPECT_EQ(ok.recall_doorway, 0.125);
+  EXPECT_EQ(ok.seg_recall, 0.9);
+  EXPECT_EQ(ok.seg_precision, 0.8);
+  EXPECT_EQ(ok.graph_attached, 0.6);
+  EXPECT_EQ(ok.graph_loops_closed, 1.0);
+  EXPECT_EQ(ok.graph_plan_loops, 2.0);
+  EXPECT_EQ(ok.relations_scored, 0u);
+  EXPECT_GT(ok.cpu_s, 0.05);  // the busy loop of the first process counts
+  EXPECT_TRUE(fs::is_regular_file(fs::path(ok.dir) / "compare.log"));
+  EXPECT_FALSE(fs::exists(fs::path(ok.dir) / "options.ini"));  // no SLAM run, no SLAM RUN.ini
+  const RunRecord& failed = records[1];
+  EXPECT_EQ(failed.status, "failed");
+  EXPECT_EQ(failed.error, "topology: exit code 1: gridtopo-topology: error: " + plan.runs[1].dir + "/topology.ini: boom");
+  EXPECT_FALSE(fs::exists(fs::path(failed.dir) / "compare.log"));
+  // The CSV has the topology columns; the failed run's are empty.
+  const std::string csv = resultsCsv(plan, records);
+  EXPECT_NE(csv.find(",resamplings,graph_nodes,graph_edges,label_accuracy,recall_room,recall_corridor,recall_doorway,"
+                     "seg_recall,seg_precision,graph_attached,graph_loops_closed,graph_plan_loops,wall_s,"),
+            std::string::npos);
+  EXPECT_NE(csv.find(",,0,0,3,1,0.75,0.5,0.25,0.125,0.9,0.8,0.6,1,2,"),
+            std::string::npos)
+      << csv;
 }

@@ -43,13 +43,13 @@ IniFile IniFile::parse(const std::string& text, const std::string& name) {
     if (s.empty() || s[0] == ';' || s[0] == '#' || s.rfind("//", 0) == 0 || s[0] == '@') continue;
     if (s[0] == '[') {
       const auto close = s.find(']');
-      if (close == std::string::npos) throw InputError(name, line, "", "a section header without ']'");
+      if (close == std::string::npos) throw InputError(name, line, s, "a section header without ']'");
       section = trim(s.substr(1, close - 1));
       ini.entries_.push_back({section, "", "", line});
       continue;
     }
     const auto eq = s.find('=');
-    if (eq == std::string::npos) throw InputError(name, line, "", "expected 'key = value' or '[section]'");
+    if (eq == std::string::npos) throw InputError(name, line, s, "expected 'key = value' or '[section]'");
     const std::string key = trim(s.substr(0, eq));
     if (key.empty()) throw InputError(name, line, "", "a value without a key");
     if (section.empty()) throw InputError(name, line, key, "a key before the first [section]");
@@ -101,6 +101,16 @@ std::optional<std::string> IniFile::value(const std::string& section, const std:
   for (const auto& e : entries_)
     if (!key.empty() && e.section == section && e.key == key) v = e.value;
   return v;
+}
+
+void IniFile::requireNoRepeats() const {
+  for (std::size_t i = 0; i < entries_.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (entries_[j].section == entries_[i].section && entries_[j].key == entries_[i].key)
+        throw entries_[i].key.empty()
+            ? InputError(name_, entries_[i].line, "[" + entries_[i].section + "]", "section given twice")
+            : InputError(name_, entries_[i].line, "[" + entries_[i].section + "] " + entries_[i].key,
+                         "key given twice");
 }
 
 void IniFile::requireKnownSections(const std::vector<std::string>& known) const {

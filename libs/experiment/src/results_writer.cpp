@@ -33,10 +33,22 @@ std::string csvField(const std::string& s) {
   return q + "\"";
 }
 
-std::string optionOf(const RunRecord& r, const std::string& key) {
-  for (const auto& [k, v] : r.options)
+std::string optionOf(const std::vector<std::pair<std::string, std::string>>& options, const std::string& key) {
+  for (const auto& [k, v] : options)
     if (k == key) return v;
   return "";
+}
+
+/// The topology metric columns (only in experiments with topology runs).
+constexpr const char* kTopologyColumns[] = {"graph_nodes",     "graph_edges",   "label_accuracy", "recall_room",
+                                            "recall_corridor", "recall_doorway", "seg_recall",     "seg_precision",
+                                            "graph_attached",  "graph_loops_closed", "graph_plan_loops"};
+
+std::vector<std::string> topologyFields(const RunRecord& r) {
+  if (!r.topology || !r.ok()) return std::vector<std::string>(std::size(kTopologyColumns));
+  return {std::to_string(r.graph_nodes), std::to_string(r.graph_edges), num(r.label_accuracy), num(r.recall_room),
+          num(r.recall_corridor), num(r.recall_doorway), num(r.seg_recall), num(r.seg_precision),
+          num(r.graph_attached), num(r.graph_loops_closed), num(r.graph_plan_loops)};
 }
 
 }  // namespace
@@ -44,10 +56,12 @@ std::string optionOf(const RunRecord& r, const std::string& key) {
 std::vector<std::string> resultsColumns(const ExperimentPlan& plan) {
   std::vector<std::string> c = {"index", "id", "label", "status", "dataset", "log", "relations", "max_scans"};
   c.insert(c.end(), plan.slam_keys.begin(), plan.slam_keys.end());
+  c.insert(c.end(), plan.topology_keys.begin(), plan.topology_keys.end());
   for (const char* k : {"relations_scored", "trans_mean_m", "trans_std_m", "trans_max_m", "rot_mean_deg", "rot_std_deg",
-                        "rot_max_deg", "success", "steps", "resamplings", "wall_s", "cpu_s", "peak_rss_mb", "commit",
-                        "host", "start_time", "error", "dir"})
+                        "rot_max_deg", "success", "steps", "resamplings"})
     c.push_back(k);
+  if (!plan.topology_keys.empty()) c.insert(c.end(), std::begin(kTopologyColumns), std::end(kTopologyColumns));
+  for (const char* k : {"wall_s", "cpu_s", "peak_rss_mb", "commit", "host", "start_time", "error", "dir"}) c.push_back(k);
   return c;
 }
 
@@ -60,12 +74,17 @@ std::string resultsCsv(const ExperimentPlan& plan, const std::vector<RunRecord>&
     const int success = successOf(plan.spec, r);
     std::vector<std::string> f = {std::to_string(r.index), r.id, r.label, r.status, r.dataset, r.log, r.relations,
                                   r.max_scans > 0 ? std::to_string(r.max_scans) : ""};
-    for (const auto& k : plan.slam_keys) f.push_back(optionOf(r, k));
+    for (const auto& k : plan.slam_keys) f.push_back(optionOf(r.options, k));
+    for (const auto& k : plan.topology_keys) f.push_back(optionOf(r.topology_options, k));
     for (const auto& v : {std::to_string(r.relations_scored), num(r.trans_mean), num(r.trans_std), num(r.trans_max),
                           num(r.rot_mean), num(r.rot_std), num(r.rot_max),
                           success < 0 ? std::string() : std::to_string(success), std::to_string(r.steps),
-                          std::to_string(r.resamplings), num(r.wall_s), num(r.cpu_s), num(r.peak_rss_mb), r.commit,
-                          r.host, r.start_time, r.error, r.dir})
+                          std::to_string(r.resamplings)})
+      f.push_back(v);
+    if (!plan.topology_keys.empty())
+      for (const auto& v : topologyFields(r)) f.push_back(v);
+    for (const auto& v : {num(r.wall_s), num(r.cpu_s), num(r.peak_rss_mb), r.commit, r.host, r.start_time, r.error,
+                          r.dir})
       f.push_back(v);
     for (std::size_t i = 0; i < f.size(); ++i) o << (i ? "," : "") << csvField(f[i]);
     o << "\n";
@@ -105,15 +124,24 @@ std::string summaryMarkdown(const ExperimentPlan& plan, const std::vector<RunRec
     << (plan.spec.success_metric == SuccessMetric::TransMean || plan.spec.success_metric == SuccessMetric::TransMax
             ? " m"
             : " deg")
-    << ". Times are per run (wall and CPU of the gridtopo-slam process), peak RSS its maximum.\n\n";
-  o << "|";
+    ;
+  const bool topo = !plan.topology_keys.empty();
+  o << (topo ? ". Times are per run (wall and CPU of its processes), peak RSS their maximum."
+             : ". Times are per run (wall and CPU of the gridtopo-slam process), peak RSS its maximum.");
+  if (topo)
+    o << " Topology (means over the group's runs): graph nodes and edges; against the dataset's labelled plan "
+         "(gridtopo-topology-compare) the cell-label accuracy, the doorway recall, the room-segmentation recall and "
+         "precision, and the fraction of plan rooms with one room node attached through a doorway.";
+  o << "\n\n|";
   for (const auto& k : keys) o << " " << k << " |";
   o << " runs | failed | trans mean (m) | trans std | trans median | trans min | trans max | rot mean (deg) | "
-       "success | wall (s) | CPU (s) | peak RSS (MB) | resamplings |\n|";
-  for (std::size_t i = 0; i < keys.size() + 13; ++i) o << "---|";
+       "success | wall (s) | CPU (s) | peak RSS (MB) | resamplings |";
+  if (topo) o << " nodes | edges | label accuracy | doorway recall | seg recall | seg precision | rooms attached |";
+  o << "\n|";
+  for (std::size_t i = 0; i < keys.size() + 13 + (topo ? 7 : 0); ++i) o << "---|";
   o << "\n";
   for (const auto& g : groupRuns(records, keys)) {
-    std::vector<double> tm, rm, wall, cpu, rss, res;
+    std::vector<double> tm, rm, wall, cpu, rss, res, nodes, edges, acc, door, segr, segp, att;
     std::size_t nf = 0, scored = 0, succ = 0;
     for (const RunRecord* r : g.runs) {
       if (!r->ok()) ++nf;
@@ -125,7 +153,16 @@ std::string summaryMarkdown(const ExperimentPlan& plan, const std::vector<RunRec
       wall.push_back(r->wall_s);
       cpu.push_back(r->cpu_s);
       rss.push_back(r->peak_rss_mb);
-      res.push_back(static_cast<double>(r->resamplings));
+      if (r->steps > 0 || !r->topology) res.push_back(static_cast<double>(r->resamplings));  // not for a map alone
+      if (r->topology) {
+        nodes.push_back(static_cast<double>(r->graph_nodes));
+        edges.push_back(static_cast<double>(r->graph_edges));
+        acc.push_back(r->label_accuracy);
+        door.push_back(r->recall_doorway);
+        segr.push_back(r->seg_recall);
+        segp.push_back(r->seg_precision);
+        att.push_back(r->graph_attached);
+      }
     }
     const Spread t = Spread::of(tm);
     o << "|";
@@ -135,7 +172,13 @@ std::string summaryMarkdown(const ExperimentPlan& plan, const std::vector<RunRec
       << fixed(Spread::of(rm).mean, 3) << " | "
       << (scored ? std::to_string(succ) + "/" + std::to_string(scored) : std::string("–")) << " | "
       << fixed(Spread::of(wall).mean, 1) << " | " << fixed(Spread::of(cpu).mean, 1) << " | "
-      << fixed(Spread::of(rss).max, 0) << " | " << fixed(Spread::of(res).mean, 1) << " |\n";
+      << fixed(Spread::of(rss).max, 0) << " | " << fixed(Spread::of(res).mean, 1) << " |";
+    if (topo)
+      o << " " << fixed(Spread::of(nodes).mean, 1) << " | " << fixed(Spread::of(edges).mean, 1) << " | "
+        << fixed(Spread::of(acc).mean, 3) << " | " << fixed(Spread::of(door).mean, 3) << " | "
+        << fixed(Spread::of(segr).mean, 3) << " | " << fixed(Spread::of(segp).mean, 3) << " | "
+        << fixed(Spread::of(att).mean, 3) << " |";
+    o << "\n";
   }
   bool any_failed = false;
   for (const auto& r : records) any_failed |= !r.ok();

@@ -23,6 +23,7 @@
 #include "gridtopo/experiment/run_record.h"
 #include "gridtopo/experiment/run_scoring.h"
 #include "gridtopo/experiment/subprocess.h"
+#include "gridtopo/experiment/topology_scoring.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
@@ -44,11 +45,15 @@ struct Running {
   std::size_t run;
   std::chrono::steady_clock::time_point start;
   std::string start_time;
+  std::vector<RunStage> stages;
+  std::size_t stage = 0;            ///< the one running
+  double cpu_s = 0, peak_rss_mb = 0;  ///< of the stages that ended
 };
 
 /// The record of a run whose process ended with `pr`.
 RunRecord finishRun(const ExperimentPlan& plan, const PlannedRun& run, const ProcessResult& pr,
                     const Running& started, RunScorer& scorer, const std::string& commit, const std::string& host) {
+  const RunStage& stage = started.stages.at(started.stage);
   RunRecord r = recordOf(run);
   r.exit_code = pr.exit_code;
   r.signal = pr.signal;
@@ -59,19 +64,24 @@ RunRecord finishRun(const ExperimentPlan& plan, const PlannedRun& run, const Pro
   r.host = host;
   r.start_time = started.start_time;
   r.trans_mean = r.trans_std = r.trans_max = r.rot_mean = r.rot_std = r.rot_max = NAN;
-  const fs::path dir(run.dir), out = dir / "out", log = dir / "slam.log";
+  r.label_accuracy = r.recall_room = r.recall_corridor = r.recall_doorway = NAN;
+  r.seg_recall = r.seg_precision = r.graph_attached = r.graph_loops_closed = r.graph_plan_loops = NAN;
+  const fs::path dir(run.dir), out = dir / "out", log = stage.log;
+  const std::string which = started.stages.size() > 1 ? stage.name + ": " : "";
   if (pr.signal != 0) {
     r.status = "crashed";
-    r.error = std::string("killed by signal ") + std::to_string(pr.signal) + " (" + strsignal(pr.signal) + ")";
+    r.error = which + "killed by signal " + std::to_string(pr.signal) + " (" + strsignal(pr.signal) + ")";
     const std::string last = lastErrorLine(log.string());
     if (!last.empty()) r.error += "; last output: " + last;
   } else if (pr.exit_code != 0) {
     r.status = "failed";
-    r.error = "exit code " + std::to_string(pr.exit_code);
+    r.error = which + "exit code " + std::to_string(pr.exit_code);
     const std::string last = lastErrorLine(log.string());
     if (!last.empty()) r.error += ": " + last;
   } else {
     try {
+      if (run.topology) scoreTopology((dir / "topology").string(), !run.plan.empty(), r);
+      if (run.slam) {
       const auto steps = summarizeSteps(readText(out / "stats.txt"), (out / "stats.txt").string());
       r.steps = steps.steps;
       r.resamplings = steps.resamplings;
@@ -85,6 +95,7 @@ RunRecord finishRun(const ExperimentPlan& plan, const PlannedRun& run, const Pro
         r.rot_mean = e.rotational.mean;
         r.rot_std = e.rotational.std;
         r.rot_max = e.rotational.max;
+      }
       }
       r.status = "ok";
       if (!plan.spec.keep_maps)
@@ -185,9 +196,12 @@ ExecutionSummary executeRuns(const ExperimentPlan& plan, const std::vector<std::
       const PlannedRun& run = plan.runs.at(todo[next++]);
       fs::remove_all(run.dir);
       fs::create_directories(run.dir);
-      writeTextFileAtomically((fs::path(run.dir) / "options.ini").string(), runIniText(plan, run, options.slam_exe));
-      Running r{run.index, std::chrono::steady_clock::now(), utcNow()};
-      const pid_t pid = spawnProcess(slamCommand(run, options.slam_exe), (fs::path(run.dir) / "slam.log").string());
+      if (run.slam)
+        writeTextFileAtomically((fs::path(run.dir) / "options.ini").string(), runIniText(plan, run, options.exe.slam));
+      if (run.topology)
+        writeTextFileAtomically((fs::path(run.dir) / "topology.ini").string(), topologyIniText(plan, run));
+      Running r{run.index, std::chrono::steady_clock::now(), utcNow(), runStages(run, options.exe)};
+      const pid_t pid = spawnProcess(r.stages.front().argv, r.stages.front().log);
       running.emplace(pid, r);
     }
     if (stopRequested() && !sum.stopped) {
@@ -208,7 +222,7 @@ ExecutionSummary executeRuns(const ExperimentPlan& plan, const std::vector<std::
     }
     const auto it = running.find(pid);
     if (it == running.end()) continue;  // not ours
-    const Running started = it->second;
+    Running started = it->second;
     running.erase(it);
     const PlannedRun& run = plan.runs.at(started.run);
     if ((sum.stopped || stopRequested()) && pr.signal != 0) {  // ended by the stop request (or by the same Ctrl-C):
@@ -216,6 +230,21 @@ ExecutionSummary executeRuns(const ExperimentPlan& plan, const std::vector<std::
       say("interrupted " + run.label);
       continue;
     }
+    started.cpu_s += pr.cpu_s;
+    started.peak_rss_mb = std::max(started.peak_rss_mb, pr.peak_rss_mb);
+    const bool more = pr.ok() && started.stage + 1 < started.stages.size();
+    if (more && !stopRequested()) {  // the run's next process
+      const RunStage& next_stage = started.stages.at(++started.stage);
+      running.emplace(spawnProcess(next_stage.argv, next_stage.log), started);
+      continue;
+    }
+    if (more) {  // stopped between two of its processes: no record, the next call reruns it
+      ++sum.interrupted;
+      say("interrupted " + run.label);
+      continue;
+    }
+    pr.cpu_s = started.cpu_s;
+    pr.peak_rss_mb = started.peak_rss_mb;
     pr.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started.start).count();
     const RunRecord rec = finishRun(plan, run, pr, started, scorer, commit, host);
     saveRecord(rec);

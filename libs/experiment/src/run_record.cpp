@@ -11,7 +11,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/experiment/ini_document.h"
+#include "gridtopo/core/ini_file.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
@@ -48,8 +48,14 @@ RunRecord recordOf(const PlannedRun& run) {
   r.relations = run.relations;
   r.max_scans = run.max_scans;
   r.params = run.params;
-  const IniDocument doc = parseIniDocument(run.options_ini, "<options>");
-  for (const auto& e : doc.sections.at(0).entries) r.options.emplace_back(e.key, e.value);
+  const IniFile doc = IniFile::parse(run.options_ini, "<options>");
+  for (const auto& key : doc.keys("slam")) r.options.emplace_back(key, *doc.value("slam", key));
+  r.topology = run.topology;
+  if (run.topology) {
+    const IniFile t = IniFile::parse(run.topology_options_ini, "<topology options>");
+    for (const auto& sec : t.sections())
+      for (const auto& key : t.keys(sec)) r.topology_options.emplace_back(sec + "." + key, *t.value(sec, key));
+  }
   return r;
 }
 
@@ -81,6 +87,22 @@ std::string toJson(const RunRecord& r) {
   j["rot_max_deg"] = number(r.rot_max);
   j["steps"] = r.steps;
   j["resamplings"] = r.resamplings;
+  if (r.topology) {  // only in topology runs' records: SLAM-only records stay as they were
+    json topo = json::object();
+    for (const auto& [k, v] : r.topology_options) topo[k] = v;
+    j["topology_options"] = topo;
+    j["graph_nodes"] = r.graph_nodes;
+    j["graph_edges"] = r.graph_edges;
+    j["label_accuracy"] = number(r.label_accuracy);
+    j["recall_room"] = number(r.recall_room);
+    j["recall_corridor"] = number(r.recall_corridor);
+    j["recall_doorway"] = number(r.recall_doorway);
+    j["seg_recall"] = number(r.seg_recall);
+    j["seg_precision"] = number(r.seg_precision);
+    j["graph_attached"] = number(r.graph_attached);
+    j["graph_loops_closed"] = number(r.graph_loops_closed);
+    j["graph_plan_loops"] = number(r.graph_plan_loops);
+  }
   j["wall_s"] = number(r.wall_s);
   j["cpu_s"] = number(r.cpu_s);
   j["peak_rss_mb"] = number(r.peak_rss_mb);
@@ -122,6 +144,21 @@ RunRecord recordFromJson(const std::string& text, const std::string& name) {
     r.rot_max = numberOf(j, "rot_max_deg");
     r.steps = j.at("steps").get<std::size_t>();
     r.resamplings = j.at("resamplings").get<std::size_t>();
+    r.topology = j.contains("topology_options");
+    if (r.topology) {
+      for (const auto& [k, v] : j.at("topology_options").items()) r.topology_options.emplace_back(k, v.get<std::string>());
+      r.graph_nodes = j.at("graph_nodes").get<std::size_t>();
+      r.graph_edges = j.at("graph_edges").get<std::size_t>();
+      r.label_accuracy = numberOf(j, "label_accuracy");
+      r.recall_room = numberOf(j, "recall_room");
+      r.recall_corridor = numberOf(j, "recall_corridor");
+      r.recall_doorway = numberOf(j, "recall_doorway");
+      r.seg_recall = numberOf(j, "seg_recall");
+      r.seg_precision = numberOf(j, "seg_precision");
+      r.graph_attached = numberOf(j, "graph_attached");
+      r.graph_loops_closed = numberOf(j, "graph_loops_closed");
+      r.graph_plan_loops = numberOf(j, "graph_plan_loops");
+    }
     r.wall_s = numberOf(j, "wall_s");
     r.cpu_s = numberOf(j, "cpu_s");
     r.peak_rss_mb = numberOf(j, "peak_rss_mb");

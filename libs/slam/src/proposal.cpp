@@ -187,6 +187,10 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   plan.evaluations = m.evaluations;
   if (!m.ok) return plan;
   plan.matched = true;
+  if (o.proposal.type == ProposalType::Hahnel) {
+    plan.gaussian.mean = m.pose;  // the scan-matched pose; the motion model is sampled around it per particle
+    return plan;
+  }
   // Informed proposal: ln p(z|m,x_j) at K poses on a grid around the mode.
   const int n = o.proposal.points_per_axis;
   const double half = 0.5 * (n - 1);
@@ -266,6 +270,15 @@ double drawFromProposal(const ProposalPlan& plan, const GridMap& map, const Pose
   if (!plan.matched) {
     // Odometry proposal (also the fallback when matching failed): sample the motion model, weight by p(z|m,x).
     out_pose = motion.sample(prev, u, rng, has_odometry);
+    return scoreScan(map, out_pose, scan, o.matcher).log_likelihood / o.likelihood_gain;
+  }
+  if (plan.type == ProposalType::Hahnel) {
+    // Hähnel et al. 2003: the motion from x_{t-1} to the scan-matched pose replaces the odometry increment; the
+    // motion model (with the noise of the measured increment u) is sampled around it; weight p(z|m,x)^(1/gain).
+    const Pose2 u_matched = relative(prev, plan.gaussian.mean);
+    const OdometryMotionModel::Sigmas sg = motion.sigmas(u, has_odometry);
+    out_pose = compose(prev, {u_matched.x + rng.gaussian(sg.xy), u_matched.y + rng.gaussian(sg.xy),
+                              u_matched.theta + rng.gaussian(sg.theta)});
     return scoreScan(map, out_pose, scan, o.matcher).log_likelihood / o.likelihood_gain;
   }
   out_pose = plan.type == ProposalType::Informed ? sampleGaussian(plan.gaussian, rng) : plan.gaussian.mean;

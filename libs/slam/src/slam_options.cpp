@@ -15,22 +15,6 @@
 
 namespace gridtopo::slam {
 
-const char* toString(ProposalType t) {
-  switch (t) {
-    case ProposalType::Informed: return "informed";
-    case ProposalType::ModeOnly: return "mode-only";
-    case ProposalType::Odometry: return "odometry";
-  }
-  return "?";
-}
-
-ProposalType proposalFromString(const std::string& s) {
-  if (s == "informed") return ProposalType::Informed;
-  if (s == "mode-only") return ProposalType::ModeOnly;
-  if (s == "odometry") return ProposalType::Odometry;
-  throw std::invalid_argument("unknown proposal '" + s + "' (expected informed, mode-only or odometry)");
-}
-
 namespace {
 
 // One table drives load, save and dump, so no key can be forgotten in one of them.
@@ -102,13 +86,17 @@ void forEachKey(SlamOptions& o, F&& f) {
 template <class E>
 using Words = std::initializer_list<std::pair<const char*, E>>;
 
+/// The proposal words: the INI key `proposal`, --proposal, toString and proposalFromString.
+constexpr Words<ProposalType> kProposalWords{{"informed", ProposalType::Informed},
+                                             {"mode-only", ProposalType::ModeOnly},
+                                             {"hahnel", ProposalType::Hahnel},
+                                             {"odometry", ProposalType::Odometry}};
+
 // The keys whose value is one of a few words, with their words: one table for load, save and dump, in the order
 // they are saved.
 template <class F>
 void forEachChoice(SlamOptions& o, F&& f) {
-  f("proposal", o.proposal.type,
-    Words<ProposalType>{{"informed", ProposalType::Informed}, {"mode-only", ProposalType::ModeOnly},
-                        {"odometry", ProposalType::Odometry}});
+  f("proposal", o.proposal.type, kProposalWords);
   f("proposal_fit", o.proposal.fit,
     Words<ProposalFit>{{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}});
   f("proposal_weight", o.proposal.weight,
@@ -135,6 +123,17 @@ std::string str(const T& v) {
 }
 
 }  // namespace
+
+const char* toString(ProposalType t) { return wordOf(kProposalWords, t); }
+
+ProposalType proposalFromString(const std::string& s) {
+  std::string all;
+  for (const auto& [word, value] : kProposalWords) {
+    if (s == word) return value;
+    all += (all.empty() ? "" : ", ") + std::string(word);
+  }
+  throw std::invalid_argument("unknown proposal '" + s + "' (expected " + all + ")");
+}
 
 void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) {
   std::string file = "<ini>";

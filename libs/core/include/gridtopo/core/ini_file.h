@@ -37,6 +37,9 @@ class IniFile {
   /// The value of `key` without its comment (iniValueText); nothing when absent. The last one wins, as in MRPT.
   std::optional<std::string> value(const std::string& section, const std::string& key) const;
 
+  /// Throws InputError(name, line, "[section]", "section given twice") or (name, line, "[section] key", "key given
+  /// twice") for the first repeated section header or key (MRPT merges them; a strict file refuses them).
+  void requireNoRepeats() const;
   /// Throws InputError(name, line, "[section]", "unknown section (expected ...)") for the first section that is not
   /// in `known`.
   void requireKnownSections(const std::vector<std::string>& known) const;

@@ -1,6 +1,7 @@
 #pragma once
-// Runs the planned runs on this machine, up to `jobs` gridtopo-slam processes at a time: each run's folder gets
-// its options.ini, the process's output goes to RUN/slam.log, and when it ends the run is scored and recorded in
+// Runs the planned runs on this machine, up to `jobs` runs at a time: each run's folder gets its options.ini (and
+// topology.ini), its processes (runStages: gridtopo-slam, gridtopo-topology, gridtopo-topology-compare) run one
+// after the other, each one's output in RUN/<stage>.log; when the last ends (or one fails) the run is scored and recorded in
 // RUN/result.json (ok, failed or crashed: a failed run does not stop the others). Runs already recorded as ok under
 // the same id are skipped unless `force`. A stop request (SIGINT / SIGTERM with installStopHandlers) launches no
 // further run, ends the running ones by their pids and records nothing for them, so that the next call resumes.
@@ -16,7 +17,7 @@ namespace gridtopo::experiment {
 struct ExecutionOptions {
   int jobs = 1;
   bool force = false;
-  std::string slam_exe;  ///< path of gridtopo-slam
+  Executables exe;       ///< paths of gridtopo-slam, gridtopo-topology, gridtopo-topology-compare
   int progress = -1;     ///< progress bar over runs: -1 = on a TTY, 0 = off, 1 = on
   bool verbose = true;   ///< a line per finished run
 };

@@ -8,6 +8,8 @@
 
 #include "gridtopo/experiment/experiment_spec.h"
 #include "gridtopo/experiment/sweep.h"
+#include "gridtopo/slam/slam_options.h"
+#include "gridtopo/topology/pipeline.h"
 
 namespace gridtopo::experiment {
 
@@ -20,7 +22,16 @@ struct PlannedRun {
   std::string dataset, log, relations;
   long max_scans = -1;      ///< -1: the whole log
   int threads = 0;          ///< of the run's [slam] options (0 = all cores)
-  std::string options_ini;  ///< the run's [slam] section, every key (slam::slamOptionsIni)
+  bool slam = true;           ///< a gridtopo-slam run (the dataset has a log)
+  slam::SlamOptions options;  ///< the run's filter options (base INI, [slam], swept values)
+  std::string options_ini;    ///< their [slam] section, every key (slam::slamOptionsIni); the run id hashes it
+  // Topology (spec.topologyRuns()): gridtopo-topology on `map`, then gridtopo-topology-compare against the plan.
+  bool topology = false;
+  topology::TopologyOptions topology_options;  ///< topology_ini, the fixed sections, the swept topology keys
+  std::string topology_options_ini;            ///< topology::topologyOptionsIni of them (hashed into the id)
+  std::string map;    ///< the topology's input: RUN/out/map.yaml after a SLAM run, else the dataset's map
+  std::string model;  ///< the place model
+  std::string plan, plan_labels, plan_segmentation;  ///< the dataset's labelled plan (empty: no comparison)
 };
 
 struct ExperimentPlan {
@@ -28,6 +39,7 @@ struct ExperimentPlan {
   std::string output;                     ///< results folder
   std::vector<PlannedRun> runs;
   std::vector<std::string> slam_keys;     ///< every [slam] option key, in the order options.ini lists them
+  std::vector<std::string> topology_keys; ///< with topology runs: every topology option as section.key, in order
   std::vector<std::string> varied_keys;   ///< swept keys with more than one value, dataset first
 };
 
@@ -39,10 +51,30 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
 /// The value of `key` in an options.ini text ("" when absent).
 std::string optionValue(const std::string& options_ini, const std::string& key);
 
-/// The run's options.ini: a comment block (experiment, run, the command that reproduces it) and the [slam] section.
+/// The run's options.ini, a RUN.ini that `gridtopo-slam RUN/options.ini` runs alone: a comment block (experiment,
+/// run, the command that reproduces it), then slam::slamRunIni: [slam_run] (the log, RUN/out, max_scans; 0 = every
+/// scan) and [slam] with every option.
 std::string runIniText(const ExperimentPlan& plan, const PlannedRun& run, const std::string& slam_exe);
 
-/// The gridtopo-slam arguments of a run (argv[0] = slam_exe).
+/// The gridtopo-slam arguments of a run (argv[0] = slam_exe): `gridtopo-slam RUN/options.ini -q`.
 std::vector<std::string> slamCommand(const PlannedRun& run, const std::string& slam_exe);
+
+/// The run's topology RUN.ini, RUN/topology.ini: a comment block, then topology::topologyRunIni ([topology_run] map,
+/// model, output = RUN/topology; the option sections).
+std::string topologyIniText(const ExperimentPlan& plan, const PlannedRun& run);
+
+/// The processes of a run, in order; each starts when the one before exited with 0.
+struct RunStage {
+  std::string name;               ///< slam, topology, compare
+  std::vector<std::string> argv;  ///< argv[0]: the executable
+  std::string log;                ///< RUN/<name>.log
+};
+struct Executables {
+  std::string slam, topology, compare;  ///< gridtopo-slam, gridtopo-topology, gridtopo-topology-compare
+};
+/// slam: `gridtopo-slam RUN/options.ini -q`; topology: `gridtopo-topology RUN/topology.ini -q`; compare (with a
+/// plan): `gridtopo-topology-compare MAP RUN/topology -c RUN/topology/options.ini --reference-map PLAN
+/// --reference-labels LABELS --reference-segmentation SEG -j RUN/topology/compare.json`.
+std::vector<RunStage> runStages(const PlannedRun& run, const Executables& exe);
 
 }  // namespace gridtopo::experiment

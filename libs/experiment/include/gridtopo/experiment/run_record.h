@@ -24,11 +24,21 @@ struct RunRecord {
   double trans_mean = 0, trans_std = 0, trans_max = 0;  ///< m
   double rot_mean = 0, rot_std = 0, rot_max = 0;        ///< deg
   std::size_t steps = 0, resamplings = 0;
+  // Topology runs (topology = true): the options (section.key) and the scores (topology_scoring.h; NaN without a
+  // plan, or when the run failed).
+  bool topology = false;
+  std::vector<std::pair<std::string, std::string>> topology_options;
+  std::size_t graph_nodes = 0, graph_edges = 0;
+  double label_accuracy = 0, recall_room = 0, recall_corridor = 0, recall_doorway = 0;  ///< fractions of cells
+  double seg_recall = 0, seg_precision = 0;                                             ///< room segmentation
+  double graph_attached = 0;                   ///< fraction of plan rooms with one room node attached by a doorway
+  double graph_loops_closed = 0, graph_plan_loops = 0;  ///< plan corridor loops closed by corridor node cycles
   double wall_s = 0, cpu_s = 0, peak_rss_mb = 0;
   std::string commit, host, start_time;
 
   bool ok() const { return status == "ok"; }
   bool hasErrors() const { return ok() && relations_scored > 0; }
+  bool hasPlanScores() const { return ok() && topology && label_accuracy == label_accuracy; }
 };
 
 /// A record with the run's identity and parameters filled in (status empty).

@@ -13,6 +13,9 @@ namespace gridtopo::slam {
 enum class ProposalType {
   Informed,  ///< Gaussian fitted around the mode (the paper's proposal)
   ModeOnly,  ///< the particle jumps to the mode, weight p(z|m,x̂) (what GMapping ships)
+  /// Hähnel, Burgard, Fox, Thrun, IROS 2003: the scan-matched motion is the odometry measurement; sample the motion
+  /// model around it, weight p(z|m,x) at the sample (the baseline of Grisetti et al. 2007, Sec. VII)
+  Hahnel,
   Odometry,  ///< classic SIR: sample the motion model, weight p(z|m,x)
 };
 
