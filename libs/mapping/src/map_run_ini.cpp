@@ -46,13 +46,8 @@ MapRunSpec loadMapRunIni(const std::string& path) {
   text("input", spec.input, spec.input_from_ini);
   text("output", spec.output, spec.output_from_ini);
   text("model", spec.model, spec.model_from_ini);
-  if (const auto v = ini.value(run, "max_scans")) {
-    unsigned long n = 0;
-    if (const auto expected = parseIniValue(*v, n))
-      throw InputError(path, ini.line(run, "max_scans"), "[" + run + "] max_scans",
-                       "cannot parse '" + *v + "' as " + *expected);
-    spec.max_scans = n;
-  }
+  unsigned long max_scans = 0;
+  if (ini.parseValue(run, "max_scans", max_scans)) spec.max_scans = max_scans;
   try {
     if (ini.hasSection("slam")) spec.slam = slam::loadSlamOptionsIni(path, "slam");
     spec.topology = topology::loadTopologyOptions(path);

@@ -59,13 +59,8 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
     spec.output = *v;
     spec.output_from_ini = true;
   }
-  if (const auto v = ini.value(run, "max_scans")) {
-    unsigned long n = 0;
-    if (const auto expected = parseIniValue(*v, n))
-      throw InputError(path, ini.line(run, "max_scans"), "[" + run + "] max_scans",
-                       "cannot parse '" + *v + "' as " + *expected);
-    spec.max_scans = n;
-  }
+  unsigned long max_scans = 0;
+  if (ini.parseValue(run, "max_scans", max_scans)) spec.max_scans = max_scans;
   spec.options = loadOptions(path, ini, options_section);
   return spec;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_value.h"
 
 namespace gridtopo {
 
@@ -36,6 +37,19 @@ class IniFile {
   InputError withLine(const InputError& e) const;
   /// The value of `key` without its comment (iniValueText); nothing when absent. The last one wins, as in MRPT.
   std::optional<std::string> value(const std::string& section, const std::string& key) const;
+  /// Parses the value of `key` into `out` (parseIniValue); false, `out` untouched, when the key is absent. Throws
+  /// InputError(name, line, "[section] key", "cannot parse 'text' as ...") for a value of the wrong kind.
+  template <class T>
+  bool parseValue(const std::string& section, const std::string& key, T& out) const {
+    const auto v = value(section, key);
+    if (!v) return false;
+    T parsed{};
+    if (const auto expected = parseIniValue(*v, parsed))
+      throw InputError(name_, line(section, key), "[" + section + "] " + key,
+                       "cannot parse '" + *v + "' as " + *expected);
+    out = parsed;
+    return true;
+  }
 
   /// Throws InputError(name, line, "[section]", "section given twice") or (name, line, "[section] key", "key given
   /// twice") for the first repeated section header or key (MRPT merges them; a strict file refuses them).
