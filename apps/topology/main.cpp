@@ -68,21 +68,20 @@ int main(int argc, char** argv) {
     const auto grid = io::readGridMap(spec.map, ro);
     const cv::Mat grey = io::gridToImage(*grid);
     const io::MapKind kind = io::mapFileKind(spec.map);
-    const places::OccupancyImage occ = topology::occupancyForTopology(
-        grey, grid->getResolution(), spec.map, opt.freeThresholdFor(kind), opt.freeOpeningRadiusFor(kind));
-    if (occ.resolution > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)
-      std::cerr << "warning: map resolution " << occ.resolution << " m is coarser than the model's lattice ("
+    if (grid->getResolution() > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)
+      std::cerr << "warning: map resolution " << grid->getResolution() << " m is coarser than the model's lattice ("
                 << model.scan.lattice_spacing << " m); results may differ from training\n";
 
     ProgressBar bar(100, "topology", "%", quiet.getValue() ? 0 : -1);
-    const auto lab = places::labelPlaces(occ, model, opt.relaxation, opt.threads, spec.map,
-                                         [&](const std::string& stage, std::size_t d, std::size_t n) {
-                                           if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
-                                           else bar.update(85, stage);
-                                         });
-    bar.update(90, "regions");
-    const auto topo = topology::buildTopology(lab.labels, occ.resolution, opt, &lab,
-                                              cv::Point2d(grid->getXMin(), grid->getYMin()));
+    const auto run = topology::topologyOfMap(grey, grid->getResolution(), kind,
+                                             cv::Point2d(grid->getXMin(), grid->getYMin()), spec.map, model, opt,
+                                             [&](const std::string& stage, std::size_t d, std::size_t n) {
+                                               if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
+                                               else bar.update(stage == "regions" ? 90 : 85, stage);
+                                             });
+    const auto& occ = run.occ;
+    const auto& topo = run.topo;
+    const auto& lab = run.labelling;
     bar.update(100, "exports");
     bar.finish();
 

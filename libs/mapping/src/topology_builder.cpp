@@ -21,10 +21,11 @@ MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, cons
   MapTopology t;
   t.source = source;
   t.origin = cv::Point2d(grid.getXMin(), grid.getYMin());
-  t.occ = topology::occupancyForTopology(io::gridToImage(grid), grid.getResolution(), source,
-                                        options.freeThresholdFor(kind), options.freeOpeningRadiusFor(kind));
-  t.labelling = places::labelPlaces(t.occ, model, options.relaxation, options.threads, source);
-  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options, &t.labelling, t.origin);
+  topology::MapTopology run = topology::topologyOfMap(io::gridToImage(grid), grid.getResolution(), kind, t.origin,
+                                                      source, model, options);
+  t.occ = std::move(run.occ);
+  t.labelling = std::move(run.labelling);
+  t.topo = std::move(run.topo);
   return t;
 }
 

@@ -39,15 +39,16 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   TopologyData t;
   t.map = map;
   t.model = model;
-  t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, options.freeThresholdFor(map.kind),
-                                        options.freeOpeningRadiusFor(map.kind));
-  // The apps' two calls, keeping the scans and the features for the cell inspector.
-  t.labelling = places::labelPlaces(t.occ, *model, options.relaxation, options.threads, map.source, progress, true);
+  // The one topology run, keeping the scans and the features for the cell inspector.
+  topology::MapTopology run = topology::topologyOfMap(map.grey, map.resolution, map.kind,
+                                                      cv::Point2d(map.origin_x, map.origin_y), map.source, *model,
+                                                      options, progress, true);
+  t.occ = std::move(run.occ);
+  t.labelling = std::move(run.labelling);
+  t.topo = std::move(run.topo);
   t.scans = std::move(t.labelling.scans);
   t.features = std::move(t.labelling.features);
   t.has_labelling = true;
-  if (progress) progress("regions", 0, 1);
-  t.topo = topology::buildTopology(t.labelling.labels, t.occ.resolution, options, &t.labelling);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("done", 1, 1);
   return t;

@@ -182,4 +182,16 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   return r;
 }
 
+MapTopology topologyOfMap(const cv::Mat& grey, double resolution, io::MapKind kind, cv::Point2d origin,
+                          const std::string& source, const places::PlacesModel& model, const TopologyOptions& o,
+                          const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
+                          bool keep_scans_and_features) {
+  MapTopology t;
+  t.occ = occupancyForTopology(grey, resolution, source, o.freeThresholdFor(kind), o.freeOpeningRadiusFor(kind));
+  t.labelling = places::labelPlaces(t.occ, model, o.relaxation, o.threads, source, progress, keep_scans_and_features);
+  if (progress) progress("regions", 0, 1);
+  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, origin);
+  return t;
+}
+
 }  // namespace gridtopo::topology

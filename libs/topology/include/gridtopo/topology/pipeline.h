@@ -4,6 +4,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <opencv2/core.hpp>
+#include <functional>
 #include <string>
 
 #include "gridtopo/io/map_kind.h"
@@ -90,5 +91,18 @@ places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resoluti
 /// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0});
+
+/// A whole topology run on one map (grey image, resolution, its kind, the world position of its lower-left corner):
+/// the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces), then the regions and
+/// graph (buildTopology). gridtopo-topology, the GUI and the topology map builder call this one function.
+struct MapTopology {
+  places::OccupancyImage occ;
+  places::LabellingResult labelling;
+  TopologyResult topo;
+};
+MapTopology topologyOfMap(const cv::Mat& grey, double resolution, io::MapKind kind, cv::Point2d origin,
+                          const std::string& source, const places::PlacesModel& model, const TopologyOptions& o,
+                          const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
+                          bool keep_scans_and_features = false);
 
 }  // namespace gridtopo::topology
