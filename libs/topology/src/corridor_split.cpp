@@ -9,6 +9,7 @@
 
 #include "gridtopo/places/place_label.h"
 #include "mask_ops.h"
+#include "region_merge.h"
 
 namespace gridtopo::topology {
 
@@ -120,16 +121,13 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   // Small pieces join the neighbour they share most border with, smallest first (sizes and borders are updated as
   // pieces merge; union-find maps every piece to the one it ended in).
   const int n = nz + nb;
-  std::vector<long long> size(static_cast<std::size_t>(n) + 1, 0);
+  std::vector<long long> sizes(static_cast<std::size_t>(n) + 1, 0);
   for (int y = 0; y < pieces.rows; ++y)
-    for (int x = 0; x < pieces.cols; ++x) size[static_cast<std::size_t>(pieces.at<int>(y, x))]++;
-  std::vector<std::map<int, long long>> border(static_cast<std::size_t>(n) + 1);
-  for (const auto& [ab, len] : regionAdjacency(pieces)) {
-    border[static_cast<std::size_t>(ab.first)][ab.second] += len;
-    border[static_cast<std::size_t>(ab.second)][ab.first] += len;
-  }
-  std::vector<int> parent(static_cast<std::size_t>(n) + 1);
-  for (int i = 0; i <= n; ++i) parent[static_cast<std::size_t>(i)] = i;
+    for (int x = 0; x < pieces.cols; ++x) sizes[static_cast<std::size_t>(pieces.at<int>(y, x))]++;
+  RegionMerger merge(pieces, std::move(sizes));
+  const std::vector<int>& parent = merge.parent;
+  const std::vector<long long>& size = merge.size;
+  const std::vector<std::map<int, long long>>& border = merge.border;
   const long long min_cells = static_cast<long long>(std::ceil(o.min_piece_area / (resolution * resolution)));
   for (;;) {
     int small = 0;
@@ -140,32 +138,13 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
         small = i;
     }
     if (!small) break;
-    const auto us = static_cast<std::size_t>(small);
-    int best = 0;
-    long long best_len = -1;
-    for (const auto& [other, len] : border[us])
-      if (len > best_len) best = other, best_len = len;
-    const auto ub = static_cast<std::size_t>(best);
-    parent[us] = best;
-    size[ub] += size[us];
-    size[us] = 0;
-    for (const auto& [other, len] : border[us]) {
-      border[static_cast<std::size_t>(other)].erase(small);
-      if (other == best) continue;
-      border[ub][other] += len;
-      border[static_cast<std::size_t>(other)][best] += len;
-    }
-    border[us].clear();
+    merge.absorbIntoLongestBorder(small);
   }
-  auto root = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)];
-    return i;
-  };
   // Renumber 1..K.
   std::map<int, int> renum;
   for (int y = 0; y < pieces.rows; ++y)
     for (int x = 0; x < pieces.cols; ++x)
-      if (int& v = pieces.at<int>(y, x)) v = renum.emplace(root(v), static_cast<int>(renum.size()) + 1).first->second;
+      if (int& v = pieces.at<int>(y, x)) v = renum.emplace(merge.root(v), static_cast<int>(renum.size()) + 1).first->second;
   return static_cast<int>(renum.size());
 }
 }  // namespace

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <set>
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
+#include "region_merge.h"
 
 namespace gridtopo::topology {
 
@@ -49,19 +49,12 @@ RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std:
 
 RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRuleOptions& o) {
   const int n = static_cast<int>(rm.regions.size());
-  std::vector<int> parent(static_cast<std::size_t>(n) + 1);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)];
-    return i;
-  };
-  std::vector<long long> cells(static_cast<std::size_t>(n) + 1, 0);
-  for (const Region& r : rm.regions) cells[static_cast<std::size_t>(r.id)] = r.cells;
-  std::vector<std::map<int, long long>> border(static_cast<std::size_t>(n) + 1);
-  for (const auto& [ab, len] : regionAdjacency(rm.ids)) {
-    border[static_cast<std::size_t>(ab.first)][ab.second] += len;
-    border[static_cast<std::size_t>(ab.second)][ab.first] += len;
-  }
+  std::vector<long long> sizes(static_cast<std::size_t>(n) + 1, 0);
+  for (const Region& r : rm.regions) sizes[static_cast<std::size_t>(r.id)] = r.cells;
+  RegionMerger merge(rm.ids, std::move(sizes));
+  std::vector<int>& parent = merge.parent;
+  const std::vector<long long>& cells = merge.size;
+  const std::vector<std::map<int, long long>>& border = merge.border;
   std::vector<bool> removed(static_cast<std::size_t>(n) + 1, false);
   // G1, smallest region first; borders and sizes follow the merges.
   const long long min_cells = static_cast<long long>(std::ceil(o.min_node_area / (resolution * resolution)));
@@ -78,21 +71,7 @@ RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRul
       removed[us] = true;
       continue;
     }
-    int best = 0;
-    long long best_len = -1;
-    for (const auto& [other, len] : border[us])
-      if (len > best_len) best = other, best_len = len;
-    const auto ub = static_cast<std::size_t>(best);
-    parent[us] = best;
-    cells[ub] += cells[us];
-    cells[us] = 0;
-    for (const auto& [other, len] : border[us]) {
-      border[static_cast<std::size_t>(other)].erase(small);
-      if (other == best) continue;
-      border[ub][other] += len;
-      border[static_cast<std::size_t>(other)][best] += len;
-    }
-    border[us].clear();
+    merge.absorbIntoLongestBorder(small);
   }
   // G2: doorway regions keyed by the set of non-doorway regions they touch (after G1).
   if (o.merge_doorways) {
@@ -114,7 +93,7 @@ RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRul
     const auto u = static_cast<std::size_t>(i);
     if (parent[u] == i && !removed[u]) remap[u] = static_cast<int>(label.size()), label.push_back(rm.region(i).label);
   }
-  for (int i = 1; i <= n; ++i) remap[static_cast<std::size_t>(i)] = remap[static_cast<std::size_t>(root(i))];
+  for (int i = 1; i <= n; ++i) remap[static_cast<std::size_t>(i)] = remap[static_cast<std::size_t>(merge.root(i))];
   return relabel(rm, remap, label, resolution);
 }
 
