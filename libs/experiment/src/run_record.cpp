@@ -8,6 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
+#include <vector>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
@@ -22,6 +24,59 @@ namespace {
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 double numberOf(const json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+// The record's fields in the order of its JSON: one table for writing and reading. Doubles are written as null
+// when not finite and read back as NaN when absent or null; other fields are required.
+template <class R, class F>
+void forEachHeadField(R& r, F&& f) {
+  f("index", r.index);
+  f("id", r.id);
+  f("label", r.label);
+  f("status", r.status);
+  f("error", r.error);
+  f("exit_code", r.exit_code);
+  f("signal", r.signal);
+  f("dataset", r.dataset);
+  f("log", r.log);
+  f("relations", r.relations);
+  f("max_scans", r.max_scans);
+}
+template <class R, class F>
+void forEachSlamScore(R& r, F&& f) {
+  f("relations_scored", r.relations_scored);
+  f("trans_mean_m", r.trans_mean);
+  f("trans_std_m", r.trans_std);
+  f("trans_max_m", r.trans_max);
+  f("rot_mean_deg", r.rot_mean);
+  f("rot_std_deg", r.rot_std);
+  f("rot_max_deg", r.rot_max);
+  f("steps", r.steps);
+  f("resamplings", r.resamplings);
+}
+template <class R, class F>
+void forEachTopologyScore(R& r, F&& f) {
+  f("graph_nodes", r.graph_nodes);
+  f("graph_edges", r.graph_edges);
+  f("label_accuracy", r.label_accuracy);
+  f("recall_room", r.recall_room);
+  f("recall_corridor", r.recall_corridor);
+  f("recall_doorway", r.recall_doorway);
+  f("seg_recall", r.seg_recall);
+  f("seg_precision", r.seg_precision);
+  f("graph_attached", r.graph_attached);
+  f("graph_loops_closed", r.graph_loops_closed);
+  f("graph_plan_loops", r.graph_plan_loops);
+}
+template <class R, class F>
+void forEachTailField(R& r, F&& f) {
+  f("wall_s", r.wall_s);
+  f("cpu_s", r.cpu_s);
+  f("peak_rss_mb", r.peak_rss_mb);
+  f("commit", r.commit);
+  f("host", r.host);
+  f("start_time", r.start_time);
+  f("dir", r.dir);
 }
 
 std::string firstLineOf(const std::string& cmd) {
@@ -61,55 +116,24 @@ RunRecord recordOf(const PlannedRun& run) {
 
 std::string toJson(const RunRecord& r) {
   json j;
-  j["index"] = r.index;
-  j["id"] = r.id;
-  j["label"] = r.label;
-  j["status"] = r.status;
-  j["error"] = r.error;
-  j["exit_code"] = r.exit_code;
-  j["signal"] = r.signal;
-  j["dataset"] = r.dataset;
-  j["log"] = r.log;
-  j["relations"] = r.relations;
-  j["max_scans"] = r.max_scans;
-  json params = json::object();
-  for (const auto& [k, v] : r.params) params[k] = v;
-  j["params"] = params;
-  json options = json::object();
-  for (const auto& [k, v] : r.options) options[k] = v;
-  j["options"] = options;
-  j["relations_scored"] = r.relations_scored;
-  j["trans_mean_m"] = number(r.trans_mean);
-  j["trans_std_m"] = number(r.trans_std);
-  j["trans_max_m"] = number(r.trans_max);
-  j["rot_mean_deg"] = number(r.rot_mean);
-  j["rot_std_deg"] = number(r.rot_std);
-  j["rot_max_deg"] = number(r.rot_max);
-  j["steps"] = r.steps;
-  j["resamplings"] = r.resamplings;
+  auto put = [&](const char* key, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, double>) j[key] = number(value);
+    else j[key] = value;
+  };
+  auto object = [](const auto& pairs) {
+    json o = json::object();
+    for (const auto& [k, v] : pairs) o[k] = v;
+    return o;
+  };
+  forEachHeadField(r, put);
+  j["params"] = object(r.params);
+  j["options"] = object(r.options);
+  forEachSlamScore(r, put);
   if (r.topology) {  // only in topology runs' records: SLAM-only records stay as they were
-    json topo = json::object();
-    for (const auto& [k, v] : r.topology_options) topo[k] = v;
-    j["topology_options"] = topo;
-    j["graph_nodes"] = r.graph_nodes;
-    j["graph_edges"] = r.graph_edges;
-    j["label_accuracy"] = number(r.label_accuracy);
-    j["recall_room"] = number(r.recall_room);
-    j["recall_corridor"] = number(r.recall_corridor);
-    j["recall_doorway"] = number(r.recall_doorway);
-    j["seg_recall"] = number(r.seg_recall);
-    j["seg_precision"] = number(r.seg_precision);
-    j["graph_attached"] = number(r.graph_attached);
-    j["graph_loops_closed"] = number(r.graph_loops_closed);
-    j["graph_plan_loops"] = number(r.graph_plan_loops);
+    j["topology_options"] = object(r.topology_options);
+    forEachTopologyScore(r, put);
   }
-  j["wall_s"] = number(r.wall_s);
-  j["cpu_s"] = number(r.cpu_s);
-  j["peak_rss_mb"] = number(r.peak_rss_mb);
-  j["commit"] = r.commit;
-  j["host"] = r.host;
-  j["start_time"] = r.start_time;
-  j["dir"] = r.dir;
+  forEachTailField(r, put);
   return j.dump();
 }
 
@@ -122,50 +146,24 @@ RunRecord recordFromJson(const std::string& text, const std::string& name) {
   }
   RunRecord r;
   try {
-    r.index = j.at("index").get<std::size_t>();
-    r.id = j.at("id").get<std::string>();
-    r.label = j.at("label").get<std::string>();
-    r.status = j.at("status").get<std::string>();
-    r.error = j.at("error").get<std::string>();
-    r.exit_code = j.at("exit_code").get<int>();
-    r.signal = j.at("signal").get<int>();
-    r.dataset = j.at("dataset").get<std::string>();
-    r.log = j.at("log").get<std::string>();
-    r.relations = j.at("relations").get<std::string>();
-    r.max_scans = j.at("max_scans").get<long>();
-    for (const auto& [k, v] : j.at("params").items()) r.params.emplace_back(k, v.get<std::string>());
-    for (const auto& [k, v] : j.at("options").items()) r.options.emplace_back(k, v.get<std::string>());
-    r.relations_scored = j.at("relations_scored").get<std::size_t>();
-    r.trans_mean = numberOf(j, "trans_mean_m");
-    r.trans_std = numberOf(j, "trans_std_m");
-    r.trans_max = numberOf(j, "trans_max_m");
-    r.rot_mean = numberOf(j, "rot_mean_deg");
-    r.rot_std = numberOf(j, "rot_std_deg");
-    r.rot_max = numberOf(j, "rot_max_deg");
-    r.steps = j.at("steps").get<std::size_t>();
-    r.resamplings = j.at("resamplings").get<std::size_t>();
+    auto get = [&](const char* key, auto& value) {
+      using T = std::decay_t<decltype(value)>;
+      if constexpr (std::is_same_v<T, double>) value = numberOf(j, key);
+      else value = j.at(key).template get<T>();
+    };
+    auto pairs = [&](const char* key, std::vector<std::pair<std::string, std::string>>& out) {
+      for (const auto& [k, v] : j.at(key).items()) out.emplace_back(k, v.get<std::string>());
+    };
+    forEachHeadField(r, get);
+    pairs("params", r.params);
+    pairs("options", r.options);
+    forEachSlamScore(r, get);
     r.topology = j.contains("topology_options");
     if (r.topology) {
-      for (const auto& [k, v] : j.at("topology_options").items()) r.topology_options.emplace_back(k, v.get<std::string>());
-      r.graph_nodes = j.at("graph_nodes").get<std::size_t>();
-      r.graph_edges = j.at("graph_edges").get<std::size_t>();
-      r.label_accuracy = numberOf(j, "label_accuracy");
-      r.recall_room = numberOf(j, "recall_room");
-      r.recall_corridor = numberOf(j, "recall_corridor");
-      r.recall_doorway = numberOf(j, "recall_doorway");
-      r.seg_recall = numberOf(j, "seg_recall");
-      r.seg_precision = numberOf(j, "seg_precision");
-      r.graph_attached = numberOf(j, "graph_attached");
-      r.graph_loops_closed = numberOf(j, "graph_loops_closed");
-      r.graph_plan_loops = numberOf(j, "graph_plan_loops");
+      pairs("topology_options", r.topology_options);
+      forEachTopologyScore(r, get);
     }
-    r.wall_s = numberOf(j, "wall_s");
-    r.cpu_s = numberOf(j, "cpu_s");
-    r.peak_rss_mb = numberOf(j, "peak_rss_mb");
-    r.commit = j.at("commit").get<std::string>();
-    r.host = j.at("host").get<std::string>();
-    r.start_time = j.at("start_time").get<std::string>();
-    r.dir = j.at("dir").get<std::string>();
+    forEachTailField(r, get);
   } catch (const json::exception& e) {
     throw InputError(name, 0, "", std::string("incomplete run record: ") + e.what());
   }
