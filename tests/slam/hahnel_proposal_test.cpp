@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "common/slam_scene.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/proposal.h"
@@ -29,16 +30,11 @@ struct Scene {
     so.range_sigma = 0.0;
     const std::vector<mrpt::math::TPose2D> wp = {{2, 6, -M_PI / 2}, {2, 2.8, 0}, {9, 2.8, 0}};
     const auto log = sim::simulate(plan, wp, so);
-    for (std::size_t i = 0; i < log.records.size(); ++i) {
-      const auto ps = prepareScan(log.records[i].scan, o.beams, map.resolution());
-      const auto& t = log.truth[i];
-      map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, MapUpdateOptions{});
-    }
+    testing_scene::insertAtTruePoses(map, log, o.beams);
     truth = compose(prev, {u.x + 0.02, u.y - 0.015, u.theta + 0.01});
     sim::SimOptions s1 = so;
     s1.range_sigma = 0.005;
-    scan = prepareScan(sim::simulate(plan, {{truth.x, truth.y, truth.theta}}, s1).records.at(0).scan, o.beams,
-                       map.resolution());
+    scan = testing_scene::scanAt(plan, truth, s1, o.beams, map.resolution());
   }
 };
 }  // namespace

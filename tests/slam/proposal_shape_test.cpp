@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/slam_scene.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/rbpf_slam.h"
@@ -38,11 +39,7 @@ struct Scene {
     std::vector<double> times(path.size());
     for (std::size_t i = 0; i < times.size(); ++i) times[i] = static_cast<double>(i);
     const auto log = sim::simulatePath(plan, path, times, so);
-    for (std::size_t i = 0; i < log.records.size(); ++i) {
-      const auto ps = prepareScan(log.records[i].scan, o.beams, map.resolution());
-      const auto& t = log.truth[i];
-      map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, MapUpdateOptions{});
-    }
+    testing_scene::insertAtTruePoses(map, log, o.beams);
     truth = compose(prev, {u.x + 0.02, u.y - 0.01, u.theta + 0.01});
     sim::SimOptions s1 = so;
     s1.range_sigma = 0.005;

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "common/slam_scene.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/rbpf_slam.h"
@@ -32,17 +33,12 @@ struct WeightScene {
     so.range_sigma = 0.0;
     const std::vector<mrpt::math::TPose2D> wp = {{2, 6, -M_PI / 2}, {2, 2.8, 0}, {9, 2.8, 0}};
     const auto log = sim::simulate(plan, wp, so);
-    for (std::size_t i = 0; i < log.records.size(); ++i) {
-      const auto ps = prepareScan(log.records[i].scan, o.beams, map.resolution());
-      const auto& t = log.truth[i];
-      map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, MapUpdateOptions{});
-    }
+    testing_scene::insertAtTruePoses(map, log, o.beams);
     // The robot really is 1.4 cm / 0.008 rad away from where odometry says.
     const Pose2 truth = compose(prev, {u.x + 0.01, u.y - 0.01, u.theta + 0.008});
     sim::SimOptions s1 = so;
     s1.range_sigma = 0.005;
-    scan = prepareScan(sim::simulate(plan, {{truth.x, truth.y, truth.theta}}, s1).records.at(0).scan, o.beams,
-                       map.resolution());
+    scan = testing_scene::scanAt(plan, truth, s1, o.beams, map.resolution());
   }
   double logIntegrand(const Pose2& x, const OdometryMotionModel& motion) const {
     return scoreScan(map, x, scan, o.matcher).log_likelihood / o.likelihood_gain + motion.logDensity(x, prev, u, true);
