@@ -1,34 +1,14 @@
 #pragma once
-// Test support for the experiment tests: a per-process scratch folder and small file helpers.
-#include <gtest/gtest.h>
-#include <unistd.h>
-
+// Test support for the experiment tests: small file helpers (and the per-process scratch folder of
+// common/scratch.h).
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "common/scratch.h"
+
 namespace gridtopo::test {
-
-/// temp/gridtopo_<binary>_<pid>/<name>, created empty.
-inline std::filesystem::path scratch(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("gridtopo_" + std::string(program_invocation_short_name) + "_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-struct RemoveScratch : ::testing::Environment {
-  void TearDown() override {
-    std::error_code ec;
-    std::filesystem::remove_all(std::filesystem::temp_directory_path() /
-                                    ("gridtopo_" + std::string(program_invocation_short_name) + "_" +
-                                     std::to_string(::getpid())),
-                                ec);
-  }
-};
-inline const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
 
 inline void writeText(const std::filesystem::path& p, const std::string& text) {
   std::ofstream f(p);

@@ -1,7 +1,8 @@
 // CARMEN reader: the bundled Intel and ACES logs (exact counts and first/last values from datasets/README.md
 // and the files themselves) and a synthetic log exercising every quirk the reader claims to handle.
 #include <gtest/gtest.h>
-#include <unistd.h>
+
+#include "common/scratch.h"
 #include <zlib.h>
 
 #include <chrono>
@@ -175,10 +176,9 @@ TEST(CarmenLog, TruncatedOrCorruptGzipIsAnInputError) {
   skip.skip_bad_lines = true;
   EXPECT_THROW(parse(gz.substr(0, gz.size() / 2), skip), InputError);
   // A file on disk too.
-  const fs::path p = fs::temp_directory_path() / ("gridtopo_truncated_" + std::to_string(::getpid()) + ".clf.gz");
+  const fs::path p = gridtopo::test::scratch("truncated") / "log.clf.gz";
   std::ofstream(p, std::ios::binary) << gz.substr(0, gz.size() - 3);
   EXPECT_THROW(readCarmenLog(p.string()), InputError);
-  fs::remove(p);
   EXPECT_THROW(readCarmenLog("/nonexistent/log.clf"), InputError);
 }
 

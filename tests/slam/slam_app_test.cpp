@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -96,16 +98,9 @@ TEST(SlamApp, OptionsIniOfARunReproducesIt) {
 
 namespace {
 struct RunIniFixture {
-  // One directory per test: ctest runs the tests of this file as parallel processes.
-  fs::path dir = fs::temp_directory_path() /
-                 ("gridtopo_slam_app_run_ini_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::path dir = gridtopo::test::scratch("run_ini");
   fs::path ini = dir / "run.ini";
   fs::path out = dir / "out";
-  RunIniFixture() {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~RunIniFixture() { fs::remove_all(dir); }
   void write(const std::string& text) const { std::ofstream(ini) << text; }
 };
 }  // namespace

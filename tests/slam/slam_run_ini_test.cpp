@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -40,9 +42,7 @@ TEST(SlamRunIni, EveryKeyOfTheDocumentedIniIsKnown) {
 }
 
 TEST(SlamRunIni, TheRunsIniLoadsBackToTheSameRun) {
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_run_ini_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch("run_ini");
   slam::SlamRunSpec spec;
   spec.input = "some/log.clf";
   spec.output = "/tmp/x/../out";

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -32,9 +34,7 @@ TEST(TopologyRunIni, EveryKeyOfTheDocumentedIniIsKnown) {
 }
 
 TEST(TopologyRunIni, TheRunsIniLoadsBackToTheSameRun) {
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_topology_run_ini_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch("run_ini");
   topology::TopologyRunSpec spec;
   spec.map = "/maps/a.png";
   spec.output = "/tmp/out";
