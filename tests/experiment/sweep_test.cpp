@@ -28,8 +28,38 @@ TEST(Sweep, BadValueListsSayWhy) {
   EXPECT_EQ(why("5..2"), "range '5..2' runs backwards");
   EXPECT_EQ(why("1..x"), "'1..x' is not a range of integers a..b");
   EXPECT_EQ(why("1.5..3"), "'1.5..3' is not a range of integers a..b");
-  EXPECT_EQ(why("1 2 1"), "value '1' is listed twice");
-  EXPECT_EQ(why("1..3 2"), "value '2' is listed twice");
+  EXPECT_EQ(why("1 2 1"), "accepted");  // repeats are for zip groups; checkDistinct refuses them elsewhere
+  auto distinct = [](const std::string& text) {
+    try {
+      checkDistinct(parseSweepValues(text));
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(distinct("1 2 1"), "value '1' is listed twice");
+  EXPECT_EQ(distinct("1..3 2"), "value '2' is listed twice");
+  EXPECT_EQ(distinct("1..3 4"), "accepted");
+}
+
+TEST(Sweep, AZipGroupMayRepeatAValueButNotATuple) {
+  // The paper's core runs: each proposal with its own particle counts.
+  const std::vector<SweepKey> keys = {{"seed", {"1", "2"}},
+                                      {"proposal", {"informed", "informed", "hahnel", "hahnel", "hahnel"}},
+                                      {"particles", {"4", "8", "4", "8", "250"}}};
+  const auto runs = expandSweep(keys, {{"proposal", "particles"}});
+  ASSERT_EQ(runs.size(), 10u);
+  EXPECT_EQ(runs[4], (Assignment{{"seed", "1"}, {"proposal", "hahnel"}, {"particles", "250"}}));
+  EXPECT_EQ(runs[5], (Assignment{{"seed", "2"}, {"proposal", "informed"}, {"particles", "4"}}));
+  const std::vector<SweepKey> twice = {{"proposal", {"informed", "hahnel", "informed"}}, {"particles", {"4", "8", "4"}}};
+  try {
+    expandSweep(twice, {{"proposal", "particles"}});
+    FAIL() << "a repeated tuple was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "zip group: 'proposal=informed particles=4' is listed twice");
+  }
+  // A crossed key with a repeated value is refused by the expansion too.
+  EXPECT_THROW(expandSweep({{"seed", {"1", "1"}}}), std::invalid_argument);
 }
 
 TEST(Sweep, CartesianProductFirstKeySlowest) {

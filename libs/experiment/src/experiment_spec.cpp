@@ -1,6 +1,7 @@
 #include "gridtopo/experiment/experiment_spec.h"
 
 #include <filesystem>
+#include <algorithm>
 #include <sstream>
 
 #include "gridtopo/core/error.h"
@@ -218,8 +219,19 @@ ExperimentSpec parseExperimentSpec(const IniFile& doc) {
   if (spec.topologyRuns() && spec.places_model.empty())
     throw InputError(doc.name(), doc.line("experiment"), "[experiment] places_model",
                      "missing: topology runs need the place model (e.g. datasets/models/places_model.yml)");
+  // A crossed key lists each value once (a key in a zip group may repeat values: its tuples must be distinct).
+  for (const auto& k : spec.sweep) {
+    bool zipped = false;
+    for (const auto& g : spec.zip_groups) zipped = zipped || std::find(g.begin(), g.end(), k.key) != g.end();
+    if (zipped) continue;
+    try {
+      checkDistinct(k.values);
+    } catch (const std::invalid_argument& err) {
+      throw InputError(doc.name(), k.line, "[sweep] " + k.key, err.what());
+    }
+  }
   try {
-    expandSweep(spec.sweep, spec.zip_groups);  // zip groups: known keys, equal lengths
+    expandSweep(spec.sweep, spec.zip_groups);  // zip groups: known keys, equal lengths, distinct tuples
   } catch (const std::invalid_argument& err) {
     throw InputError(doc.name(), doc.line("sweep", "zip"), "[sweep] zip", err.what());
   }

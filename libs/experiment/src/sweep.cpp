@@ -27,10 +27,13 @@ std::vector<std::string> parseSweepValues(const std::string& text) {
     for (long v = a; v <= b; ++v) out.push_back(std::to_string(v));
   }
   if (out.empty()) throw std::invalid_argument("no values");
-  std::set<std::string> seen;
-  for (const auto& v : out)
-    if (!seen.insert(v).second) throw std::invalid_argument("value '" + v + "' is listed twice");
   return out;
+}
+
+void checkDistinct(const std::vector<std::string>& values) {
+  std::set<std::string> seen;
+  for (const auto& v : values)
+    if (!seen.insert(v).second) throw std::invalid_argument("value '" + v + "' is listed twice");
 }
 
 std::vector<Assignment> expandSweep(const std::vector<SweepKey>& keys,
@@ -65,6 +68,26 @@ std::vector<Assignment> expandSweep(const std::vector<SweepKey>& keys,
       std::vector<std::size_t> d;
       for (const auto& k : zip_groups[static_cast<std::size_t>(group_of[i])]) d.push_back(indexOf(k));
       dims.push_back(d);
+    }
+  }
+  for (const auto& d : dims) {
+    if (d.size() == 1) {
+      try {
+        checkDistinct(keys[d[0]].values);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("key '" + keys[d[0]].key + "': " + e.what());
+      }
+      continue;
+    }
+    std::set<std::vector<std::string>> tuples;
+    for (std::size_t v = 0; v < keys[d[0]].values.size(); ++v) {
+      std::vector<std::string> t;
+      for (std::size_t i : d) t.push_back(keys[i].values[v]);
+      if (!tuples.insert(t).second) {
+        std::string what;
+        for (std::size_t i : d) what += (what.empty() ? "" : " ") + keys[i].key + "=" + keys[i].values[v];
+        throw std::invalid_argument("zip group: '" + what + "' is listed twice");
+      }
     }
   }
   std::size_t total = 1;

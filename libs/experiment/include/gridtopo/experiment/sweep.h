@@ -19,11 +19,17 @@ struct SweepKey {
 using Assignment = std::vector<std::pair<std::string, std::string>>;
 
 /// Splits a value list on white space and expands each `a..b` (integers, a <= b) to a, a+1, ..., b.
-/// Throws std::invalid_argument with the reason (empty list, a malformed or descending range, a repeated value).
+/// Throws std::invalid_argument with the reason (empty list, a malformed or descending range). Repeated values are
+/// kept: a key in a zip group may repeat a value (`proposal = a a b b`, `particles = 4 8 4 8`); checkDistinct
+/// refuses them for a key that is crossed.
 std::vector<std::string> parseSweepValues(const std::string& text);
 
+/// std::invalid_argument "value 'v' is listed twice" for the first repeated value.
+void checkDistinct(const std::vector<std::string>& values);
+
 /// The runs of the sweep in order. Every key of a zip group must be a key of `keys`, in one group only, and the
-/// group's lists must be equally long: std::invalid_argument otherwise (the message names the key).
+/// group's lists must be equally long, a crossed key's values distinct and a zip group's tuples distinct:
+/// std::invalid_argument otherwise (the message names the key or the repeated tuple).
 std::vector<Assignment> expandSweep(const std::vector<SweepKey>& keys,
                                     const std::vector<std::vector<std::string>>& zip_groups = {});
 
