@@ -122,6 +122,13 @@ GridMap mapFromTrajectory(const std::vector<io::ScanRecord>& scans, const std::v
   return map;
 }
 
+MapWindow boundsOf(const GridMap& map) {
+  int x0, y0, x1, y1;
+  map.cellBounds(x0, y0, x1, y1);
+  const double r = map.resolution();
+  return {x0 * r, y0 * r, x1 * r - 1e-9, y1 * r - 1e-9};
+}
+
 cv::Mat renderWindow(const GridMap& map, const MapWindow& w) {
   const int cx0 = map.cellIndex(w.x0), cy0 = map.cellIndex(w.y0);
   const int cols = std::max(1, map.cellIndex(w.x1) - cx0 + 1), rows = std::max(1, map.cellIndex(w.y1) - cy0 + 1);
@@ -158,6 +165,24 @@ WallAgreement wallAgreement(const GridMap& a, const GridMap& b, const MapWindow&
   out.within_2cells = static_cast<double>(std::upper_bound(d.begin(), d.end(), 2.0 * a.resolution() + 1e-9) - d.begin()) /
                       static_cast<double>(d.size());
   return out;
+}
+
+std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<io::ScanRecord>& scans,
+                                                      const std::vector<io::TimedPose>& trajectory,
+                                                      const TrajectoryRenderOptions& options, double size,
+                                                      double radius, double min_travel) {
+  const auto lc = firstLoopClosure(trajectory, radius, min_travel);
+  if (!lc) return std::nullopt;
+  const auto& p = trajectory[lc->later].pose;
+  TrajectoryRenderOptions o = options;
+  o.window = MapWindow::around(p.x, p.y, size, size);
+  TrajectoryRenderOptions before = o, after = o;
+  before.end_pose = after.first_pose = lc->later;
+  const auto agreement =
+      wallAgreement(mapFromTrajectory(scans, trajectory, before), mapFromTrajectory(scans, trajectory, after), *o.window);
+  std::size_t inserted = 0;
+  GridMap map = mapFromTrajectory(scans, trajectory, o, &inserted);
+  return LoopClosureRendering{*lc, *o.window, agreement, std::move(map), inserted};
 }
 
 }  // namespace gridtopo::slam

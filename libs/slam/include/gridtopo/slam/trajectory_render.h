@@ -66,6 +66,9 @@ struct TrajectoryMismatch : std::runtime_error {
 GridMap mapFromTrajectory(const std::vector<io::ScanRecord>& scans, const std::vector<io::TimedPose>& trajectory,
                           const TrajectoryRenderOptions& options, std::size_t* inserted = nullptr);
 
+/// The window covering the allocated tiles of `map`.
+MapWindow boundsOf(const GridMap& map);
+
 /// 8-bit grey picture of `window` of `map` at the map's resolution: occupancy probability p as 255·(1 - p) (free
 /// white, occupied black, unknown 128); row 0 is the top (largest y).
 cv::Mat renderWindow(const GridMap& map, const MapWindow& window);
@@ -80,5 +83,21 @@ struct WallAgreement {
   double within_2cells = 0;  ///< fraction of the cells within two cells of a wall of a
 };
 WallAgreement wallAgreement(const GridMap& a, const GridMap& b, const MapWindow& window, double occupied = 0.65);
+
+/// The paper's Fig. 2 cut-out in one call: the window of `size` metres around the trajectory's first loop closure
+/// (firstLoopClosure with `radius` and `min_travel`), rendered from every scan, and the agreement of the walls seen
+/// from the closure on (poses [later, end)) with those mapped before it (poses [0, later)). nullopt when the
+/// trajectory has no loop closure.
+struct LoopClosureRendering {
+  LoopClosure closure;
+  MapWindow window;
+  WallAgreement agreement;
+  GridMap map;            ///< every scan near the window
+  std::size_t inserted = 0;
+};
+std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<io::ScanRecord>& scans,
+                                                      const std::vector<io::TimedPose>& trajectory,
+                                                      const TrajectoryRenderOptions& options, double size,
+                                                      double radius = 0.5, double min_travel = 30.0);
 
 }  // namespace gridtopo::slam
