@@ -4,7 +4,7 @@
 #      datasets/models/places_model_fr101_fr52.yml (the experiments use the shipped one);
 #   2. the particle experiment: success rate vs particles for the informed, Hähnel and odometry proposals
 #      (config-ini/experiments/paper_particles.ini: 630 runs, about 5 hours of CPU on 2 cores; --core:
-#      paper_particles_core.ini, 171 runs, about 1.5 hours; --quick: paper_quick_particles.ini, 9 runs);
+#      paper_particles_core.ini, 171 runs, about 1.5 hours; --quick: paper_quick_particles.ini, 8 runs);
 #   3. the map experiment: Intel with 15 particles, seeds 1-3, and its topology with the Freiburg model against the
 #      labelled lab_intel plan (paper_maps.ini; --quick: the plan itself, paper_quick_maps.ini);
 #   4. Fig. 2: the 1 cm cut-out around the first loop closure of seed 1, from its trajectory (gridtopo-render), and

@@ -64,16 +64,10 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   summary.scans = records.size();
   records.clear();
   records.shrink_to_fit();
-  // The final map's topology, unless the schedule has just computed it.
-  const auto last = builder.currentTopology();
-  if (!last || last->map_size != builder.getCurrentlyBuiltMapSize()) builder.updateTopology();
-  summary.topology = builder.currentTopology();
-  summary.topology_updates = builder.topologyUpdates();
   summary.steps = slam_builder->filter().stepsProcessed();
-  summary.seconds_mapping = secondsSince(t_map);
+  const unsigned final_size = builder.getCurrentlyBuiltMapSize();
+  const auto last = builder.currentTopology();
 
-  // Both output sets and the run's INI, committed together. Each set's options.ini reproduces its half alone:
-  // gridtopo-slam OUT/slam/options.ini, gridtopo-topology OUT/topology/options.ini (on OUT/slam/map.gridmap.gz).
   slam::SlamRunSpec slam_spec;
   slam_spec.input = spec.input;
   slam_spec.output = slamOutputDir(spec);
@@ -84,11 +78,21 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   topo_spec.model = spec.model;
   topo_spec.output = topologyOutputDir(spec);
   topo_spec.options = spec.topology;
+  // The SLAM's outputs first, in its memory-saving order (every particle freed but the best), then the final map's
+  // topology from that map unless the schedule has just computed it: the peak memory is the filter's or the
+  // final map's with its topology, never both.
+  const slam::SlamOutputs slam_out = slam_builder->finishRun(
+      {"gridtopo-map " + spec.input, "one pose per laser scan, best particle"}, slam::slamRunIni(slam_spec));
+  if (!last || last->map_size != final_size) builder.updateTopologyOf(slam_out.grid, final_size);
+  summary.topology = builder.currentTopology();
+  summary.topology_updates = builder.topologyUpdates();
+  summary.seconds_mapping = secondsSince(t_map);
+
+  // Both output sets and the run's INI, committed together. Each set's options.ini reproduces its half alone:
+  // gridtopo-slam OUT/slam/options.ini, gridtopo-topology OUT/topology/options.ini (on OUT/slam/map.gridmap.gz).
   const MapTopology& t = *summary.topology;
   OutputSet set;
-  slam::addSlamOutputs(set, slam_spec.output,
-                       slam_builder->run().outputs({"gridtopo-map " + spec.input, "one pose per laser scan, best particle"},
-                                                   slam::slamRunIni(slam_spec)));
+  slam::addSlamOutputs(set, slam_spec.output, slam_out);
   topology::addTopologyOutputs(set, topo_spec.output, t.occ, t.topo, t.labelling.labels, spec.topology.overlay_scale,
                                topology::topologyRunIni(topo_spec));
   set.write((fs::path(spec.output) / "options.ini").string(),

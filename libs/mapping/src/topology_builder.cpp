@@ -106,7 +106,12 @@ void CMetricMapBuilderTopology::updateTopology() {
   const mrpt::maps::CMultiMetricMap* maps = metric_->getCurrentlyBuiltMetricMap();
   const auto grid = maps ? maps->mapByClass<mrpt::maps::COccupancyGridMap2D>() : nullptr;
   if (!grid) throw InputError(source, "the metric map builder's map holds no occupancy grid (COccupancyGridMap2D)");
-  auto t = std::make_shared<MapTopology>(topologyOfSlamGrid(*grid, *model_, topologyOptions, source));
+  updateTopologyOf(*grid, size);
+}
+
+void CMetricMapBuilderTopology::updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned size) {
+  const std::string source = "<slam map, " + std::to_string(size) + " scans>";
+  auto t = std::make_shared<MapTopology>(topologyOfSlamGrid(grid, *model_, topologyOptions, source));
   t->map_size = size;
   {
     std::lock_guard<std::mutex> lock(topology_mutex_);

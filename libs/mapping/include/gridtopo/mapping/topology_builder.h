@@ -84,6 +84,10 @@ class CMetricMapBuilderTopology : public mrpt::slam::CMetricMapBuilder {
   /// Recomputes the semantic and topological map of the metric builder's current map now. InputError if its metric
   /// map holds no occupancy grid or the grid no free cell.
   void updateTopology();
+  /// Recomputes it from `grid`, a map of `map_size` processed scans that the caller took from the metric builder
+  /// (gridtopo-map: the final map, after the SLAM freed every particle but the best, so that the topology's memory
+  /// does not add to the filter's).
+  void updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size);
   /// The last semantic and topological map (null before the first update). Safe to read from another thread: an
   /// update replaces the pointer, never the object.
   std::shared_ptr<const MapTopology> currentTopology() const;

@@ -46,6 +46,11 @@ class CMetricMapBuilderGridRbpf : public mrpt::slam::CMetricMapBuilder {
   const RbpfSlam& filter() const { return run_->filter(); }
   /// The run the builder feeds (its statistics rows, its output set: SlamRun::outputs, writeSlamOutputs).
   const SlamRun& run() const { return *run_; }
+  /// Ends the run and returns its output set with the run's memory-saving order (SlamRun::finish: every particle
+  /// freed but the best before the map is made). The builder cannot be fed or asked for its map afterwards.
+  SlamOutputs finishRun(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "") {
+    return run_->finish(trajectory_header, options_ini);
+  }
 
  private:
   void feed(const mrpt::obs::CObservation& obs);
