@@ -43,6 +43,14 @@ std::string shortestText(double v) {
   return std::string(buf, end);
 }
 
+std::string shortestText(float v) {
+  char buf[64];
+  const bool fixed = v == 0 || (std::abs(v) >= 1e-4f && std::abs(v) < 1e15f);
+  const auto end = fixed ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed).ptr
+                         : std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::string(buf, end);
+}
+
 std::string iniFileName(const mrpt::config::CConfigFileBase& config) {
   if (const auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&config)) return f->getAssociatedFile();
   return "<ini>";
@@ -52,9 +60,7 @@ std::string optionsHelp(const std::string& section, const std::vector<OptionDesc
   std::vector<std::string> heads;
   std::size_t width = 0;
   for (const auto& k : keys) {
-    heads.push_back(k.key + " = " +
-                    (k.type == OptionType::Real ? shortestText(std::strtod(k.default_value.c_str(), nullptr))
-                                                : k.default_value));
+    heads.push_back(k.key + " = " + (k.default_shown.empty() ? k.default_value : k.default_shown));
     width = std::max(width, heads.back().size());
   }
   std::ostringstream out;

@@ -54,6 +54,7 @@ struct OptionDescription {
   std::string key;
   OptionType type = OptionType::Text;
   std::string value, default_value;  ///< INI texts (what save() writes)
+  std::string default_shown;         ///< the default as people read it: reals in their shortest text ("0.85")
   std::string range;                 ///< OptionRange::text(); "" = any
   std::vector<std::string> words;    ///< Word keys: the accepted words
   std::string unit, help;
@@ -68,6 +69,8 @@ struct OptionSection {
 /// The shortest decimal text that reads back to `v` exactly ("0.15", not "0.14999999999999999"), for messages and
 /// help; save() writes 17 digits.
 std::string shortestText(double v);
+/// The same at float precision (0.85f gives "0.85", not "0.85000002384185791").
+std::string shortestText(float v);
 
 /// The INI file an MRPT config reads (CConfigFile::getAssociatedFile), "<ini>" for a config in memory.
 std::string iniFileName(const mrpt::config::CConfigFileBase& config);
@@ -118,6 +121,11 @@ class OptionSchema {
     k.info.unit = unit;
     k.info.help = help;
     k.text = [member](const S& s) { return optionText(member(const_cast<S&>(s))); };
+    k.shown = [member](const S& s) {
+      const T& v = member(const_cast<S&>(s));
+      if constexpr (std::is_floating_point_v<T>) return shortestText(v);
+      else return optionText(v);
+    };
     k.parse = [member](S& s, const std::string& text) -> std::optional<std::string> {
       T parsed{};
       if (const auto expected = parseIniValue(text, parsed)) return "cannot parse '" + text + "' as " + *expected;
@@ -154,6 +162,7 @@ class OptionSchema {
         if (value == member(const_cast<S&>(s))) return word;
       return std::string("?");
     };
+    k.shown = k.text;
     const std::string expected = "must be " + wordList(k.info.words);
     k.parse = [member, words, expected](S& s, const std::string& text) -> std::optional<std::string> {
       for (const auto& [word, value] : words)
@@ -234,6 +243,7 @@ class OptionSchema {
       OptionDescription d = k.info;
       d.value = k.text(s);
       d.default_value = k.text(defaults);
+      d.default_shown = k.shown(defaults);
       out.push_back(std::move(d));
     }
     return out;
@@ -248,6 +258,7 @@ class OptionSchema {
   struct Key {
     OptionDescription info;
     std::function<std::string(const S&)> text;
+    std::function<std::string(const S&)> shown;  ///< text for people (OptionDescription::default_shown)
     std::function<std::optional<std::string>(S&, const std::string&)> parse;  ///< the error, if any
     std::function<std::optional<std::string>(const S&)> check;                ///< empty: any value goes
   };
