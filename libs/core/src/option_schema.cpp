@@ -34,22 +34,22 @@ const char* toString(OptionType type) {
   return "?";
 }
 
-std::string shortestText(double v) {
+namespace {
+// The shortest text that reads back to v at its own precision, without an exponent for everyday magnitudes
+// (100000, not 1e+05).
+template <class Real>
+std::string shortest(Real v) {
   char buf[64];
-  // The shortest text that reads back to v, without an exponent for everyday magnitudes (100000, not 1e+05).
-  const bool fixed = v == 0 || (std::abs(v) >= 1e-4 && std::abs(v) < 1e15);
+  const bool fixed = v == 0 || (std::abs(v) >= Real(1e-4) && std::abs(v) < Real(1e15));
   const auto end = fixed ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed).ptr
                          : std::to_chars(buf, buf + sizeof buf, v).ptr;
   return std::string(buf, end);
 }
+}  // namespace
 
-std::string shortestText(float v) {
-  char buf[64];
-  const bool fixed = v == 0 || (std::abs(v) >= 1e-4f && std::abs(v) < 1e15f);
-  const auto end = fixed ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed).ptr
-                         : std::to_chars(buf, buf + sizeof buf, v).ptr;
-  return std::string(buf, end);
-}
+std::string shortestText(double v) { return shortest(v); }
+
+std::string shortestText(float v) { return shortest(v); }
 
 std::string iniFileName(const mrpt::config::CConfigFileBase& config) {
   if (const auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&config)) return f->getAssociatedFile();
