@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/run_app.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
 #include "gridtopo/core/option_schema.h"
@@ -223,4 +224,44 @@ TEST(OptionSchemas, EveryValueOutOfItsRangeIsRefusedWithSectionAndKey) {
         }
   // SlamOptions has 54 keys with a range, TopologyOptions 30: both ends of the closed ones count twice.
   EXPECT_GE(checked, 100u);
+}
+
+// --help-options of the three apps whose run is an INI: exit 0 (also without the arguments a run needs), and the
+// text of the tables: every key of every section on a line "  key = default".
+TEST(OptionSchemas, AppsListEveryKeyWithHelpOptions) {
+  struct App {
+    const char* name;
+    std::string help;
+    std::vector<OptionSection> sections;
+  };
+  std::vector<OptionSection> map_sections = {{"map_run", mapping::mapRunSchema().describe({})},
+                                             {"slam", slam::slamOptionSchema().describe({})}};
+  for (const auto& s : topology::describeTopologyOptions({})) map_sections.push_back(s);
+  map_sections.push_back({mapping::kTopologyBuilderSection, mapping::topologyBuilderOptionSchema().describe({})});
+  std::vector<OptionSection> topology_sections = {{"topology_run", topology::topologyRunSchema().describe({})}};
+  for (const auto& s : topology::describeTopologyOptions({})) topology_sections.push_back(s);
+  const std::vector<App> apps = {
+      {"gridtopo-slam", slam::slamOptionsHelp(),
+       {{"slam_run", slam::slamRunSchema().describe({})}, {"slam", slam::slamOptionSchema().describe({})}}},
+      {"gridtopo-topology", topology::topologyRunOptionsHelp(), topology_sections},
+      {"gridtopo-map", mapping::mapRunOptionsHelp(), map_sections},
+  };
+  for (const App& app : apps) {
+    const auto r = testing_app::runApp(app.name, "--help-options");
+    EXPECT_EQ(r.status, 0) << app.name << ": " << r.output;
+    EXPECT_EQ(r.output, app.help) << app.name;
+    std::size_t keys = 0;
+    for (const auto& s : app.sections) {
+      EXPECT_NE(r.output.find("[" + s.section + "]\n"), std::string::npos) << app.name << " [" << s.section << "]";
+      for (const auto& k : s.keys) {
+        EXPECT_NE(r.output.find("\n  " + k.key + " = " + k.default_shown), std::string::npos)
+            << app.name << " [" << s.section << "] " << k.key;
+        ++keys;
+      }
+    }
+    EXPECT_GT(keys, 3u) << app.name;
+  }
+  // The slam table's one-line help and range, as the user reads them.
+  EXPECT_NE(slam::slamOptionsHelp().find("\n  particles = 30 "), std::string::npos);
+  EXPECT_NE(slam::slamOptionsHelp().find("(int [1, 100000]) number of particles\n"), std::string::npos);
 }
