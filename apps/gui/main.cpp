@@ -86,11 +86,6 @@ class GuiApp : public wxApp {
     wxInitAllImageHandlers();
     frame_ = new gui::MainFrame("gridtopo-gui", wxSize(g_opt.width, g_opt.height));
     auto* f = frame_;
-    const fs::path ini = fs::path(GRIDTOPO_SOURCE_DIR) / "config-ini" / "slam.ini";
-    if (fs::exists(ini)) {
-      f->documented_slam_ini = ini.string();
-      f->rebuildOptionGrid();  // with the per-key help
-    }
     const bool scripted = g_opt.run_steps >= 0 || g_opt.run_to_end || g_opt.run_topology || !g_opt.screenshot.empty() ||
                           g_opt.click_col >= 0 || g_opt.quit || g_opt.bench_frames > 0;
     if (scripted) f->script.push_back([] { return true; });  // errors go to stderr, not to modal dialogs
@@ -106,6 +101,7 @@ class GuiApp : public wxApp {
     if (!g_opt.topology_ini.empty()) {
       try {
         f->session().openTopologyIni(g_opt.topology_ini);
+        f->rebuildOptionGrid();
       } catch (const std::exception& e) {
         std::cerr << "gridtopo-gui: " << e.what() << "\n";
         ok = false;

@@ -5,9 +5,6 @@
 #include <wx/filedlg.h>
 #include <wx/notebook.h>
 #include <wx/numdlg.h>
-#include <wx/propgrid/advprops.h>
-#include <wx/propgrid/manager.h>
-#include <wx/propgrid/propgrid.h>
 #include <wx/splitter.h>
 #include <wx/textdlg.h>
 
@@ -28,7 +25,7 @@ using session::ViewMode;
 
 namespace {
 // The source tree's datasets/, the last place the shipped data is looked for (gridtopo::dataDirs).
-const char* const kBuildTimeDataDir = GRIDTOPO_SOURCE_DIR "/datasets";
+const char* const kBuildTimeDataDir = GRIDTOPO_BUILD_TIME_DATA_DIR;
 
 enum Id {
   kSaveSlam = wxID_HIGHEST + 1, kSaveTopology, kSaveLabels, kExportView, kClearRecent,
@@ -240,14 +237,7 @@ void MainFrame::buildMenus() {
     if (d.ShowModal() == wxID_OK) openFile(d.GetPath().ToStdString());
   }, kSlamLoadIni);
   Bind(wxEVT_MENU, [this](wxCommandEvent&) {
-    if (!applyOptionGrid()) return;
-    wxFileDialog d(this, "Save SLAM options", "", "slam.ini", "INI (*.ini)|*.ini", wxFD_SAVE | wxFD_OVERWRITE_PROMPT);
-    if (d.ShowModal() != wxID_OK) return;
-    try {
-      writeTextFileAtomically(d.GetPath().ToStdString(), s_.slamOptionTable(documented_slam_ini).toIni());
-    } catch (const std::exception& e) {
-      showError("Cannot save the INI", e.what());
-    }
+    if (applyOptionGrid()) saveOptionsIni("Save SLAM options", "slam.ini", s_.slamOptionTable().toIni());
   }, kSlamSaveIni);
 
   Bind(wxEVT_MENU, [this](wxCommandEvent&) {
@@ -328,38 +318,28 @@ void MainFrame::buildPanels() {
   inspector_->SetFont(wxFont(9, wxFONTFAMILY_TELETYPE, wxFONTSTYLE_NORMAL, wxFONTWEIGHT_NORMAL));
   inspector_->SetValue("Click a particle (SLAM view),\na cell or a graph node (topology view).\nHover: coordinates in the status bar.");
   inspector_->ShowPosition(0);
-  // SLAM options.
-  auto* opt_panel = new wxPanel(notebook_);
-  grid_ = new wxPropertyGridManager(opt_panel, wxID_ANY, wxDefaultPosition, wxDefaultSize,
-                                    wxPG_SPLITTER_AUTO_CENTER | wxPG_DESCRIPTION);
-  auto* apply = new wxButton(opt_panel, wxID_APPLY, "Apply");
-  auto* defaults = new wxButton(opt_panel, wxID_ANY, "Defaults");
-  auto* save = new wxButton(opt_panel, wxID_SAVEAS, "Save INI...");
-  auto* bs = new wxBoxSizer(wxHORIZONTAL);
-  bs->Add(apply, 0, wxALL, 2);
-  bs->Add(defaults, 0, wxALL, 2);
-  bs->Add(save, 0, wxALL, 2);
-  auto* vs = new wxBoxSizer(wxVERTICAL);
-  vs->Add(grid_, 1, wxEXPAND);
-  vs->Add(bs, 0);
-  opt_panel->SetSizer(vs);
-  grid_->Bind(wxEVT_PG_SELECTED, [this](wxPropertyGridEvent& e) {
-    if (wxPGProperty* p = e.GetProperty()) grid_->SetDescription(p->GetLabel(), p->GetHelpString());
-    e.Skip();
-  });
-  apply->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
-    if (applyOptionGrid()) SetStatusText("options applied (used by the next run: SLAM > New run)", 4);
-  });
-  defaults->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
-    s_.slamOptions() = slam::SlamOptions();
-    rebuildOptionGrid();
-  });
-  save->Bind(wxEVT_BUTTON, [this](wxCommandEvent&) {
-    wxCommandEvent e(wxEVT_MENU, kSlamSaveIni);
-    ProcessWindowEvent(e);
-  });
+  // SLAM and topology options: the options' key tables, edited through the structs' own loading.
+  auto error = [this](const std::string& what) {
+    return [this, what](const std::string& msg) { showError(what, msg); };
+  };
+  slam_grid_ = new OptionGrid(
+      notebook_, {[this] { return s_.slamOptionTable(); }, [this](const auto& t) { s_.setSlamOptions(t); },
+                  [this] { s_.slamOptions() = slam::SlamOptions(); },
+                  [this] {
+                    wxCommandEvent e(wxEVT_MENU, kSlamSaveIni);
+                    ProcessWindowEvent(e);
+                  },
+                  error("Invalid SLAM option"),
+                  [this] { SetStatusText("options applied (used by the next run: SLAM > New run)", 4); }});
+  topology_grid_ = new OptionGrid(
+      notebook_, {[this] { return s_.topologyOptionTable(); }, [this](const auto& t) { s_.setTopologyOptions(t); },
+                  [this] { s_.topologyOptions() = topology::TopologyOptions(); },
+                  [this] { saveOptionsIni("Save topology options", "topology.ini", s_.topologyOptionTable().toIni()); },
+                  error("Invalid topology option"),
+                  [this] { SetStatusText("topology options applied (used by the next Topology > Run)", 4); }});
   notebook_->AddPage(inspector_, "Inspector", true);
-  notebook_->AddPage(opt_panel, "SLAM options");
+  notebook_->AddPage(slam_grid_, "SLAM options");
+  notebook_->AddPage(topology_grid_, "Topology options");
   rebuildOptionGrid();
 
   canvas_->on_hover = [this](const std::string& t) { SetStatusText(t, 4); };
@@ -374,53 +354,19 @@ void MainFrame::buildPanels() {
 }
 
 void MainFrame::rebuildOptionGrid() {
-  // One page, created once; a rebuild empties it (Clear() + AddPage() on the manager corrupts its state).
-  if (grid_->GetPageCount() == 0) grid_->AddPage("options");
-  auto* page = grid_->GetPage(0);
-  page->Clear();
-  const auto table = s_.slamOptionTable(documented_slam_ini);
-  std::string section;
-  for (const auto& e : table.entries()) {
-    if (e.section != section) page->Append(new wxPropertyCategory("[" + e.section + "]")), section = e.section;
-    wxPGProperty* p = nullptr;
-    const wxString name = e.section + "_" + e.key;  // no '.': wxPropertyGrid reads it as a child path
-    if (e.key == "proposal") {
-      wxArrayString choices;
-      for (const char* c : {"informed", "mode-only", "hahnel", "odometry"}) choices.Add(c);
-      p = new wxEnumProperty(e.key, name, choices);
-      p->SetValueFromString(e.value);
-    } else if (e.type == session::OptionEntry::Type::Bool) {
-      p = new wxBoolProperty(e.key, name, e.value == "true");
-      p->SetAttribute(wxPG_BOOL_USE_CHECKBOX, true);
-    } else if (e.type == session::OptionEntry::Type::Int) {
-      p = new wxIntProperty(e.key, name, std::stol(e.value));
-    } else if (e.type == session::OptionEntry::Type::Double) {
-      p = new wxFloatProperty(e.key, name, std::stod(e.value));
-    } else {
-      p = new wxStringProperty(e.key, name, e.value);
-    }
-    std::string help = e.help.empty() ? std::string("(no help: see config-ini/slam.ini)") : e.help;
-    help += "  [default " + e.default_value + "]";
-    p->SetHelpString(help);
-    page->Append(p);
-  }
+  slam_grid_->rebuild();
+  topology_grid_->rebuild();
 }
 
-bool MainFrame::applyOptionGrid() {
-  auto table = s_.slamOptionTable(documented_slam_ini);
-  for (const auto& e : table.entries()) {
-    wxPGProperty* p = grid_->GetProperty(e.section + "_" + e.key);
-    if (!p) continue;
-    std::string v = p->GetValueAsString().ToStdString();
-    if (e.type == session::OptionEntry::Type::Bool) v = p->GetValue().GetBool() ? "true" : "false";
-    table.set(e.section, e.key, v);
-  }
+bool MainFrame::applyOptionGrid() { return slam_grid_->applyEdits(); }
+
+void MainFrame::saveOptionsIni(const std::string& title, const std::string& name, const std::string& text) {
+  wxFileDialog d(this, title, "", name, "INI (*.ini)|*.ini", wxFD_SAVE | wxFD_OVERWRITE_PROMPT);
+  if (d.ShowModal() != wxID_OK) return;
   try {
-    s_.setSlamOptions(table);
-    return true;
-  } catch (const std::exception& ex) {
-    showError("Invalid SLAM option", ex.what());
-    return false;
+    writeTextFileAtomically(d.GetPath().ToStdString(), text);
+  } catch (const std::exception& e) {
+    showError("Cannot save the INI", e.what());
   }
 }
 
@@ -569,6 +515,7 @@ void MainFrame::startTopology() {
     }
   }
   if (s_.map().empty()) return showError("No map", "open a map or run the SLAM first");
+  if (!topology_grid_->applyEdits()) return;
   if (!s_.model())
     return showError("No place model", "open a model trained by gridtopo-train (Topology > Open place model); the "
                                        "shipped " + std::string(session::kDefaultModel) + " is in none of: " +
@@ -588,11 +535,7 @@ void MainFrame::startTopology() {
 
 void MainFrame::showOptionsTab() {
   notebook_->SetSelection(1);
-  if (auto* p = grid_->GetProperty("slam_particles")) {
-    grid_->SelectProperty(p, true);
-    grid_->SetDescription(p->GetLabel(), p->GetHelpString());
-    grid_->GetGrid()->EnsureVisible(p);
-  }
+  slam_grid_->select("slam", "particles");
 }
 
 std::string MainFrame::inspectorText() const { return inspector_->GetValue().ToStdString(); }

@@ -1,5 +1,5 @@
 #pragma once
-// The main window: menus, toolbar, map canvas, plot panel, SLAM option grid, inspector and status bar. Every
+// The main window: menus, toolbar, map canvas, plot panel, SLAM and topology option grids, inspector and status bar. Every
 // action forwards to session::Session; the window only renders its state.
 #include <wx/wx.h>
 
@@ -12,9 +12,9 @@
 #include "gridtopo/session/recent_files.h"
 #include "gridtopo/session/session.h"
 #include "map_canvas.h"
+#include "option_grid.h"
 #include "plot_panel.h"
 
-class wxPropertyGridManager;
 class wxNotebook;
 class wxSplitterWindow;
 
@@ -40,6 +40,7 @@ class MainFrame : public wxFrame {
   bool screenshot(const std::string& path);
   std::string inspectorText() const;
   void refreshNow();
+  /// Shows the session's SLAM and topology options in their grids.
   void rebuildOptionGrid();
   void showOptionsTab();
   /// Opens the place model the project ships (session::Session::openDefaultModel) and shows which model is loaded.
@@ -49,7 +50,6 @@ class MainFrame : public wxFrame {
   std::vector<std::function<bool()>> script;
   bool quit_when_done = false;  ///< close the window when the script is done (--quit)
   int exit_code = 0;
-  std::string documented_slam_ini;  ///< config-ini/slam.ini, for the option help
   session::RunnerOptions runner_options = [] {
     session::RunnerOptions o;
     o.snapshot_interval = 0.1;  // the live view redraws at 10 Hz while the filter runs
@@ -60,7 +60,8 @@ class MainFrame : public wxFrame {
   void buildMenus();
   void buildPanels();
   void rebuildRecentMenu();
-  bool applyOptionGrid();
+  bool applyOptionGrid();  ///< the SLAM grid's edits into the session (false: refused, error shown)
+  void saveOptionsIni(const std::string& title, const std::string& name, const std::string& text);
   void onTimer(wxTimerEvent&);
   void updateStatus();
   void showError(const std::string& what, const std::string& msg);
@@ -75,7 +76,8 @@ class MainFrame : public wxFrame {
   PlotPanel* plots_ = nullptr;
   wxSplitterWindow* right_split_ = nullptr;
   void showPlots(bool show);
-  wxPropertyGridManager* grid_ = nullptr;
+  OptionGrid* slam_grid_ = nullptr;
+  OptionGrid* topology_grid_ = nullptr;
   wxTextCtrl* inspector_ = nullptr;
   wxNotebook* notebook_ = nullptr;
   wxMenu* recent_menu_ = nullptr;

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<long long> seed("s", "seed", "random seed (overrides the INI)", false, -1, "n", cmd);
     TCLAP::ValueArg<int> threads("t", "threads", "SLAM threads, 0 = all cores (overrides the INI)", false, -1, "n", cmd);
     TCLAP::ValueArg<long> max_scans("", "max-scans", "process only the first n scans (0: all)", false, 0, "n", cmd);
+    HelpOptionsArg help_options(cmd, mapping::mapRunOptionsHelp);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar and no topology updates on stderr", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);

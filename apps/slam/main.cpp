@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
                                           false, "", "name", cmd);
     TCLAP::ValueArg<long> max_scans("", "max-scans", "process only the first n scans (0 or less: all)", false, 0,
                                     "n", cmd);
+    HelpOptionsArg help_options(cmd, slam::slamOptionsHelp);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
                                 "m", cmd);
     TCLAP::ValueArg<int> threads("", "threads", "worker threads (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<std::string> out("o", "output", "output directory", false, "", "dir", cmd);
+    HelpOptionsArg help_options(cmd, topology::topologyRunOptionsHelp);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);

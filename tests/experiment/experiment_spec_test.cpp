@@ -102,7 +102,7 @@ TEST(ExperimentSpec, BadFilesNameFileLineSectionAndKey) {
       {"[sweep]\nparticles = 4 8\nparticle = 3\n", "11: [sweep] particle: unknown key"},
       {"[sweep]\nresample_threshold = 0.5 2\n",
        "10: [sweep] resample_threshold: must be in [0, 1], got 2 (run 1)"},
-      {"[sweep]\nproposal = informed greedy\n", "10: [sweep] proposal: unknown value 'greedy' (expected informed, "},
+      {"[sweep]\nproposal = informed greedy\n", "10: [sweep] proposal: must be informed, mode-only, hahnel or odometry"},
       {"[sweep]\nparticles = 4..x\n", "10: [sweep] particles: '4..x' is not a range of integers a..b"},
       {"[sweep]\ndataset = intel mit\n", "10: [sweep] dataset: no section [dataset.mit]"},
       {"[sweep]\nmax_scans = 0\n", "10: [sweep] max_scans: '0' is not a positive integer"},

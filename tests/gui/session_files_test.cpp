@@ -122,19 +122,21 @@ TEST(SessionFiles, BadFilesLeaveTheSessionUntouchedAndNameFileAndLine) {
 
 TEST(SessionFiles, SlamOptionTableEditsGoThroughTheOptionStruct) {
   session::Session s;
-  auto t = s.slamOptionTable(GRIDTOPO_SOURCE_DIR "/config-ini/slam.ini");
+  auto t = s.slamOptionTable();
   const auto* p = t.find("slam", "particles");
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->type, session::OptionEntry::Type::Int);
   EXPECT_EQ(p->value, "30");
   EXPECT_EQ(p->default_value, "30");
-  // Help from the comments of config-ini/slam.ini: the comment above the key, not the section separator.
-  EXPECT_EQ(p->help, "Number of particles (>= 1).");
-  // Keys listed under one comment share it.
-  ASSERT_NE(t.find("slam", "angular_update"), nullptr);
-  EXPECT_EQ(t.find("slam", "angular_update")->help, t.find("slam", "linear_update")->help);
-  EXPECT_NE(t.find("slam", "linear_update")->help.find("travelled distance"), std::string::npos);
-  for (const auto& e : t.entries()) EXPECT_FALSE(e.help.empty()) << e.key << " has no help in config-ini/slam.ini";
+  // Help and range from the key table (slam::slamOptionSchema), no INI file read.
+  EXPECT_EQ(p->help, "number of particles");
+  EXPECT_EQ(p->range, "[1, 100000]");
+  EXPECT_EQ(t.find("slam", "linear_update")->unit, "m");
+  EXPECT_EQ(t.find("slam", "proposal")->type, session::OptionEntry::Type::Choice);
+  EXPECT_EQ(t.find("slam", "proposal")->words,
+            (std::vector<std::string>{"informed", "mode-only", "hahnel", "odometry"}));
+  EXPECT_EQ(t.entries().size(), slam::slamOptionSchema().keys().size());
+  for (const auto& e : t.entries()) EXPECT_FALSE(e.help.empty()) << e.key << " has no help in its key table";
   ASSERT_TRUE(t.set("slam", "particles", "12"));
   ASSERT_TRUE(t.set("slam", "proposal", "odometry"));
   s.setSlamOptions(t);
@@ -235,4 +237,45 @@ TEST(SessionFiles, KeepsTheReadersWarningsAboutALog) {
   EXPECT_NE(s.logWarnings()[0].find("laser_front_laser_fov 3.14159 read as radians"), std::string::npos);
   s.open(GRIDTOPO_DATA_DIR "/slam/intel.clf.gz");
   EXPECT_TRUE(s.logWarnings().empty());  // a log the reader takes at its word
+}
+
+TEST(SessionFiles, TopologyOptionTableEditsGoThroughTheOptionStruct) {
+  session::Session s;
+  auto t = s.topologyOptionTable();
+  // The three sections of a topology run, every key of their tables.
+  std::size_t keys = 0;
+  for (const char* section : {"topology", "relaxation", "correction"}) {
+    std::size_t n = 0;
+    for (const auto& e : t.entries()) n += e.section == section;
+    EXPECT_GT(n, 0u) << section;
+    keys += n;
+  }
+  EXPECT_EQ(keys, t.entries().size());
+  EXPECT_EQ(t.find("topology", "segmentation")->type, session::OptionEntry::Type::Choice);
+  EXPECT_EQ(t.find("topology", "threads")->range, "[1, 256]");
+  EXPECT_EQ(t.find("relaxation", "max_iterations")->value, "30");
+  EXPECT_EQ(t.find("correction", "enabled")->type, session::OptionEntry::Type::Bool);
+  ASSERT_TRUE(t.set("topology", "segmentation", "doorways"));
+  ASSERT_TRUE(t.set("relaxation", "max_iterations", "7"));
+  ASSERT_TRUE(t.set("correction", "min_room_area", "2.5"));
+  s.setTopologyOptions(t);
+  EXPECT_EQ(s.topologyOptions().segmentation, "doorways");
+  EXPECT_EQ(s.topologyOptions().relaxation.max_iterations, 7);
+  EXPECT_EQ(s.topologyOptions().correction.min_room_area, 2.5);
+  EXPECT_EQ(s.topologyOptionTable().find("correction", "min_room_area")->value, "2.5");
+  // A value out of range is refused with its section and key, and changes nothing.
+  t.set("relaxation", "max_iterations", "-1");
+  try {
+    s.setTopologyOptions(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "[relaxation] max_iterations");
+  }
+  EXPECT_EQ(s.topologyOptions().relaxation.max_iterations, 7);
+  // The table's INI is what gridtopo-topology -c loads.
+  t.set("relaxation", "max_iterations", "7");
+  guitest::TempDir tmp;
+  { std::ofstream(tmp / "topology.ini") << t.toIni(); }
+  const auto loaded = topology::loadTopologyOptions(tmp / "topology.ini");
+  EXPECT_EQ(topology::topologyOptionsIni(loaded), topology::topologyOptionsIni(s.topologyOptions()));
 }

@@ -164,7 +164,7 @@ TEST(SlamApp, RunIniErrorsNameFileLineSectionAndKey) {
   expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticle = 3\n",
               ":5: [slam] particle: unknown key");
   expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticles = 0\n",
-              ":5: [slam] particles: must be at least 1");
+              ":5: [slam] particles: must be in [1, 100000], got 0");
 }
 
 TEST(SlamApp, UsageErrorsWithoutInputOrWithTwoOptionFiles) {

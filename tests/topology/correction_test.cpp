@@ -269,8 +269,8 @@ TEST(Correction, OptionsAreValidatedWithTheKeyName) {
     o.validate();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "CorrectionOptions: min_room_area: must be a finite area >= 0 (m^2)");
-    EXPECT_EQ(e.field(), "min_room_area");
+    EXPECT_EQ(std::string(e.what()), "<options>: [correction] min_room_area: must be >= 0, got -1");
+    EXPECT_EQ(e.field(), "[correction] min_room_area");
   }
   // correctRegions refuses bad options too.
   EXPECT_THROW(correctRegions(fill(2, 2, R), kRes, o), InputError);
@@ -283,10 +283,10 @@ TEST(Correction, OptionsAreValidatedWithTheKeyName) {
   o = CorrectionOptions{};
   o.max_passes = 1001;
   try {
-    o.validate("[x]");
+    o.validate("x.ini", "x");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "[x]: max_passes: must be in [0, 1000]");
+    EXPECT_EQ(std::string(e.what()), "x.ini: [x] max_passes: must be in [0, 1000], got 1001");
   }
   o.max_passes = 1000;
   EXPECT_NO_THROW(o.validate());
@@ -332,7 +332,7 @@ TEST(Correction, LoadFromConfigReadsEveryKeyAndNamesBadOnes) {
     b.loadFromConfigFile(bad, "corr");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "[corr]: max_passes: cannot parse '2.5' as an integer");
+    EXPECT_EQ(std::string(e.what()), "<ini>: [corr] max_passes: cannot parse '2.5' as an integer");
   }
   mrpt::config::CConfigFileMemory negative;
   negative.setContent(std::string("[corr]\nmin_doorway_area = -0.1\n"));
@@ -341,6 +341,6 @@ TEST(Correction, LoadFromConfigReadsEveryKeyAndNamesBadOnes) {
     b.loadFromConfigFile(negative, "corr");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "[corr]: min_doorway_area: must be a finite area >= 0 (m^2)");
+    EXPECT_EQ(std::string(e.what()), "<ini>: [corr] min_doorway_area: must be >= 0, got -0.1");
   }
 }

@@ -184,7 +184,7 @@ TEST(TopologyApp, RunIniErrorsNameFileLineSectionAndKey) {
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[correction]\nmin_room = 3\n",
               ":5: [correction] min_room: unknown key");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[topology]\n\nthreads = 0\n",
-              ":6: [topology] threads: must be in [1, 256]");
+              ":6: [topology] threads: must be in [1, 256], got 0");
   // A RUN.ini and -c at once, and no output directory: usage errors.
   std::ofstream(ini) << "[topology_run]\nmap = " << map << "\n" << out;
   EXPECT_EQ(runTopology(ini + " -c " + std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/topology.ini", d / "err"), 2);

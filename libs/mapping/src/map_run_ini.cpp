@@ -22,6 +22,24 @@ std::string absolute(const std::string& p) { return fs::absolute(fs::path(p)).le
 
 MapRunSpec::MapRunSpec() : model(topology::kDefaultPlacesModel) {}
 
+const OptionSchema<MapRunSpec>& mapRunSchema() {
+  using S = MapRunSpec;
+  static const OptionSchema<S> schema =
+      OptionSchema<S>("gridtopo::mapping::MapRunSpec")
+          .add("input", &S::input, OptionRange::any(), "", "the log: CARMEN (.clf, .log, optionally .gz) or MRPT rawlog")
+          .add("output", &S::output, OptionRange::any(), "", "the output directory: OUT/slam, OUT/topology, OUT/options.ini")
+          .add("model", &S::model, OptionRange::any(), "", "the place model from gridtopo-train")
+          .add("max_scans", &S::max_scans, OptionRange::any(), "scans", "feed only the first max_scans scans; 0 = all");
+  return schema;
+}
+
+std::string mapRunOptionsHelp() {
+  return optionsHelp(kMapRunSection, mapRunSchema().describe(MapRunSpec())) + "\n" +
+         optionsHelp("slam", slam::slamOptionSchema().describe(slam::SlamOptions())) + "\n" +
+         topology::topologyOptionsHelp() + "\n" +
+         optionsHelp(kTopologyBuilderSection, topologyBuilderOptionSchema().describe(TopologyBuilderOptions()));
+}
+
 MapRunSpec loadMapRunIni(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
@@ -29,7 +47,7 @@ MapRunSpec loadMapRunIni(const std::string& path) {
   std::vector<std::string> sections = {run, "slam", kTopologyBuilderSection};
   for (const char* s : topology::kTopologyOptionSections) sections.push_back(s);
   ini.requireKnownSections(sections);
-  ini.requireKnownKeys(run, {"input", "output", "model", "max_scans"});
+  ini.requireKnownKeys(run, mapRunSchema().keys());
   ini.requireKnownKeys("slam", slam::slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
   for (const char* s : topology::kTopologyOptionSections)
     ini.requireKnownKeys(s, topology::topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
@@ -97,9 +115,11 @@ void checkMapRunSpec(const MapRunSpec& spec) {
 }
 
 std::string mapRunIni(const MapRunSpec& spec) {
-  return "[" + std::string(kMapRunSection) + "]\ninput = " + absolute(spec.input) + "\noutput = " +
-         absolute(spec.output) + "\nmodel = " + absolute(spec.model) + "\nmax_scans = " +
-         std::to_string(spec.max_scans) + "\n\n" + slam::slamOptionsIni(spec.slam, "slam") + "\n" +
+  MapRunSpec run = spec;
+  run.input = absolute(spec.input);
+  run.output = absolute(spec.output);
+  run.model = absolute(spec.model);
+  return mapRunSchema().ini(run, kMapRunSection) + "\n" + slam::slamOptionsIni(spec.slam, "slam") + "\n" +
          topology::topologyOptionsIni(spec.topology) + "\n" + topologyBuilderOptionsIni(spec.builder);
 }
 

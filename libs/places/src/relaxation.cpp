@@ -1,5 +1,4 @@
 #include "gridtopo/places/relaxation.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -11,31 +10,31 @@
 
 namespace gridtopo::places {
 
+const OptionSchema<RelaxationOptions>& relaxationOptionSchema() {
+  using O = RelaxationOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::places::RelaxationOptions")
+          .add("max_iterations", &O::max_iterations, OptionRange::closed(0, 10000), "",
+               "upper bound on the iterations (0 = no relaxation)")
+          .add("tolerance", &O::tolerance, OptionRange::above(0), "",
+               "stop when no probability changes by more than this in an iteration")
+          .add("neighbourhood_radius", &O::neighbourhood_radius, OptionRange::closed(1, 50), "lattice cells",
+               "N(i): the lattice cells within this Chebyshev distance (1 = the 8-neighbourhood)");
+  return schema;
+}
+
 void RelaxationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  readIniValue(s, sec, "max_iterations", max_iterations);
-  readIniValue(s, sec, "tolerance", tolerance);
-  readIniValue(s, sec, "neighbourhood_radius", neighbourhood_radius);
-  validate("[" + sec + "]");
+  relaxationOptionSchema().load(*this, s, sec);
 }
 
 void RelaxationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  t.write(sec, "max_iterations", iniText(max_iterations));
-  t.write(sec, "tolerance", iniText(tolerance));
-  t.write(sec, "neighbourhood_radius", iniText(neighbourhood_radius));
+  relaxationOptionSchema().save(*this, t, sec);
 }
 
-void RelaxationOptions::dumpToTextStream(std::ostream& out) const {
-  out << "max_iterations = " << max_iterations << "\n"
-      << "tolerance      = " << tolerance << "\n"
-      << "neighbourhood_radius = " << neighbourhood_radius << "\n";
-}
+void RelaxationOptions::dumpToTextStream(std::ostream& out) const { relaxationOptionSchema().dump(*this, out); }
 
-void RelaxationOptions::validate(const std::string& where) const {
-  if (max_iterations < 0 || max_iterations > 10000)
-    throw InputError(where, 0, "max_iterations", "must be in [0, 10000]");
-  if (!std::isfinite(tolerance) || tolerance <= 0) throw InputError(where, 0, "tolerance", "must be > 0");
-  if (neighbourhood_radius < 1 || neighbourhood_radius > 50)
-    throw InputError(where, 0, "neighbourhood_radius", "must be in [1, 50] lattice cells");
+void RelaxationOptions::validate(const std::string& file, const std::string& section) const {
+  relaxationOptionSchema().validate(*this, file, section);
 }
 
 void accumulateNeighbourCounts(const cv::Mat& labels, std::array<std::array<double, kNumLabels>, kNumLabels>& counts) {

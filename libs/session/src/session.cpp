@@ -230,10 +230,8 @@ void Session::tileMap(int cols, int rows) {
 
 // ---------------------------------------------------------------- SLAM
 
-OptionTable Session::slamOptionTable(const std::string& documented_ini) const {
-  OptionTable t = OptionTable::fromOptions(slam_options_, slam::SlamOptions(), "slam");
-  if (!documented_ini.empty()) t.addHelpFromIni(documented_ini);
-  return t;
+OptionTable Session::slamOptionTable() const {
+  return OptionTable::fromSections({{"slam", slam::slamOptionSchema().describe(slam_options_)}});
 }
 
 void Session::setSlamOptions(const OptionTable& table) {
@@ -334,6 +332,16 @@ void Session::setTopology(TopologyData t) {
   topology_ = std::make_unique<TopologyData>(std::move(t));
   ++topo_generation_;
   selection_ = {};
+}
+
+OptionTable Session::topologyOptionTable() const {
+  return OptionTable::fromSections(topology::describeTopologyOptions(topology_options_));
+}
+
+void Session::setTopologyOptions(const OptionTable& table) {
+  topology::TopologyOptions o;
+  table.applyTo(o, "topology");
+  topology_options_ = o;
 }
 
 void Session::runTopology() { setTopology(computeTopology(map_, model_, topology_options_)); }

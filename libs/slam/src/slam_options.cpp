@@ -1,270 +1,209 @@
 #include "gridtopo/slam/slam_options.h"
 
 #include <mrpt/config/CConfigFileBase.h>
-#include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
 
-#include <cmath>
-#include <initializer_list>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/core/ini_value.h"
 
 namespace gridtopo::slam {
 
 namespace {
 
-// One table drives load, save and dump, so no key can be forgotten in one of them.
-template <class F>
-void forEachKey(SlamOptions& o, F&& f) {
-  f("particles", o.particles);
-  f("seed", o.seed);
-  f("threads", o.threads);
-  f("resample_threshold", o.resample_threshold);
-  f("likelihood_gain", o.likelihood_gain);
-  f("linear_update", o.linear_update);
-  f("angular_update", o.angular_update);
-  f("temporal_update", o.temporal_update);
-  f("no_odometry_period", o.no_odometry_period);
-  f("resolution", o.resolution);
-  f("motion_alpha_rr", o.motion.alpha_rr);
-  f("motion_alpha_rt", o.motion.alpha_rt);
-  f("motion_alpha_tt", o.motion.alpha_tt);
-  f("motion_alpha_tr", o.motion.alpha_tr);
-  f("motion_min_sigma_xy", o.motion.min_sigma_xy);
-  f("motion_min_sigma_theta", o.motion.min_sigma_theta);
-  f("no_odometry_sigma_xy", o.motion.no_odometry_sigma_xy);
-  f("no_odometry_sigma_theta", o.motion.no_odometry_sigma_theta);
-  f("motion_scale_sigma", o.motion.scale_sigma);
-  f("motion_scale_walk_sigma", o.motion.scale_walk_sigma);
-  f("map_log_odds_hit", o.map.log_odds_hit);
-  f("map_log_odds_free", o.map.log_odds_free);
-  f("map_log_odds_min", o.map.log_odds_min);
-  f("map_log_odds_max", o.map.log_odds_max);
-  f("max_usable_range", o.beams.max_usable_range);
-  f("min_range", o.beams.min_range);
-  f("clear_no_return", o.beams.clear_no_return);
-  f("no_return_range", o.beams.no_return_range);
-  f("matching_beam_step", o.beams.matching_beam_step);
-  f("matching_beam_angle", o.beams.matching_beam_angle);
-  f("matching_range_margin", o.beams.matching_range_margin);
-  f("matching_min_incidence", o.beams.matching_min_incidence);
-  f("map_surface_clearance", o.beams.surface_clearance);
-  f("match_sigma", o.matcher.sigma);
-  f("match_kernel", o.matcher.kernel);
-  f("match_null_log_likelihood", o.matcher.null_log_likelihood);
-  f("match_occupied_log_odds", o.matcher.occupied_log_odds);
-  f("match_free_check", o.matcher.free_check);
-  f("match_use_motion_prior", o.matcher.use_motion_prior);
-  f("match_gn_iterations", o.matcher.gn_iterations);
-  f("match_gn_kernel", o.matcher.gn_kernel);
-  f("match_polish_step_xy", o.matcher.polish_step_xy);
-  f("match_polish_step_theta", o.matcher.polish_step_theta);
-  f("match_polish_refinements", o.matcher.polish_refinements);
-  f("match_step_xy", o.matcher.step_xy);
-  f("match_step_theta", o.matcher.step_theta);
-  f("match_refinements", o.matcher.refinements);
-  f("match_coarse_levels", o.matcher.coarse_levels);
-  f("match_coarse_beam_step", o.matcher.coarse_beam_step);
-  f("match_max_iterations", o.matcher.max_iterations);
-  f("match_min_fraction", o.matcher.min_match_fraction);
-  f("proposal_points_per_axis", o.proposal.points_per_axis);
-  f("proposal_delta_xy", o.proposal.delta_xy);
-  f("proposal_delta_theta", o.proposal.delta_theta);
-  f("proposal_min_sigma_xy", o.proposal.min_sigma_xy);
-  f("proposal_min_sigma_theta", o.proposal.min_sigma_theta);
-  f("proposal_laplace_weight", o.proposal.laplace_weight);
-  f("proposal_start_spread", o.proposal.start_spread);
-  f("proposal_report_mean", o.proposal.report_mean);
-  f("proposal_beam_sigma", o.proposal.beam_sigma);
-  f("proposal_min_curvature", o.proposal.min_curvature);
-}
-
-template <class E>
-using Words = std::initializer_list<std::pair<const char*, E>>;
+using R = OptionRange;
+using O = SlamOptions;
 
 /// The proposal words: the INI key `proposal`, --proposal, toString and proposalFromString.
-constexpr Words<ProposalType> kProposalWords{{"informed", ProposalType::Informed},
-                                             {"mode-only", ProposalType::ModeOnly},
-                                             {"hahnel", ProposalType::Hahnel},
-                                             {"odometry", ProposalType::Odometry}};
-
-// The keys whose value is one of a few words, with their words: one table for load, save and dump, in the order
-// they are saved.
-template <class F>
-void forEachChoice(SlamOptions& o, F&& f) {
-  f("proposal", o.proposal.type, kProposalWords);
-  f("proposal_fit", o.proposal.fit,
-    Words<ProposalFit>{{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}});
-  f("proposal_weight", o.proposal.weight,
-    Words<ProposalWeight>{{"mode", ProposalWeight::Mode}, {"integral", ProposalWeight::Integral}});
-  f("match_method", o.matcher.method,
-    Words<MatchMethod>{{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}});
-  f("match_residual", o.matcher.residual,
-    Words<MatchResidual>{{"point", MatchResidual::Point}, {"plane", MatchResidual::Plane}});
+const std::vector<std::pair<std::string, ProposalType>>& proposalWords() {
+  static const std::vector<std::pair<std::string, ProposalType>> words{{"informed", ProposalType::Informed},
+                                                                       {"mode-only", ProposalType::ModeOnly},
+                                                                       {"hahnel", ProposalType::Hahnel},
+                                                                       {"odometry", ProposalType::Odometry}};
+  return words;
 }
 
-template <class E>
-const char* wordOf(Words<E> words, E value) {
-  for (const auto& [word, v] : words)
-    if (v == value) return word;
-  return "?";
-}
-
-template <class T>
-std::string str(const T& v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+OptionSchema<SlamOptions> makeSchema() {
+  OptionSchema<SlamOptions> s("gridtopo::slam::SlamOptions");
+  // Filter
+  s.add("particles", &O::particles, R::closed(1, 100000), "", "number of particles");
+  s.add("seed", &O::seed, R::any(), "", "random seed (the output is identical for a seed whatever the threads)");
+  s.add("threads", &O::threads, R::atLeast(0), "", "worker threads, 0 = all cores");
+  s.add("resample_threshold", &O::resample_threshold, R::closed(0, 1), "",
+        "resample when N_eff < resample_threshold * particles");
+  s.add("likelihood_gain", &O::likelihood_gain, R::above(0), "",
+        "the observation log-likelihood is divided by this (softens the independent-beam model)");
+  // Update policy
+  s.add("linear_update", &O::linear_update, R::atLeast(0), "m", "process a scan after this travelled distance");
+  s.add("angular_update", &O::angular_update, R::atLeast(0), "rad", "... or after this accumulated rotation");
+  s.add("temporal_update", &O::temporal_update, R::any(), "s", "... or after this time; < 0: never on time alone");
+  s.add("no_odometry_period", &O::no_odometry_period, R::atLeast(0), "s",
+        "logs without odometry: process a scan after this time (0 = every scan)");
+  s.add("resolution", &O::resolution, R::leftOpen(0, 10), "m", "cell size of the map");
+  // Motion model
+  s.add("motion_alpha_rr", field(&O::motion, &MotionModelOptions::alpha_rr), R::atLeast(0), "rad^2/rad^2",
+        "rotation noise from rotation");
+  s.add("motion_alpha_rt", field(&O::motion, &MotionModelOptions::alpha_rt), R::atLeast(0), "rad^2/m^2",
+        "rotation noise from translation");
+  s.add("motion_alpha_tt", field(&O::motion, &MotionModelOptions::alpha_tt), R::atLeast(0), "m^2/m^2",
+        "translation noise from translation");
+  s.add("motion_alpha_tr", field(&O::motion, &MotionModelOptions::alpha_tr), R::atLeast(0), "m^2/rad^2",
+        "translation noise from rotation");
+  s.add("motion_min_sigma_xy", field(&O::motion, &MotionModelOptions::min_sigma_xy), R::above(0), "m",
+        "translation noise floor, added in quadrature");
+  s.add("motion_min_sigma_theta", field(&O::motion, &MotionModelOptions::min_sigma_theta), R::above(0), "rad",
+        "rotation noise floor, added in quadrature");
+  s.add("no_odometry_sigma_xy", field(&O::motion, &MotionModelOptions::no_odometry_sigma_xy), R::above(0), "m",
+        "motion prior of scans without odometry: zero motion with this deviation");
+  s.add("no_odometry_sigma_theta", field(&O::motion, &MotionModelOptions::no_odometry_sigma_theta), R::above(0), "rad",
+        "the same for the heading");
+  s.add("motion_scale_sigma", field(&O::motion, &MotionModelOptions::scale_sigma), R::closed(0, 0.2), "",
+        "odometry scale per particle: initial deviation of the factor (0 = off)");
+  s.add("motion_scale_walk_sigma", field(&O::motion, &MotionModelOptions::scale_walk_sigma), R::closed(0, 0.2),
+        "1/sqrt(m)", "odometry scale per particle: random walk of the factor per metre (0 = off)");
+  // Map
+  s.add("map_log_odds_hit", field(&O::map, &MapUpdateOptions::log_odds_hit), R::above(0), "",
+        "log-odds added where a beam ends");
+  s.add("map_log_odds_free", field(&O::map, &MapUpdateOptions::log_odds_free), R::below(0), "",
+        "log-odds added in every cell a beam crosses");
+  s.add("map_log_odds_min", field(&O::map, &MapUpdateOptions::log_odds_min), R::below(0), "", "lower clamp of a cell");
+  s.add("map_log_odds_max", field(&O::map, &MapUpdateOptions::log_odds_max), R::above(0), "", "upper clamp of a cell");
+  // Beams
+  s.add("max_usable_range", field(&O::beams, &BeamOptions::max_usable_range), R::atLeast(0), "m",
+        "returns at or beyond this range clear free space but mark no obstacle; 0 = the sensor's max range");
+  s.add("min_range", field(&O::beams, &BeamOptions::min_range), R::atLeast(0), "m", "closer returns are ignored");
+  s.add("clear_no_return", field(&O::beams, &BeamOptions::clear_no_return), R::any(), "",
+        "no-return readings clear free space up to no_return_range (REP-117)");
+  s.add("no_return_range", field(&O::beams, &BeamOptions::no_return_range), R::atLeast(0), "m",
+        "free space cleared by a no-return reading");
+  s.add("matching_beam_step", field(&O::beams, &BeamOptions::matching_beam_step), R::atLeast(0), "",
+        "match every n-th hit beam; 0 = from matching_beam_angle");
+  s.add("matching_beam_angle", field(&O::beams, &BeamOptions::matching_beam_angle), R::above(0), "rad",
+        "matching_beam_step = 0: spacing of the matching beams");
+  s.add("matching_range_margin", field(&O::beams, &BeamOptions::matching_range_margin), R::atLeast(0), "m",
+        "hits within this of the usable range are inserted but not matched");
+  s.add("matching_min_incidence", field(&O::beams, &BeamOptions::matching_min_incidence), R::rightOpen(0, 1.5), "rad",
+        "hits meeting the surface at a smaller angle are not matched (0 = match all)");
+  s.add("map_surface_clearance", field(&O::beams, &BeamOptions::surface_clearance), R::atLeast(0), "m",
+        "a beam does not clear cells this close to the surface it hit (0 = off)");
+  // Scan matcher
+  s.add("match_sigma", field(&O::matcher, &ScanMatcherOptions::sigma), R::above(0), "m",
+        "deviation of the end point to obstacle distance");
+  s.add("match_kernel", field(&O::matcher, &ScanMatcherOptions::kernel), R::closed(0, 5), "cells",
+        "correspondence search window half size");
+  s.add("match_null_log_likelihood", field(&O::matcher, &ScanMatcherOptions::null_log_likelihood), R::below(0), "",
+        "per-beam log-likelihood floor (no correspondence)");
+  s.add("match_occupied_log_odds", field(&O::matcher, &ScanMatcherOptions::occupied_log_odds), R::any(), "",
+        "a cell is a correspondence candidate above this log-odds; in [map_log_odds_min, map_log_odds_max)");
+  s.add("match_free_check", field(&O::matcher, &ScanMatcherOptions::free_check), R::any(), "",
+        "GMapping's 'cell in front must be free' test");
+  s.add("match_use_motion_prior", field(&O::matcher, &ScanMatcherOptions::use_motion_prior), R::any(), "",
+        "climb to the mode of the likelihood times the motion prior (false: the likelihood alone)");
+  s.add("match_gn_iterations", field(&O::matcher, &ScanMatcherOptions::gn_iterations), R::atLeast(0), "",
+        "gauss-newton: iterations");
+  s.add("match_gn_kernel", field(&O::matcher, &ScanMatcherOptions::gn_kernel), R::closed(0, 5), "cells",
+        "gauss-newton: correspondence window half size");
+  s.add("match_polish_step_xy", field(&O::matcher, &ScanMatcherOptions::polish_step_xy), R::above(0), "m",
+        "gauss-newton: first step of the hill-climbing polish");
+  s.add("match_polish_step_theta", field(&O::matcher, &ScanMatcherOptions::polish_step_theta), R::above(0), "rad",
+        "gauss-newton: first heading step of the polish");
+  s.add("match_polish_refinements", field(&O::matcher, &ScanMatcherOptions::polish_refinements), R::atLeast(0), "",
+        "gauss-newton: step halvings of the polish");
+  s.add("match_step_xy", field(&O::matcher, &ScanMatcherOptions::step_xy), R::above(0), "m",
+        "hill climbing: first step in x and y");
+  s.add("match_step_theta", field(&O::matcher, &ScanMatcherOptions::step_theta), R::above(0), "rad",
+        "hill climbing: first heading step");
+  s.add("match_refinements", field(&O::matcher, &ScanMatcherOptions::refinements), R::atLeast(0), "",
+        "hill climbing: step halvings");
+  s.add("match_coarse_levels", field(&O::matcher, &ScanMatcherOptions::coarse_levels), R::atLeast(0), "",
+        "the first step sizes that score only every match_coarse_beam_step-th beam (0 = off)");
+  s.add("match_coarse_beam_step", field(&O::matcher, &ScanMatcherOptions::coarse_beam_step), R::atLeast(1), "",
+        "beam step of the coarse levels");
+  s.add("match_max_iterations", field(&O::matcher, &ScanMatcherOptions::max_iterations), R::atLeast(1), "",
+        "hill climbing: most moves");
+  s.add("match_min_fraction", field(&O::matcher, &ScanMatcherOptions::min_match_fraction), R::closed(0, 1), "",
+        "matching fails (odometry proposal) below this fraction of beams with a correspondence");
+  // Informed proposal
+  s.add("proposal_points_per_axis", field(&O::proposal, &ProposalOptions::points_per_axis), R::closed(2, 9), "",
+        "K = points_per_axis^3 poses around the mode");
+  s.add("proposal_delta_xy", field(&O::proposal, &ProposalOptions::delta_xy), R::above(0), "m",
+        "spacing of the K poses in x and y");
+  s.add("proposal_delta_theta", field(&O::proposal, &ProposalOptions::delta_theta), R::above(0), "rad",
+        "spacing of the K poses in heading");
+  s.add("proposal_min_sigma_xy", field(&O::proposal, &ProposalOptions::min_sigma_xy), R::atLeast(0), "m",
+        "floor on the proposal's deviation in x and y");
+  s.add("proposal_min_sigma_theta", field(&O::proposal, &ProposalOptions::min_sigma_theta), R::atLeast(0), "rad",
+        "floor on the proposal's heading deviation");
+  s.add("proposal_laplace_weight", field(&O::proposal, &ProposalOptions::laplace_weight), R::any(), "",
+        "moments fit: Laplace approximation of the weight (false: Riemann sum over the K poses)");
+  s.add("proposal_start_spread", field(&O::proposal, &ProposalOptions::start_spread), R::atLeast(0), "",
+        "mode search starts at the prediction plus k times a motion-noise draw (0 = the prediction)");
+  s.add("proposal_report_mean", field(&O::proposal, &ProposalOptions::report_mean), R::any(), "",
+        "trajectory poses are the proposal means (false: the samples)");
+  s.add("proposal_beam_sigma", field(&O::proposal, &ProposalOptions::beam_sigma), R::above(0), "m",
+        "quadratic fit: registration precision of one beam end point");
+  s.add("proposal_min_curvature", field(&O::proposal, &ProposalOptions::min_curvature), R::atLeast(0), "nats",
+        "quadratic fit: flatter directions follow the motion model");
+  // Keys whose value is one of a few words
+  s.addWords("proposal", field(&O::proposal, &ProposalOptions::type), proposalWords(),
+             "informed (the paper's), mode-only (GMapping), hahnel, odometry (classic SIR)");
+  s.addWords("proposal_fit", field(&O::proposal, &ProposalOptions::fit),
+             {{"quadratic", ProposalFit::Quadratic}, {"moments", ProposalFit::Moments}},
+             "how the proposal is fitted to the K poses");
+  s.addWords("proposal_weight", field(&O::proposal, &ProposalOptions::weight),
+             {{"mode", ProposalWeight::Mode}, {"integral", ProposalWeight::Integral}},
+             "quadratic fit: weight factor from the likelihood at the mode or the Laplace integral");
+  s.addWords("match_method", field(&O::matcher, &ScanMatcherOptions::method),
+             {{"hill-climb", MatchMethod::HillClimb}, {"gauss-newton", MatchMethod::GaussNewton}},
+             "scan matcher search");
+  s.addWords("match_residual", field(&O::matcher, &ScanMatcherOptions::residual),
+             {{"point", MatchResidual::Point}, {"plane", MatchResidual::Plane}},
+             "end point distance to the hit mean (point) or along the surface normal (plane)");
+  s.rule("match_occupied_log_odds", [](const O& o) -> std::optional<std::string> {
+    if (o.matcher.occupied_log_odds >= o.map.log_odds_min && o.matcher.occupied_log_odds < o.map.log_odds_max)
+      return std::nullopt;
+    return "must lie in [map_log_odds_min, map_log_odds_max)";
+  });
+  return s;
 }
 
 }  // namespace
 
-const char* toString(ProposalType t) { return wordOf(kProposalWords, t); }
+const OptionSchema<SlamOptions>& slamOptionSchema() {
+  static const OptionSchema<SlamOptions> schema = makeSchema();
+  return schema;
+}
+
+const char* toString(ProposalType t) {
+  for (const auto& [word, value] : proposalWords())
+    if (value == t) return word.c_str();
+  return "?";
+}
 
 ProposalType proposalFromString(const std::string& s) {
   std::string all;
-  for (const auto& [word, value] : kProposalWords) {
+  for (const auto& [word, value] : proposalWords()) {
     if (s == word) return value;
-    all += (all.empty() ? "" : ", ") + std::string(word);
+    all += (all.empty() ? "" : ", ") + word;
   }
   throw std::invalid_argument("unknown proposal '" + s + "' (expected " + all + ")");
 }
 
 void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) {
-  std::string file = "<ini>";
-  // MRPT file-backed configs know their file name; memory ones do not.
-  if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&source)) file = f->getAssociatedFile();
-  forEachKey(*this, [&](const char* key, auto& value) {
-    try {
-      readIniValue(source, section, key, value);
-    } catch (const InputError& e) {  // name the file too: "<file>: [section] key: cannot parse ..."
-      throw InputError(file, 0, "[" + section + "] " + key, e.message());
-    }
-  });
-  // Keys whose value is one of a few words: the word's enum value, or an error naming the words.
-  forEachChoice(*this, [&](const char* key, auto& target, auto words) {
-    if (!source.keyExists(section, key)) return;
-    const std::string v = iniValueText(source.read_string(section, key, "", false));
-    std::string expected;
-    for (const auto& [word, value] : words) {
-      if (v == word) {
-        target = value;
-        return;
-      }
-      expected += (expected.empty() ? "" : ", ") + std::string(word);
-    }
-    throw InputError(file, 0, "[" + section + "] " + key, "unknown value '" + v + "' (expected " + expected + ")");
-  });
-  validate(file, section);
+  slamOptionSchema().load(*this, source, section);
 }
 
 void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const {
-  auto& self = const_cast<SlamOptions&>(*this);
-  forEachKey(self, [&](const char* key, auto& value) {
-    using T = std::decay_t<decltype(value)>;
-    if constexpr (std::is_same_v<T, bool>) target.write(section, key, std::string(value ? "true" : "false"));
-    else target.write(section, key, str(value));
-  });
-  forEachChoice(self, [&](const char* key, auto& value, auto words) {
-    target.write(section, key, std::string(wordOf(words, value)));
-  });
+  slamOptionSchema().save(*this, target, section);
 }
 
-void SlamOptions::dumpToTextStream(std::ostream& out) const {
-  out << "----------- [gridtopo::slam::SlamOptions] ------------\n";
-  auto& self = const_cast<SlamOptions&>(*this);
-  forEachKey(self, [&](const char* key, auto& value) {
-    using T = std::decay_t<decltype(value)>;
-    out << "  " << key << " = ";
-    if constexpr (std::is_same_v<T, bool>) out << (value ? "true" : "false");
-    else out << str(value);
-    out << "\n";
-  });
-  forEachChoice(self, [&](const char* key, auto& value, auto words) {
-    out << "  " << key << " = " << wordOf(words, value) << "\n";
-  });
-}
+void SlamOptions::dumpToTextStream(std::ostream& out) const { slamOptionSchema().dump(*this, out); }
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
-  auto fail = [&](const std::string& key, const std::string& msg) {
-    throw InputError(file, 0, "[" + section + "] " + key, msg);
-  };
-  auto positive = [&](const char* key, double v) {
-    if (!(v > 0.0) || !std::isfinite(v)) fail(key, "must be a positive number, got " + str(v));
-  };
-  auto nonNegative = [&](const char* key, double v) {
-    if (!(v >= 0.0) || !std::isfinite(v)) fail(key, "must be >= 0, got " + str(v));
-  };
-  if (particles < 1) fail("particles", "must be at least 1, got " + str(particles));
-  if (particles > 100000) fail("particles", "must be at most 100000, got " + str(particles));
-  if (threads < 0) fail("threads", "must be >= 0 (0 = all cores), got " + str(threads));
-  if (!(resample_threshold >= 0.0 && resample_threshold <= 1.0))
-    fail("resample_threshold", "must be in [0, 1], got " + str(resample_threshold));
-  positive("likelihood_gain", likelihood_gain);
-  positive("proposal_beam_sigma", proposal.beam_sigma);
-  nonNegative("proposal_min_curvature", proposal.min_curvature);
-  nonNegative("linear_update", linear_update);
-  nonNegative("angular_update", angular_update);
-  if (!std::isfinite(temporal_update)) fail("temporal_update", "must be finite");
-  nonNegative("no_odometry_period", no_odometry_period);
-  positive("resolution", resolution);
-  if (resolution > 10.0) fail("resolution", "must be at most 10 m per cell, got " + str(resolution));
-  nonNegative("motion_alpha_rr", motion.alpha_rr);
-  nonNegative("motion_alpha_rt", motion.alpha_rt);
-  nonNegative("motion_alpha_tt", motion.alpha_tt);
-  nonNegative("motion_alpha_tr", motion.alpha_tr);
-  positive("motion_min_sigma_xy", motion.min_sigma_xy);
-  positive("motion_min_sigma_theta", motion.min_sigma_theta);
-  positive("no_odometry_sigma_xy", motion.no_odometry_sigma_xy);
-  positive("no_odometry_sigma_theta", motion.no_odometry_sigma_theta);
-  if (!(motion.scale_sigma >= 0.0 && motion.scale_sigma <= 0.2))
-    fail("motion_scale_sigma", "must be in [0, 0.2], got " + str(motion.scale_sigma));
-  if (!(motion.scale_walk_sigma >= 0.0 && motion.scale_walk_sigma <= 0.2))
-    fail("motion_scale_walk_sigma", "must be in [0, 0.2], got " + str(motion.scale_walk_sigma));
-  if (!(map.log_odds_hit > 0.0f)) fail("map_log_odds_hit", "must be > 0, got " + str(map.log_odds_hit));
-  if (!(map.log_odds_free < 0.0f)) fail("map_log_odds_free", "must be < 0, got " + str(map.log_odds_free));
-  if (!(map.log_odds_min < 0.0f)) fail("map_log_odds_min", "must be < 0, got " + str(map.log_odds_min));
-  if (!(map.log_odds_max > 0.0f)) fail("map_log_odds_max", "must be > 0, got " + str(map.log_odds_max));
-  nonNegative("max_usable_range", beams.max_usable_range);
-  nonNegative("min_range", beams.min_range);
-  nonNegative("no_return_range", beams.no_return_range);
-  if (beams.matching_beam_step < 0) fail("matching_beam_step", "must be >= 0, got " + str(beams.matching_beam_step));
-  positive("matching_beam_angle", beams.matching_beam_angle);
-  nonNegative("matching_range_margin", beams.matching_range_margin);
-  nonNegative("map_surface_clearance", beams.surface_clearance);
-  if (!(beams.matching_min_incidence >= 0.0 && beams.matching_min_incidence < 1.5))
-    fail("matching_min_incidence", "must be in [0, 1.5) rad, got " + str(beams.matching_min_incidence));
-  positive("match_sigma", matcher.sigma);
-  if (matcher.kernel < 0 || matcher.kernel > 5) fail("match_kernel", "must be in [0, 5], got " + str(matcher.kernel));
-  if (!(matcher.null_log_likelihood < 0.0))
-    fail("match_null_log_likelihood", "must be < 0, got " + str(matcher.null_log_likelihood));
-  if (!(matcher.occupied_log_odds >= map.log_odds_min && matcher.occupied_log_odds < map.log_odds_max))
-    fail("match_occupied_log_odds", "must lie in [map_log_odds_min, map_log_odds_max)");
-  positive("match_step_xy", matcher.step_xy);
-  positive("match_step_theta", matcher.step_theta);
-  if (matcher.refinements < 0) fail("match_refinements", "must be >= 0");
-  if (matcher.coarse_levels < 0) fail("match_coarse_levels", "must be >= 0");
-  if (matcher.coarse_beam_step < 1) fail("match_coarse_beam_step", "must be >= 1");
-  if (matcher.max_iterations < 1) fail("match_max_iterations", "must be >= 1");
-  if (matcher.gn_iterations < 0) fail("match_gn_iterations", "must be >= 0");
-  if (matcher.gn_kernel < 0 || matcher.gn_kernel > 5) fail("match_gn_kernel", "must be in [0, 5]");
-  positive("match_polish_step_xy", matcher.polish_step_xy);
-  positive("match_polish_step_theta", matcher.polish_step_theta);
-  if (matcher.polish_refinements < 0) fail("match_polish_refinements", "must be >= 0");
-  if (!(matcher.min_match_fraction >= 0.0 && matcher.min_match_fraction <= 1.0))
-    fail("match_min_fraction", "must be in [0, 1], got " + str(matcher.min_match_fraction));
-  if (proposal.points_per_axis < 2 || proposal.points_per_axis > 9)
-    fail("proposal_points_per_axis", "must be in [2, 9], got " + str(proposal.points_per_axis));
-  positive("proposal_delta_xy", proposal.delta_xy);
-  positive("proposal_delta_theta", proposal.delta_theta);
-  nonNegative("proposal_min_sigma_xy", proposal.min_sigma_xy);
-  nonNegative("proposal_min_sigma_theta", proposal.min_sigma_theta);
-  nonNegative("proposal_start_spread", proposal.start_spread);
+  slamOptionSchema().validate(*this, file, section);
 }
 
 }  // namespace gridtopo::slam

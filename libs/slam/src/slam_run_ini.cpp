@@ -1,7 +1,6 @@
 #include "gridtopo/slam/slam_run_ini.h"
 
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -17,12 +16,21 @@ namespace fs = std::filesystem;
 
 namespace gridtopo::slam {
 
-std::vector<std::string> slamOptionKeys() {
-  mrpt::config::CConfigFileMemory mem;
-  SlamOptions().saveToConfigFile(mem, "slam");
-  std::vector<std::string> keys;
-  mem.getAllKeys("slam", keys);
-  return keys;
+const OptionSchema<SlamRunSpec>& slamRunSchema() {
+  using S = SlamRunSpec;
+  static const OptionSchema<S> schema =
+      OptionSchema<S>("gridtopo::slam::SlamRunSpec")
+          .add("input", &S::input, OptionRange::any(), "", "the log: CARMEN (.clf, .log, optionally .gz) or MRPT rawlog")
+          .add("output", &S::output, OptionRange::any(), "", "the output directory")
+          .add("max_scans", &S::max_scans, OptionRange::any(), "scans", "feed only the first max_scans scans; 0 = all");
+  return schema;
+}
+
+std::vector<std::string> slamOptionKeys() { return slamOptionSchema().keys(); }
+
+std::string slamOptionsHelp() {
+  return optionsHelp(kSlamRunSection, slamRunSchema().describe(SlamRunSpec())) + "\n" +
+         optionsHelp("slam", slamOptionSchema().describe(SlamOptions()));
 }
 
 namespace {
@@ -46,7 +54,7 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
   ini.requireKnownSections({kSlamRunSection, options_section});
-  ini.requireKnownKeys(kSlamRunSection, {"input", "output", "max_scans"});
+  ini.requireKnownKeys(kSlamRunSection, slamRunSchema().keys());
   ini.requireKnownKeys(options_section, slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
   SlamRunSpec spec;
   spec.ini = path;
@@ -109,9 +117,10 @@ void checkSlamRunSpec(const SlamRunSpec& spec) {
 }
 
 std::string slamRunIni(const SlamRunSpec& spec) {
-  return "[" + std::string(kSlamRunSection) + "]\ninput = " + absolute(spec.input) + "\noutput = " +
-         absolute(spec.output) + "\nmax_scans = " + std::to_string(spec.max_scans) + "\n\n" +
-         slamOptionsIni(spec.options, "slam");
+  SlamRunSpec run = spec;
+  run.input = absolute(spec.input);
+  run.output = absolute(spec.output);
+  return slamRunSchema().ini(run, kSlamRunSection) + "\n" + slamOptionsIni(spec.options, "slam");
 }
 
 }  // namespace gridtopo::slam

@@ -1,5 +1,4 @@
 #include "gridtopo/topology/correction.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -13,45 +12,38 @@
 
 namespace gridtopo::topology {
 
+const OptionSchema<CorrectionOptions>& correctionOptionSchema() {
+  using O = CorrectionOptions;
+  using R = OptionRange;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::topology::CorrectionOptions")
+          .add("enabled", &O::enabled, R::any(), "", "apply the region correction rules")
+          .add("min_place_area", &O::min_place_area, R::atLeast(0), "m^2", "R0: smaller connected free patches get no label")
+          .add("min_room_area", &O::min_room_area, R::atLeast(0), "m^2", "R1: smaller room regions join a neighbour")
+          .add("min_corridor_area", &O::min_corridor_area, R::atLeast(0), "m^2",
+               "R1: smaller corridor regions join a neighbour")
+          .add("min_doorway_area", &O::min_doorway_area, R::atLeast(0), "m^2",
+               "R1: smaller doorway regions join a neighbour")
+          .add("doorways_must_separate", &O::doorways_must_separate, R::any(), "",
+               "R2: a doorway joining fewer than two places takes its neighbour's label")
+          .add("max_doorway_area", &O::max_doorway_area, R::atLeast(0), "m^2",
+               "R3: larger doorway regions are not doors (0 = off)")
+          .add("max_passes", &O::max_passes, R::closed(0, 1000), "", "passes of each rule at most");
+  return schema;
+}
+
 void CorrectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  readIniValue(s, sec, "enabled", enabled);
-  readIniValue(s, sec, "min_place_area", min_place_area);
-  readIniValue(s, sec, "min_room_area", min_room_area);
-  readIniValue(s, sec, "min_corridor_area", min_corridor_area);
-  readIniValue(s, sec, "min_doorway_area", min_doorway_area);
-  readIniValue(s, sec, "doorways_must_separate", doorways_must_separate);
-  readIniValue(s, sec, "max_doorway_area", max_doorway_area);
-  readIniValue(s, sec, "max_passes", max_passes);
-  validate("[" + sec + "]");
+  correctionOptionSchema().load(*this, s, sec);
 }
 
 void CorrectionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  t.write(sec, "enabled", iniText(enabled));
-  t.write(sec, "min_place_area", iniText(min_place_area));
-  t.write(sec, "min_room_area", iniText(min_room_area));
-  t.write(sec, "min_corridor_area", iniText(min_corridor_area));
-  t.write(sec, "min_doorway_area", iniText(min_doorway_area));
-  t.write(sec, "doorways_must_separate", iniText(doorways_must_separate));
-  t.write(sec, "max_doorway_area", iniText(max_doorway_area));
-  t.write(sec, "max_passes", iniText(max_passes));
+  correctionOptionSchema().save(*this, t, sec);
 }
 
-void CorrectionOptions::dumpToTextStream(std::ostream& out) const {
-  out << "enabled                = " << enabled << "\n"
-      << "min_place_area         = " << min_place_area << "   // m^2\n"
-      << "min_room_area          = " << min_room_area << "   // m^2\n"
-      << "min_corridor_area      = " << min_corridor_area << "   // m^2\n"
-      << "min_doorway_area       = " << min_doorway_area << "   // m^2\n"
-      << "doorways_must_separate = " << doorways_must_separate << "\n"
-      << "max_doorway_area       = " << max_doorway_area << "   // m^2, 0 = off\n"
-      << "max_passes             = " << max_passes << "\n";
-}
+void CorrectionOptions::dumpToTextStream(std::ostream& out) const { correctionOptionSchema().dump(*this, out); }
 
-void CorrectionOptions::validate(const std::string& where) const {
-  for (auto [v, n] : {std::pair{min_room_area, "min_room_area"}, {min_corridor_area, "min_corridor_area"},
-                      {min_doorway_area, "min_doorway_area"}, {min_place_area, "min_place_area"}, {max_doorway_area, "max_doorway_area"}})
-    if (!std::isfinite(v) || v < 0) throw InputError(where, 0, n, "must be a finite area >= 0 (m^2)");
-  if (max_passes < 0 || max_passes > 1000) throw InputError(where, 0, "max_passes", "must be in [0, 1000]");
+void CorrectionOptions::validate(const std::string& file, const std::string& section) const {
+  correctionOptionSchema().validate(*this, file, section);
 }
 
 namespace {

@@ -1,5 +1,4 @@
 #include "gridtopo/topology/pipeline.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileBase.h>
@@ -16,82 +15,79 @@
 
 namespace gridtopo::topology {
 
-namespace {
-// One table drives load and save of the [topology] keys, so that neither can miss one.
-template <class Options, class F>
-void forEachTopologyKey(Options& o, F&& f) {
-  f("threads", o.threads);
-  f("resolution", o.resolution);
-  f("free_threshold", o.free_threshold);
-  f("grid_free_threshold", o.grid_free_threshold);
-  f("free_opening_radius", o.free_opening_radius);
-  f("grid_free_opening_radius", o.grid_free_opening_radius);
-  f("overlay_scale", o.overlay_scale);
-  f("segmentation", o.segmentation);
-  f("merge_contact", o.seg_rules.merge_contact);
-  f("split_neck_width", o.seg_rules.neck_width);
-  f("split_min_part_area", o.seg_rules.min_part_area);
-  f("split_fill_obstacle_area", o.seg_rules.fill_obstacle_area);
-  f("segment_vote", o.seg_rules.segment_vote);
-  f("blob_vote", o.blob_vote.enabled);
-  f("blob_vote_neck_width", o.blob_vote.neck_width);
-  f("blob_vote_min_core_area", o.blob_vote.min_core_area);
-  f("blob_vote_grow_limit", o.blob_vote.grow_limit);
-  f("blob_vote_fill_obstacle_area", o.blob_vote.fill_obstacle_area);
-  f("blob_vote_min_share", o.blob_vote.min_share);
-  f("corridor_split", o.corridor_split.enabled);
-  f("corridor_min_branch", o.corridor_split.min_branch);
-  f("corridor_min_piece_area", o.corridor_split.min_piece_area);
-  f("graph_min_node_area", o.graph_rules.min_node_area);
-  f("graph_merge_doorways", o.graph_rules.merge_doorways);
+const OptionSchema<TopologyOptions>& topologyOptionSchema() {
+  using O = TopologyOptions;
+  using R = OptionRange;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::topology::TopologyOptions")
+          .add("threads", &O::threads, R::closed(1, 256), "", "worker threads (results do not depend on it)")
+          .add("resolution", &O::resolution, R::above(0), "m", "pixel size of plain images without a ROS .yaml")
+          .add("free_threshold", &O::free_threshold, R::closed(1, 255), "grey", "plain images: grey >= this is free")
+          .add("grid_free_threshold", &O::grid_free_threshold, R::closed(129, 255), "grey",
+               "probabilistic grids (.gridmap, SLAM maps): grey = round(255 p_free) >= this is free")
+          .add("free_opening_radius", &O::free_opening_radius, R::closed(0, 1), "m",
+               "plain images: radius of the opening of the free space (0 = off)")
+          .add("grid_free_opening_radius", &O::grid_free_opening_radius, R::closed(0, 1), "m",
+               "ROS maps, probabilistic grids and the GUI's SLAM map: radius of the opening (0 = off)")
+          .add("overlay_scale", &O::overlay_scale, R::closed(1, 8), "", "enlargement of overlay.png")
+          .addWords<std::string>("segmentation", field(&O::segmentation), {{"regions", "regions"}, {"doorways", "doorways"}},
+                                 "room segmentation: every room / corridor region (regions) or only doorways split")
+          .add("merge_contact", field(&O::seg_rules, &SegmentationRules::merge_contact), R::closed(0, 100), "m",
+               "S0: a room and a corridor touching along more than this are one place (0 = off)")
+          .add("split_neck_width", field(&O::seg_rules, &SegmentationRules::neck_width), R::closed(0, 10), "m",
+               "S1: split segments at passages narrower than this (0 = off)")
+          .add("split_min_part_area", field(&O::seg_rules, &SegmentationRules::min_part_area), R::leftOpen(0, 1000),
+               "m^2", "S1: each part keeps at least this area")
+          .add("split_fill_obstacle_area", field(&O::seg_rules, &SegmentationRules::fill_obstacle_area),
+               R::closed(0, 1000), "m^2", "S1: enclosed obstacles up to this area count as the segment's (0 = off)")
+          .add("segment_vote", field(&O::seg_rules, &SegmentationRules::segment_vote), R::any(), "",
+               "room and corridor cells take their segment's majority label")
+          .add("blob_vote", field(&O::blob_vote, &BlobVoteOptions::enabled), R::any(), "",
+               "step 7b: vote room / corridor labels in geometric blobs")
+          .add("blob_vote_neck_width", field(&O::blob_vote, &BlobVoteOptions::neck_width), R::leftOpen(0, 20), "m",
+               "blobs are separated by passages narrower than this")
+          .add("blob_vote_min_core_area", field(&O::blob_vote, &BlobVoteOptions::min_core_area), R::leftOpen(0, 1000),
+               "m^2", "smaller cores seed no blob")
+          .add("blob_vote_grow_limit", field(&O::blob_vote, &BlobVoteOptions::grow_limit), R::closed(0, 100), "m",
+               "a core grows back over at most this distance (0 = no limit)")
+          .add("blob_vote_fill_obstacle_area", field(&O::blob_vote, &BlobVoteOptions::fill_obstacle_area),
+               R::closed(0, 1000), "m^2", "enclosed obstacles up to this area count as free (0 = off)")
+          .add("blob_vote_min_share", field(&O::blob_vote, &BlobVoteOptions::min_share), R::closed(0.5, 1), "",
+               "a blob is voted only when the winner holds this share of its probability mass")
+          .add("corridor_split", field(&O::corridor_split, &CorridorSplitOptions::enabled), R::any(), "",
+               "one graph node per corridor junction and per branch")
+          .add("corridor_min_branch", field(&O::corridor_split, &CorridorSplitOptions::min_branch), R::closed(0, 100),
+               "m", "shorter side branches beyond the corridor's wall are pruned")
+          .add("corridor_min_piece_area", field(&O::corridor_split, &CorridorSplitOptions::min_piece_area),
+               R::closed(0, 1000), "m^2", "smaller corridor pieces join their longest-border neighbour")
+          .add("graph_min_node_area", field(&O::graph_rules, &GraphRuleOptions::min_node_area), R::closed(0, 100),
+               "m^2", "G1: smaller regions join a neighbour node (0 = off)")
+          .add("graph_merge_doorways", field(&O::graph_rules, &GraphRuleOptions::merge_doorways), R::any(), "",
+               "G2: doorways between the same two places become one");
+  return schema;
 }
-}  // namespace
+
+std::vector<OptionSection> describeTopologyOptions(const TopologyOptions& o) {
+  return {{"topology", topologyOptionSchema().describe(o)},
+          {"relaxation", places::relaxationOptionSchema().describe(o.relaxation)},
+          {"correction", correctionOptionSchema().describe(o.correction)}};
+}
+
+std::string topologyOptionsHelp() {
+  std::string text;
+  for (const auto& [section, keys] : describeTopologyOptions(TopologyOptions()))
+    text += (text.empty() ? "" : "\n") + optionsHelp(section, keys);
+  return text;
+}
 
 void TopologyOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  forEachTopologyKey(*this, [&](const char* key, auto& value) { readIniValue(s, sec, key, value); });
-  const std::string where = "[" + sec + "]";
-  if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
-  if (!(resolution > 0) || !std::isfinite(resolution)) throw InputError(where, 0, "resolution", "must be > 0");
-  if (free_threshold < 1 || free_threshold > 255) throw InputError(where, 0, "free_threshold", "must be in [1, 255]");
-  if (grid_free_threshold < 129 || grid_free_threshold > 255)
-    throw InputError(where, 0, "grid_free_threshold", "must be in [129, 255] (p_free > 0.5)");
-  if (!(free_opening_radius >= 0 && free_opening_radius <= 1))
-    throw InputError(where, 0, "free_opening_radius", "must be in [0, 1] metres (0 = off)");
-  if (!(grid_free_opening_radius >= 0 && grid_free_opening_radius <= 1))
-    throw InputError(where, 0, "grid_free_opening_radius", "must be in [0, 1] metres (0 = off)");
-  if (segmentation != "regions" && segmentation != "doorways")
-    throw InputError(where, 0, "segmentation", "must be regions or doorways");
-  if (!(seg_rules.merge_contact >= 0 && seg_rules.merge_contact <= 100))
-    throw InputError(where, 0, "merge_contact", "must be in [0, 100] metres (0 = off)");
-  if (!(seg_rules.neck_width >= 0 && seg_rules.neck_width <= 10))
-    throw InputError(where, 0, "split_neck_width", "must be in [0, 10] metres (0 = off)");
-  if (!(seg_rules.min_part_area > 0 && seg_rules.min_part_area <= 1000))
-    throw InputError(where, 0, "split_min_part_area", "must be in (0, 1000] square metres");
-  if (!(seg_rules.fill_obstacle_area >= 0 && seg_rules.fill_obstacle_area <= 1000))
-    throw InputError(where, 0, "split_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
-  if (!(blob_vote.neck_width > 0 && blob_vote.neck_width <= 20))
-    throw InputError(where, 0, "blob_vote_neck_width", "must be in (0, 20] metres");
-  if (!(blob_vote.min_core_area > 0 && blob_vote.min_core_area <= 1000))
-    throw InputError(where, 0, "blob_vote_min_core_area", "must be in (0, 1000] square metres");
-  if (!(blob_vote.grow_limit >= 0 && blob_vote.grow_limit <= 100))
-    throw InputError(where, 0, "blob_vote_grow_limit", "must be in [0, 100] metres (0 = no limit)");
-  if (!(blob_vote.fill_obstacle_area >= 0 && blob_vote.fill_obstacle_area <= 1000))
-    throw InputError(where, 0, "blob_vote_fill_obstacle_area", "must be in [0, 1000] square metres (0 = off)");
-  if (!(blob_vote.min_share >= 0.5 && blob_vote.min_share <= 1))
-    throw InputError(where, 0, "blob_vote_min_share", "must be in [0.5, 1]");
-  if (!(corridor_split.min_branch >= 0 && corridor_split.min_branch <= 100))
-    throw InputError(where, 0, "corridor_min_branch", "must be in [0, 100] metres");
-  if (!(corridor_split.min_piece_area >= 0 && corridor_split.min_piece_area <= 1000))
-    throw InputError(where, 0, "corridor_min_piece_area", "must be in [0, 1000] square metres");
-  if (!(graph_rules.min_node_area >= 0 && graph_rules.min_node_area <= 100))
-    throw InputError(where, 0, "graph_min_node_area", "must be in [0, 100] square metres (0 = off)");
-  if (overlay_scale < 1 || overlay_scale > 8) throw InputError(where, 0, "overlay_scale", "must be in [1, 8]");
+  topologyOptionSchema().load(*this, s, sec);
   relaxation.loadFromConfigFile(s, "relaxation");
   correction.loadFromConfigFile(s, "correction");
 }
 
 void TopologyOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  forEachTopologyKey(*this, [&](const char* key, const auto& value) { t.write(sec, key, iniText(value)); });
+  topologyOptionSchema().save(*this, t, sec);
   relaxation.saveToConfigFile(t, "relaxation");
   correction.saveToConfigFile(t, "correction");
 }
@@ -103,26 +99,8 @@ std::string topologyOptionsIni(const TopologyOptions& options) {
 }
 
 void TopologyOptions::dumpToTextStream(std::ostream& out) const {
-  out << "[topology]\nthreads        = " << threads << "\nresolution     = " << resolution
-      << "\nfree_threshold = " << free_threshold << "\ngrid_free_threshold = " << grid_free_threshold
-      << "\nfree_opening_radius = " << free_opening_radius
-      << "\ngrid_free_opening_radius = " << grid_free_opening_radius
-      << "\noverlay_scale  = " << overlay_scale << "\nsegmentation   = " << segmentation << "\nmerge_contact  = " << seg_rules.merge_contact << "\nsplit_neck_width = " << seg_rules.neck_width
-      << "\nsplit_min_part_area = " << seg_rules.min_part_area
-      << "\nsplit_fill_obstacle_area = " << seg_rules.fill_obstacle_area
-      << "\nsegment_vote   = " << (seg_rules.segment_vote ? "true" : "false")
-      << "\nblob_vote      = " << (blob_vote.enabled ? "true" : "false")
-      << "\nblob_vote_neck_width = " << blob_vote.neck_width << "\nblob_vote_min_core_area = " << blob_vote.min_core_area
-      << "\nblob_vote_grow_limit = " << blob_vote.grow_limit
-      << "\nblob_vote_fill_obstacle_area = " << blob_vote.fill_obstacle_area
-      << "\nblob_vote_min_share = " << blob_vote.min_share
-      << "\ncorridor_split = " << (corridor_split.enabled ? "true" : "false")
-      << "\ncorridor_min_branch = " << corridor_split.min_branch
-      << "\ncorridor_min_piece_area = " << corridor_split.min_piece_area
-      << "\ngraph_min_node_area = " << graph_rules.min_node_area
-      << "\ngraph_merge_doorways = " << (graph_rules.merge_doorways ? "true" : "false") << "\n[relaxation]\n";
+  topologyOptionSchema().dump(*this, out);
   relaxation.dumpToTextStream(out);
-  out << "[correction]\n";
   correction.dumpToTextStream(out);
 }
 
@@ -130,11 +108,7 @@ TopologyOptions loadTopologyOptions(const std::string& ini_path) {
   TopologyOptions opt;
   if (ini_path.empty()) return opt;
   if (!std::filesystem::is_regular_file(ini_path)) throw InputError(ini_path, "INI file not found");
-  try {
-    opt.loadFromConfigFile(mrpt::config::CConfigFile(ini_path), "topology");
-  } catch (const InputError& e) {
-    throw InputError(ini_path, 0, e.file() + " " + e.field(), e.message());
-  }
+  opt.loadFromConfigFile(mrpt::config::CConfigFile(ini_path), "topology");  // errors name the file and the key
   return opt;
 }
 

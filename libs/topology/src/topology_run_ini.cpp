@@ -1,7 +1,5 @@
 #include "gridtopo/topology/topology_run_ini.h"
 
-#include <mrpt/config/CConfigFileMemory.h>
-
 #include <filesystem>
 #include <vector>
 
@@ -12,12 +10,30 @@ namespace fs = std::filesystem;
 
 namespace gridtopo::topology {
 
+const OptionSchema<TopologyRunSpec>& topologyRunSchema() {
+  using S = TopologyRunSpec;
+  static const OptionSchema<S> schema =
+      OptionSchema<S>("gridtopo::topology::TopologyRunSpec")
+          .add("map", &S::map, OptionRange::any(), "",
+               "the occupancy map: .png/.pgm/.jpg (+ ROS .yaml), .yaml, .gridmap(.gz)")
+          .add("model", &S::model, OptionRange::any(), "", "the place model from gridtopo-train")
+          .add("output", &S::output, OptionRange::any(), "", "the output directory");
+  return schema;
+}
+
 std::vector<std::string> topologyOptionKeys(const std::string& section) {
-  mrpt::config::CConfigFileMemory mem;
-  TopologyOptions().saveToConfigFile(mem, "topology");
-  std::vector<std::string> keys;
-  mem.getAllKeys(section, keys);
-  return keys;
+  for (const auto& s : describeTopologyOptions(TopologyOptions()))
+    if (s.section == section) {
+      std::vector<std::string> keys;
+      for (const auto& k : s.keys) keys.push_back(k.key);
+      return keys;
+    }
+  return {};
+}
+
+std::string topologyRunOptionsHelp() {
+  return optionsHelp(kTopologyRunSection, topologyRunSchema().describe(TopologyRunSpec())) + "\n" +
+         topologyOptionsHelp();
 }
 
 namespace {
@@ -31,7 +47,7 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
   const IniFile ini = IniFile::read(path);
   const std::string run = kTopologyRunSection;
   ini.requireKnownSections({run, "topology", "relaxation", "correction"});
-  ini.requireKnownKeys(run, {"map", "model", "output"});
+  ini.requireKnownKeys(run, topologyRunSchema().keys());
   for (const char* s : kTopologyOptionSections)
     ini.requireKnownKeys(s, topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
   TopologyRunSpec spec;
@@ -90,8 +106,11 @@ void checkTopologyRunSpec(const TopologyRunSpec& spec) {
 }
 
 std::string topologyRunIni(const TopologyRunSpec& spec) {
-  return "[" + std::string(kTopologyRunSection) + "]\nmap = " + absolute(spec.map) + "\nmodel = " +
-         absolute(spec.model) + "\noutput = " + absolute(spec.output) + "\n\n" + topologyOptionsIni(spec.options);
+  TopologyRunSpec run = spec;
+  run.map = absolute(spec.map);
+  run.model = absolute(spec.model);
+  run.output = absolute(spec.output);
+  return topologyRunSchema().ini(run, kTopologyRunSection) + "\n" + topologyOptionsIni(spec.options);
 }
 
 }  // namespace gridtopo::topology

@@ -33,6 +33,13 @@ struct MapRunSpec {
   MapRunSpec();
 };
 
+/// The key table of [map_run] (input, output, model, max_scans): the strict check of its keys, its INI text, its
+/// help. Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+const OptionSchema<MapRunSpec>& mapRunSchema();
+
+/// `gridtopo-map --help-options`: every key of every section of its RUN.ini, with default, range, unit and help.
+std::string mapRunOptionsHelp();
+
 /// Reads a RUN.ini (the sections above). InputError for an unreadable file, another section, an unknown key or a bad
 /// value (with its line).
 MapRunSpec loadMapRunIni(const std::string& path);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
+
 namespace gridtopo::mapping {
 
 inline constexpr const char* kTopologyBuilderSection = "topology_builder";
@@ -23,6 +25,9 @@ struct TopologyBuilderOptions : public mrpt::config::CLoadableOptions {
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
 };
+
+/// The key table of [topology_builder] (load, save, dump, help).
+const OptionSchema<TopologyBuilderOptions>& topologyBuilderOptionSchema();
 
 /// The keys of the section (for the strict checks of RUN.ini files).
 std::vector<std::string> topologyBuilderOptionKeys();

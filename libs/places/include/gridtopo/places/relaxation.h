@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/places/place_label.h"
 
 namespace gridtopo::places {
@@ -25,8 +26,12 @@ struct RelaxationOptions : public mrpt::config::CLoadableOptions {
   /// Every key, loadable by loadFromConfigFile to the same values (doubles to 17 digits).
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
-  void validate(const std::string& where = "RelaxationOptions") const;
+  /// InputError(file, 0, "[section] key", ...) for a value out of its range.
+  void validate(const std::string& file = "<options>", const std::string& section = "relaxation") const;
 };
+
+/// The key table of [relaxation] (load, save, dump, validation, help, the GUI's grid).
+const OptionSchema<RelaxationOptions>& relaxationOptionSchema();
 
 /// Counts of label pairs over 8-neighbour pairs of a label grid (CV_32S, -1 = no label).
 void accumulateNeighbourCounts(const cv::Mat& labels, std::array<std::array<double, kNumLabels>, kNumLabels>& counts);

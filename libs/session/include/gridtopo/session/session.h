@@ -113,8 +113,8 @@ class Session {
   // ---- SLAM
   slam::SlamOptions& slamOptions() { return slam_options_; }
   const std::string& slamIniPath() const { return slam_ini_path_; }
-  /// The options as a property-grid table (help from config-ini/slam.ini if `documented_ini` exists).
-  OptionTable slamOptionTable(const std::string& documented_ini = "") const;
+  /// The options as a property-grid table (from slam::slamOptionSchema: type, default, range, unit, help).
+  OptionTable slamOptionTable() const;
   /// Applies an edited table (validated; throws InputError naming the key, options unchanged on error).
   void setSlamOptions(const OptionTable& table);
   /// Starts a new run on the open log (paused). Throws if no log is open or the options are invalid.
@@ -136,6 +136,11 @@ class Session {
 
   // ---- topology
   topology::TopologyOptions& topologyOptions() { return topology_options_; }
+  /// The topology options ([topology], [relaxation], [correction]) as a property-grid table, from their key tables.
+  OptionTable topologyOptionTable() const;
+  /// Applies an edited table (validated; throws InputError naming the section and key, options unchanged on error);
+  /// the next topology computation (runTopology, the GUI's Topology > Run) uses them.
+  void setTopologyOptions(const OptionTable& table);
   const TopologyData* topology() const { return topology_.get(); }
   void setTopology(TopologyData t);
   /// Synchronous labelling + topology of the current map with the current model (the GUI runs it in a thread

@@ -1,11 +1,14 @@
 #pragma once
 // Every tunable of the RBPF SLAM with its default, loadable from an INI section (MRPT TLoadableOptions style).
-// config-ini/slam.ini documents each key.
+// One key table (slamOptionSchema: key, member, range, unit, help) gives load, save, dump, validation, the key list
+// of the strict RUN.ini checks, `gridtopo-slam --help-options` and the GUI's property grid. config-ini/slam.ini
+// documents each key at length (a test keeps its keys equal to the table's).
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <cstdint>
 #include <string>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/motion_model.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -43,9 +46,12 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
-  /// Throws gridtopo::InputError naming `file`, `section` and the key when a value is out of range.
+  /// Throws gridtopo::InputError(file, 0, "[section] key", ...) when a value is out of its range.
   void validate(const std::string& file = "<options>", const std::string& section = "slam") const;
 };
+
+/// The key table of [slam] (the defaults are a default-constructed SlamOptions').
+const OptionSchema<SlamOptions>& slamOptionSchema();
 
 const char* toString(ProposalType t);
 /// "informed" / "mode-only" / "odometry"; throws std::invalid_argument otherwise.

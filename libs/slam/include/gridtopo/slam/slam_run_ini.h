@@ -27,9 +27,16 @@ struct SlamRunSpec {
   bool output_from_ini = false;  ///< `output` is the RUN.ini's
 };
 
-/// The keys of the filter's options section ([slam]): those SlamOptions saves. For the strict checks of RUN.ini
+/// The key table of [slam_run] (input, output, max_scans): the strict check of its keys, its INI text, its help.
+/// Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+const OptionSchema<SlamRunSpec>& slamRunSchema();
+
+/// The keys of the filter's options section ([slam]): slamOptionSchema's. For the strict checks of RUN.ini
 /// files that hold a [slam] section (gridtopo-slam's, gridtopo-map's).
 std::vector<std::string> slamOptionKeys();
+
+/// `gridtopo-slam --help-options`: every key of [slam_run] and [slam] with its default, range, unit and help.
+std::string slamOptionsHelp();
 
 /// Reads a RUN.ini: [slam_run] and the options section `options_section` (either may be missing; the options
 /// keep their defaults then). InputError for an unreadable file, another section, an unknown key or a bad value.

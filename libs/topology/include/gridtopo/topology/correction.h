@@ -12,6 +12,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "gridtopo/core/option_schema.h"
+
 namespace gridtopo::topology {
 
 struct CorrectionOptions : public mrpt::config::CLoadableOptions {
@@ -28,8 +30,12 @@ struct CorrectionOptions : public mrpt::config::CLoadableOptions {
   /// Every key, loadable by loadFromConfigFile to the same values (doubles to 17 digits).
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
-  void validate(const std::string& where = "CorrectionOptions") const;
+  /// InputError(file, 0, "[section] key", ...) for a value out of its range.
+  void validate(const std::string& file = "<options>", const std::string& section = "correction") const;
 };
+
+/// The key table of [correction] (load, save, dump, validation, help, the GUI's grid).
+const OptionSchema<CorrectionOptions>& correctionOptionSchema();
 
 struct CorrectionStats {
   int patches_removed = 0, small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, passes = 0;

@@ -6,7 +6,9 @@
 #include <opencv2/core.hpp>
 #include <functional>
 #include <string>
+#include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/io/map_kind.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
@@ -57,6 +59,16 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// grid_free_opening_radius for ROS maps and probabilistic grids.
   double freeOpeningRadiusFor(io::MapKind kind) const;
 };
+
+/// The key table of [topology]: the keys TopologyOptions holds itself ([relaxation] and [correction] have their own:
+/// places::relaxationOptionSchema, correctionOptionSchema).
+const OptionSchema<TopologyOptions>& topologyOptionSchema();
+
+/// The three option sections of a topology run ([topology], [relaxation], [correction]) with the values of `o`.
+std::vector<OptionSection> describeTopologyOptions(const TopologyOptions& o);
+
+/// The help of every topology option (gridtopo-topology --help-options): optionsHelp of the three sections.
+std::string topologyOptionsHelp();
 
 /// The options as a loadable INI text ([topology], [relaxation], [correction]; doubles to 17 digits): what
 /// loadTopologyOptions reads back to the same options.

@@ -29,9 +29,17 @@ struct TopologyRunSpec {
 /// The option sections of a topology run, in the order topologyOptionsIni writes them.
 inline constexpr const char* kTopologyOptionSections[] = {"topology", "relaxation", "correction"};
 
-/// The keys of one option section ("topology", "relaxation" or "correction"): those TopologyOptions saves. For the
-/// strict checks of RUN.ini files that hold the topology options (gridtopo-topology's, gridtopo-map's).
+/// The key table of [topology_run] (map, model, output): the strict check of its keys, its INI text, its help.
+/// Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+const OptionSchema<TopologyRunSpec>& topologyRunSchema();
+
+/// The keys of one option section ("topology", "relaxation" or "correction"): their key tables'. For the strict
+/// checks of RUN.ini files that hold the topology options (gridtopo-topology's, gridtopo-map's).
 std::vector<std::string> topologyOptionKeys(const std::string& section);
+
+/// `gridtopo-topology --help-options`: every key of [topology_run] and the option sections, with default, range,
+/// unit and help.
+std::string topologyRunOptionsHelp();
 
 /// Reads a RUN.ini: [topology_run] and the option sections (each may be missing: defaults). InputError for an
 /// unreadable file, another section, an unknown key or a bad value.
