@@ -355,7 +355,7 @@ TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
 }
 
 TEST(MapIo, MapFileKindFollowsTheReader) {
-  using gridtopo::io::MapKind;
+  using gridtopo::MapKind;
   using gridtopo::io::mapFileKind;
   EXPECT_EQ(mapFileKind("a/map.gridmap"), MapKind::ProbabilisticGrid);
   EXPECT_EQ(mapFileKind("a/MAP.GRIDMAP.GZ"), MapKind::ProbabilisticGrid);
