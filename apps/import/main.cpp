@@ -2,13 +2,12 @@
 // layout, with a summary of what the log holds.
 #include <tclap/CmdLine.h>
 
-#include <cmath>
 #include <iostream>
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/core/progress.h"
+#include "gridtopo/io/log_import.h"
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/log_summary.h"
 #include "gridtopo/io/rawlog_io.h"
@@ -71,32 +70,13 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
-    io::LogReadOptions ropt;
-    ropt.carmen.skip_bad_lines = skip_arg.getValue();
-    ropt.carmen.read_rear_laser = rear_arg.getValue();
-    if (!(maxr_arg.getValue() > 0.0) || !std::isfinite(maxr_arg.getValue()))
-      throw std::invalid_argument("--max-range must be a positive number of metres");
-    ropt.carmen.default_max_range = maxr_arg.getValue();
-    if (odo_arg.getValue() == "laser")
-      ropt.odometry = io::OdometrySource::LaserLines;
-    else if (odo_arg.getValue() == "odom")
-      ropt.odometry = io::OdometrySource::OdomLines;
-    else
-      throw std::invalid_argument("--odometry must be 'laser' or 'odom', not '" + odo_arg.getValue() + "'");
-
-    io::RawlogWriteOptions wopt;
-    wopt.layout = io::parseRawlogLayout(layout_arg.getValue());
-    if (model_arg.getValue() == "gaussian")
-      wopt.motion_model = io::MotionModel::Gaussian;
-    else if (model_arg.getValue() == "thrun")
-      wopt.motion_model = io::MotionModel::Thrun;
-    else
-      throw std::invalid_argument("--motion-model must be 'gaussian' or 'thrun'");
-    wopt.compression_level = level_arg.getValue();
-    if (wopt.compression_level > 9 || wopt.compression_level < -1)
-      throw std::invalid_argument("--compression must be 0..9");
-    if (gz_arg.getValue() && wopt.compression_level < 0) wopt.compression_level = 1;
-    wopt.scan.sensor_label = label_arg.getValue();
+    io::LogImportOptions io_opt;
+    io_opt.odometry = odo_arg.getValue(), io_opt.motion_model = model_arg.getValue();
+    io_opt.layout = layout_arg.getValue(), io_opt.sensor_label = label_arg.getValue();
+    io_opt.max_range = maxr_arg.getValue(), io_opt.compression = level_arg.getValue(), io_opt.gz = gz_arg.getValue();
+    io_opt.skip_bad_lines = skip_arg.getValue(), io_opt.rear_laser = rear_arg.getValue();
+    const io::LogReadOptions ropt = io::logReadOptions(io_opt);
+    const io::RawlogWriteOptions wopt = io::rawlogWriteOptions(io_opt);
 
     const bool quiet = quiet_arg.getValue();
     const bool simulate = sim_arg.isSet();
@@ -124,19 +104,12 @@ int main(int argc, char** argv) {
       scans = io::readScanLog(input, ropt, info);
     }
     if (!quiet)
-      io::printLogSummary(std::cout, input, info, io::summarizeScans(scans), scans.empty() ? LaserScan{} : scans.front().scan);
+      io::printLogSummary(std::cout, input, info, io::summarizeScans(scans),
+                          scans.empty() ? LaserScan{} : scans.front().scan);
 
     if (!out_arg.getValue().empty()) {
-      if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");
-      ProgressBar bar(scans.size(), "writing", "scans", quiet ? 0 : -1);
-      wopt.progress = [&](std::size_t done) { bar.update(done); };
-      io::RawlogWriteStats stats;
-      outputs.write(out_arg.getValue(), [&](const std::string& tmp) { stats = io::writeRawlog(tmp, scans, wopt); });
-      bar.finish();
-      if (!quiet)
-        std::cout << "output:             " << out_arg.getValue() << " (" << io::rawlogLayoutName(wopt.layout)
-                  << " layout, " << stats.entries << " entries, " << stats.scans << " scans, " << stats.with_odometry
-                  << " with odometry)\n";
+      const std::string line = io::stageRawlog(outputs, out_arg.getValue(), scans, wopt, quiet, in_arg.getValue());
+      if (!quiet) std::cout << line;
     }
     outputs.commit();
     return 0;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::eval {
 namespace {

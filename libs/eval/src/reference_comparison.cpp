@@ -28,9 +28,9 @@ TopologyComparison compareWithReference(const std::string& map, const std::strin
                                         const topology::TopologyOptions& opt) {
   TopologyComparison c;
   c.map = map;
-  const io::MapImage m = io::readMap(map, io::MapReadOptions{});
+  const MapImage m = io::readMap(map, io::MapReadOptions{});
   // The map's free cells as thresholded, without the free-space opening: the scored area does not depend on it.
-  c.occ = places::occupancyFromGrey(m.grey, m.resolution, map, opt.freeThresholdFor(m.kind));
+  c.occ = places::occupancyFromMap(m, opt.freeThresholdFor(m.kind));
   c.map_free = c.occ.cells == places::kFree;
 
   const cv::Mat codes = readImage(dir + "/labels.png", cv::IMREAD_GRAYSCALE);
