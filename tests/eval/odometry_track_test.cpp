@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gridtopo/eval/odometry_track.h"
+#include "gridtopo/io/carmen_log.h"
 
 using namespace gridtopo::eval;
 using gridtopo::TimedPose;
