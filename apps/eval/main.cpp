@@ -5,11 +5,8 @@
 #include <iostream>
 
 #include "gridtopo/core/app_shell.h"
-#include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/relations_run.h"
-#include "gridtopo/eval/report.h"
-#include "gridtopo/eval/odometry_track.h"
 
 using namespace gridtopo;
 
@@ -70,41 +67,20 @@ int run(int argc, char** argv) {
   spec.relations = relations.getValue(), spec.log = log.getValue(), spec.trajectory = trajectory.getValue();
   spec.corrected_log = gfs.getValue(), spec.baseline_odometry = baseline.getValue();
   eval::checkRelationsRunSpec(spec);
-  eval::RelationsMetricOptions& opt = spec.metric;
-  if (config.isSet()) opt = eval::loadRelationsMetricIni(config.getValue());
-  const auto parsed = [](const char* flag, auto parse, const std::string& v) {
-    try {
-      return parse(v);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string(flag) + ": " + e.what());
-    }
-  };
-  if (odometry.isSet()) opt.odometry = parsed("--odometry", eval::odometrySourceFromString, odometry.getValue());
-  opt.interpolate_odometry |= interpolate.getValue();
-  opt.interpolate_estimate |= interpolate_estimate.getValue();
-  if (max_gap.isSet() && !(max_gap.getValue() >= 0.0)) throw UsageError("--max-gap must be >= 0");
-  if (max_gap.isSet()) opt.max_time_gap = max_gap.getValue();
-  spec.corrected.match = parsed("--gfs-match", eval::correctedTimeMatchFromString, gfs_match.getValue());
-  if (gfs_pose.getValue() != "laser" && gfs_pose.getValue() != "robot")
-    throw UsageError("--gfs-pose must be robot or laser");
-  if (gfs_pose.getValue() == "laser") spec.corrected.pose = eval::CorrectedPose::Laser;
+  if (config.isSet()) spec.metric = eval::loadRelationsMetricIni(config.getValue());
+  eval::RelationsFlags flags;
+  if (odometry.isSet()) flags.odometry = odometry.getValue();
+  flags.gfs_match = gfs_match.getValue(), flags.gfs_pose = gfs_pose.getValue();
+  flags.interpolate = interpolate.getValue(), flags.interpolate_estimate = interpolate_estimate.getValue();
+  if (max_gap.isSet()) flags.max_gap = max_gap.getValue();
+  eval::applyRelationsFlags(spec, flags);
   spec.read.skip_bad_lines = skip_bad.getValue();
 
   const eval::RelationsRun scored = eval::runRelations(spec, std::cerr);
   std::cout << eval::relationsRunText(scored);
   std::cerr << eval::relationsRunWarnings(scored);
-  const auto& result = scored.result;
-  const auto& info = scored.info;
-
   OutputSet out;
-  if (json.isSet()) {
-    const std::string text = eval::formatJson(result, info);
-    out.write(json.getValue(), [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
-  }
-  if (errors.isSet()) {
-    const std::string text = eval::formatErrors(result);
-    out.write(errors.getValue(), [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
-  }
+  eval::stageRelationsOutputs(out, scored, json.getValue(), errors.getValue());
   out.commit();
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/eval/evaluation.h"
+#include "gridtopo/eval/oracle_diagnostics.h"
 #include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;

@@ -10,6 +10,7 @@
 #include "gridtopo/core/progress.h"
 #include "gridtopo/eval/label_views.h"
 #include "gridtopo/eval/lomo_report.h"
+#include "gridtopo/eval/oracle_diagnostics.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/export.h"
@@ -105,33 +106,27 @@ MapLabelScores scoreLabelledMap(const places::LabelledMap& map, const places::Ma
   // The oracle diagnostics: the region vote with the ground-truth regions and the relaxed probabilities, and the
   // blob vote with the true majority of every geometric blob (the ceiling of the blob vote for these blobs).
   const cv::Mat cell_probs = topology::cellProbabilities(lab.labels, lab.lattice, lab.probs);
-  s.oracle_region_vote.add(map.codes, topology::oracleRegionVote(map.codes, lab.labels, cell_probs, false));
+  s.oracle_region_vote.add(map.codes, oracleRegionVote(map.codes, lab.labels, cell_probs, false));
   s.oracle_region_vote_keep_doorways.add(map.codes,
-                                         topology::oracleRegionVote(map.codes, lab.labels, cell_probs, true));
-  cv::Mat truth_onehot(lab.labels.size(), CV_32FC3, cv::Scalar::all(0));
-  for (int r = 0; r < truth_onehot.rows; ++r)
-    for (int c = 0; c < truth_onehot.cols; ++c) {
-      const int t = places::labelFromCode(map.codes.at<unsigned char>(r, c));
-      if (t >= 0) truth_onehot.at<cv::Vec3f>(r, c)[t] = 1.0f;
-    }
+                                         oracleRegionVote(map.codes, lab.labels, cell_probs, true));
   const cv::Mat blobs = topology::geometricBlobs(lab.labels < places::kNumLabels, map.occ.resolution, topo.blob_vote);
-  s.blob_oracle.add(map.codes, topology::voteLabelsInAreas(lab.labels, blobs, truth_onehot));
+  s.blob_oracle.add(map.codes, blobOracleVote(map.codes, lab.labels, blobs));
 
   if (const std::string& dir = options.dump_dir; !dir.empty()) {
     const std::string& n = map.name;
     writeImage(dir, n + "_blobs.png",
-               segmentationView(map.occ, blobs, topology::groundTruthRegions(map.codes, lab.labels)));
+               segmentationView(map.occ, blobs, groundTruthRegions(map.codes, lab.labels)));
     writeImage(dir, n + "_labels.png", places::labelsToCodes(res.labels));
     writeImage(dir, n + "_errors_before_relaxation.png",
-               topology::labelErrorOverlay(map.occ, map.codes, lab.labels_initial));
-    writeImage(dir, n + "_errors_after_relaxation.png", topology::labelErrorOverlay(map.occ, map.codes, lab.labels));
+               labelErrorOverlay(map.occ, map.codes, lab.labels_initial));
+    writeImage(dir, n + "_errors_after_relaxation.png", labelErrorOverlay(map.occ, map.codes, lab.labels));
     writeImage(dir, n + "_errors_after_correction.png",
-               topology::labelErrorOverlay(map.occ, map.codes, res.labels_corrected));
+               labelErrorOverlay(map.occ, map.codes, res.labels_corrected));
     if (topo.seg_rules.segment_vote)
-      writeImage(dir, n + "_errors_after_segment_vote.png", topology::labelErrorOverlay(map.occ, map.codes, res.labels));
+      writeImage(dir, n + "_errors_after_segment_vote.png", labelErrorOverlay(map.occ, map.codes, res.labels));
     if (topo.blob_vote.enabled)
       writeImage(dir, n + "_errors_after_blob_vote.png",
-                 topology::labelErrorOverlay(map.occ, map.codes, res.labels_blob_vote));
+                 labelErrorOverlay(map.occ, map.codes, res.labels_blob_vote));
   }
   return s;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/eval/label_views.h"
 #include "gridtopo/eval/lomo_report.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/places/labelling.h"
@@ -108,7 +109,7 @@ cv::Mat comparisonOverlay(const TopologyComparison& c) {
 
 cv::Mat comparisonLabelErrors(const TopologyComparison& c) {
   const cv::Mat truth = warpReferenceToMap(c.reference_codes, c.score.alignment, c.map_free.size());
-  return topology::labelErrorOverlay(c.occ, truth, c.labels);
+  return labelErrorOverlay(c.occ, truth, c.labels);
 }
 
 }  // namespace gridtopo::eval

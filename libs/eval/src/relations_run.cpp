@@ -25,6 +25,27 @@ RelationsMetricOptions loadRelationsMetricIni(const std::string& path) {
   return opt;
 }
 
+void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& f) {
+  const auto parsed = [](const char* flag, auto parse, const std::string& v) {
+    try {
+      return parse(v);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string(flag) + ": " + e.what());
+    }
+  };
+  RelationsMetricOptions& opt = spec.metric;
+  if (!f.odometry.empty()) opt.odometry = parsed("--odometry", odometrySourceFromString, f.odometry);
+  if (f.interpolate) opt.interpolate_odometry = true;
+  if (f.interpolate_estimate) opt.interpolate_estimate = true;
+  if (f.max_gap) {
+    if (!(*f.max_gap >= 0.0)) throw UsageError("--max-gap must be >= 0");
+    opt.max_time_gap = *f.max_gap;
+  }
+  spec.corrected.match = parsed("--gfs-match", correctedTimeMatchFromString, f.gfs_match);
+  if (f.gfs_pose == "laser") spec.corrected.pose = CorrectedPose::Laser;
+  else if (f.gfs_pose != "robot") throw UsageError("--gfs-pose must be robot or laser");
+}
+
 void checkRelationsRunSpec(const RelationsRunSpec& s) {
   const int sources = !s.trajectory.empty() + !s.corrected_log.empty() + s.baseline_odometry;
   if (sources != 1) throw UsageError("give exactly one estimate: --trajectory, --gfs or --baseline-odometry");
@@ -98,6 +119,18 @@ std::string relationsRunText(const RelationsRun& run) {
     if (k != "relations") o << k << ": " << v << "\n";
   o << formatSummary(run.result);
   return o.str();
+}
+
+void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
+                           const std::string& errors_path) {
+  if (!json_path.empty()) {
+    const std::string text = formatJson(run.result, run.info);
+    outputs.write(json_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
+  }
+  if (!errors_path.empty()) {
+    const std::string text = formatErrors(run.result);
+    outputs.write(errors_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
+  }
 }
 
 std::string relationsRunWarnings(const RelationsRun& run) {

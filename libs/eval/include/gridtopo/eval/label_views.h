@@ -15,4 +15,10 @@ cv::Mat segmentationView(const places::OccupancyImage& occ, const cv::Mat& segme
 /// unlabelled white. `labels` is CV_8U (0..2, anything else = unlabelled).
 cv::Mat labelsView(const places::OccupancyImage& occ, const cv::Mat& labels);
 
+/// Label errors for viewing: non-free cells dark grey, free cells white, labelled free cells pale in their true
+/// label's colour when `predicted` (CV_8U labels 0..2, else none) agrees with `truth_codes` (77 / 115 / 179), in the
+/// saturated colour of the *predicted* label when it does not (room blue, corridor green, doorway red), black when
+/// there is no prediction.
+cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted);
+
 }  // namespace gridtopo::eval

@@ -46,7 +46,7 @@ std::string comparisonSummary(const TopologyComparison& c);
 /// Our segments in colours with the plan's room borders (warped to the map) in red.
 cv::Mat comparisonOverlay(const TopologyComparison& c);
 
-/// The label errors (topology::labelErrorOverlay) against the plan's labels warped to the map.
+/// The label errors (labelErrorOverlay) against the plan's labels warped to the map.
 cv::Mat comparisonLabelErrors(const TopologyComparison& c);
 
 }  // namespace gridtopo::eval
