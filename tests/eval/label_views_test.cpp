@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "gridtopo/eval/oracle_diagnostics.h"
+#include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/export.h"
 
