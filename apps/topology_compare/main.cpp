@@ -1,7 +1,8 @@
 // gridtopo-topology-compare: scores a gridtopo-topology result against a labelled reference map of the same
 // building drawn in another frame (e.g. the Intel map of gridtopo-slam against the lab_intel floor plan):
-// aligns the two free spaces (topology/reference_alignment.h), then reports cell-label accuracy and room
-// segmentation precision / recall on the map's free cells, as JSON, with an overlay PNG to look at.
+// aligns the two free spaces, then reports cell-label accuracy and room
+// segmentation precision / recall and the graph against the plan on the map's free cells, as JSON, with an
+// overlay PNG to look at. The measurement: eval/reference_comparison.h.
 #include <tclap/CmdLine.h>
 
 #include <iostream>
@@ -48,17 +49,15 @@ int main(int argc, char** argv) {
                                               {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue()},
                                               topology::loadTopologyOptions(ini.getValue()));
     OutputSet outs;
-    const auto add = [&](const TCLAP::ValueArg<std::string>& arg, auto make) {
-      if (!arg.getValue().empty()) outs.write(arg.getValue(), [&](const std::string& p) { make(p); });
-    };
-    add(json, [&](const std::string& p) { writeTextFileAtomically(p, eval::comparisonJson(c)); });
-    const auto png = [](const cv::Mat& img) {
-      return [img](const std::string& p) {
+    const auto png = [&](const std::string& path, const cv::Mat& img) {
+      outs.write(path, [&](const std::string& p) {
         if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
-      };
+      });
     };
-    if (!overlay.getValue().empty()) add(overlay, png(eval::comparisonOverlay(c)));
-    if (!errors.getValue().empty()) add(errors, png(eval::comparisonLabelErrors(c)));
+    if (!json.getValue().empty())
+      outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, eval::comparisonJson(c)); });
+    if (!overlay.getValue().empty()) png(overlay.getValue(), eval::comparisonOverlay(c));
+    if (!errors.getValue().empty()) png(errors.getValue(), eval::comparisonLabelErrors(c));
     outs.commit();
     std::cout << eval::comparisonSummary(c) << "\n";
     return 0;
