@@ -1,20 +1,12 @@
 // gridtopo-eval: scores an estimated trajectory against the ground-truth relations of the Freiburg SLAM
 // benchmark with the relations metric of Kümmerle et al. 2009 (see doc/evaluation.md).
-#include <mrpt/config/CConfigFile.h>
 #include <tclap/CmdLine.h>
 
-#include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "gridtopo/core/app_shell.h"
-#include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/eval/corrected_log.h"
-#include "gridtopo/eval/relations_metric.h"
-#include "gridtopo/eval/report.h"
-#include "gridtopo/io/carmen_log.h"
-#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/eval/relations_run.h"
 
 using namespace gridtopo;
 
@@ -71,123 +63,24 @@ int run(int argc, char** argv) {
   cmd.setExceptionHandling(false);
   cmd.parse(argc, argv);
 
-  const int sources = trajectory.isSet() + gfs.isSet() + baseline.getValue();
-  if (sources != 1) {
-    throw UsageError("give exactly one estimate: --trajectory, --gfs or --baseline-odometry");
-  }
-  if ((gfs.isSet() || baseline.getValue()) && !log.isSet()) {
-    throw UsageError("--gfs and --baseline-odometry need the raw log (--log)");
-  }
+  eval::RelationsRunSpec spec;
+  spec.relations = relations.getValue(), spec.log = log.getValue(), spec.trajectory = trajectory.getValue();
+  spec.corrected_log = gfs.getValue(), spec.baseline_odometry = baseline.getValue();
+  eval::checkRelationsRunSpec(spec);
+  if (config.isSet()) spec.metric = eval::loadRelationsMetricIni(config.getValue());
+  eval::RelationsFlags flags;
+  if (odometry.isSet()) flags.odometry = odometry.getValue();
+  flags.gfs_match = gfs_match.getValue(), flags.gfs_pose = gfs_pose.getValue();
+  flags.interpolate = interpolate.getValue(), flags.interpolate_estimate = interpolate_estimate.getValue();
+  if (max_gap.isSet()) flags.max_gap = max_gap.getValue();
+  eval::applyRelationsFlags(spec, flags);
+  spec.read.skip_bad_lines = skip_bad.getValue();
 
-  eval::RelationsMetricOptions opt;
-  if (config.isSet()) {
-    if (!std::filesystem::exists(config.getValue())) throw InputError(config.getValue(), "cannot open INI file");
-    mrpt::config::CConfigFile ini(config.getValue());
-    try {
-      opt.loadFromConfigFile(ini, "relations_metric");
-    } catch (const InputError& e) {
-      throw InputError(config.getValue(), 0, "relations_metric." + e.field(), e.message());
-    }
-  }
-  try {
-    if (odometry.isSet()) opt.odometry = eval::odometrySourceFromString(odometry.getValue());
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--odometry: ") + e.what());
-  }
-  if (interpolate.getValue()) opt.interpolate_odometry = true;
-  if (interpolate_estimate.getValue()) opt.interpolate_estimate = true;
-  if (max_gap.isSet()) {
-    if (!(max_gap.getValue() >= 0.0)) {
-      throw UsageError("--max-gap must be >= 0");
-    }
-    opt.max_time_gap = max_gap.getValue();
-  }
-  eval::CorrectedLogOptions copt;
-  try {
-    copt.match = eval::correctedTimeMatchFromString(gfs_match.getValue());
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--gfs-match: ") + e.what());
-  }
-  if (gfs_pose.getValue() == "laser") {
-    copt.pose = eval::CorrectedPose::Laser;
-  } else if (gfs_pose.getValue() != "robot") {
-    throw UsageError("--gfs-pose must be robot or laser");
-  }
-
-  io::CarmenReadOptions ropt;
-  ropt.skip_bad_lines = skip_bad.getValue();
-  std::vector<std::pair<std::string, std::string>> info;
-  info.emplace_back("relations", relations.getValue());
-  const auto rels = eval::readRelations(relations.getValue());
-  if (rels.empty()) throw InputError(relations.getValue(), "no relations in the file");
-
-  io::CarmenLog raw;
-  eval::OdometryTrack odom;
-  auto report_skips = [](const io::CarmenLog& l) {
-    if (l.skipped_lines == 0) return;
-    std::cerr << l.path << ": skipped " << l.skipped_lines << " malformed line(s)\n";
-    for (const auto& s : l.skipped) std::cerr << "  " << s << "\n";
-  };
-  if (log.isSet()) {
-    raw = io::readCarmenLog(log.getValue(), ropt);
-    report_skips(raw);
-    eval::OdometrySource used = opt.odometry;
-    odom = eval::OdometryTrack::fromLog(raw, opt.odometry, &used);
-    if (used == eval::OdometrySource::OdomLines && raw.odometry.empty())
-      throw InputError(log.getValue(), 0, "ODOM", "--odometry odom asked for, but the log has no ODOM lines");
-    info.emplace_back("log", log.getValue());
-    info.emplace_back("odometry", eval::toString(used));
-  } else {
-    info.emplace_back("odometry", "none");
-  }
-  info.emplace_back("odometry_interpolated", opt.interpolate_odometry ? "true" : "false");
-  info.emplace_back("estimate_interpolated", opt.interpolate_estimate ? "true" : "false");
-  info.emplace_back("max_time_gap_s", io::formatDouble(opt.max_time_gap));
-
-  std::vector<io::TimedPose> estimate;
-  if (trajectory.isSet()) {
-    estimate = io::readTrajectory(trajectory.getValue());
-    if (estimate.empty()) throw InputError(trajectory.getValue(), "the trajectory has no poses");
-    info.emplace_back("trajectory", trajectory.getValue());
-  } else if (gfs.isSet()) {
-    const io::CarmenLog corrected = io::readCarmenLog(gfs.getValue(), ropt);
-    report_skips(corrected);
-    eval::CorrectedTimeMatch used = copt.match;
-    estimate = eval::correctedTrajectory(corrected, raw, copt, &used);
-    info.emplace_back("gfs", gfs.getValue());
-    info.emplace_back("gfs_time_match", eval::toString(used));
-    info.emplace_back("gfs_pose", gfs_pose.getValue());
-  } else {
-    for (const auto& s : raw.scans)
-      if (s.has_odometry) estimate.push_back({s.scan.timestamp, s.odometry});
-    if (estimate.empty()) throw InputError(log.getValue(), "the log has no odometry in its laser lines");
-    info.emplace_back("trajectory", "baseline: odometry of the laser lines of " + log.getValue());
-  }
-  info.emplace_back("estimated_poses", std::to_string(estimate.size()));
-
-  const auto result = eval::evaluateRelations(estimate, rels, odom.empty() ? nullptr : &odom, opt);
-  std::cout << "relations:  " << relations.getValue() << " (" << rels.size() << ")\n";
-  for (const auto& [k, v] : info)
-    if (k != "relations") std::cout << k << ": " << v << "\n";
-  std::cout << eval::formatSummary(result);
-  if (result.endpoints_uncorrected)
-    std::cerr << "warning: " << result.endpoints_uncorrected
-              << " relation endpoints are further than --max-gap from every estimated pose and there is no "
-                 "odometry (--log) to correct them\n";
-
-  if (result.max_gap > 60.0)
-    std::cerr << "warning: a relation timestamp is " << result.max_gap
-              << " s from the nearest estimated pose: are the trajectory's timestamps the log's ipc timestamps?\n";
-
+  const eval::RelationsRun scored = eval::runRelations(spec, std::cerr);
+  std::cout << eval::relationsRunText(scored);
+  std::cerr << eval::relationsRunWarnings(scored);
   OutputSet out;
-  if (json.isSet()) {
-    const std::string text = eval::formatJson(result, info);
-    out.write(json.getValue(), [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
-  }
-  if (errors.isSet()) {
-    const std::string text = eval::formatErrors(result);
-    out.write(errors.getValue(), [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
-  }
+  eval::stageRelationsOutputs(out, scored, json.getValue(), errors.getValue());
   out.commit();
   return 0;
 }

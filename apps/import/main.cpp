@@ -2,123 +2,20 @@
 // layout, with a summary of what the log holds.
 #include <tclap/CmdLine.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
-#include <map>
-#include <sstream>
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/core/progress.h"
+#include "gridtopo/io/log_import.h"
 #include "gridtopo/io/log_reader.h"
+#include "gridtopo/io/log_summary.h"
 #include "gridtopo/io/rawlog_io.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/io/trajectory_io.h"
 
 using namespace gridtopo;
 
-namespace {
-
-struct Summary {
-  std::size_t scans = 0, with_odometry = 0, backward_steps = 0, no_return = 0, no_information = 0, beams = 0;
-  std::map<std::size_t, std::size_t> beams_per_scan;  // beam count -> scans
-  double t_first = 0, t_last = 0, t_min = 0, t_max = 0;
-  double max_backward_step = 0;
-};
-
-Summary summarize(const std::vector<io::ScanRecord>& scans) {
-  Summary s;
-  s.scans = scans.size();
-  for (std::size_t i = 0; i < scans.size(); ++i) {
-    const io::LaserScan& l = scans[i].scan;
-    s.with_odometry += scans[i].has_odometry;
-    ++s.beams_per_scan[l.size()];
-    s.beams += l.size();
-    for (std::size_t k = 0; k < l.size(); ++k) {
-      if (l.valid[k]) continue;
-      if (l.isNoReturn(k))
-        ++s.no_return;
-      else
-        ++s.no_information;
-    }
-    const double t = l.timestamp;
-    if (i == 0) {
-      s.t_first = s.t_min = s.t_max = t;
-    } else {
-      const double prev = scans[i - 1].scan.timestamp;
-      if (t < prev) {
-        ++s.backward_steps;
-        s.max_backward_step = std::max(s.max_backward_step, prev - t);
-      }
-      s.t_min = std::min(s.t_min, t);
-      s.t_max = std::max(s.t_max, t);
-    }
-    s.t_last = t;
-  }
-  return s;
-}
-
-void printSummary(std::ostream& os, const std::string& input, const io::ScanLogInfo& info, const Summary& s,
-                  const io::LaserScan& first) {
-  os << "input:              " << input;
-  if (info.format != io::LogFormat::Simulated)
-    os << " (" << io::logFormatName(info.format)
-       << (info.format == io::LogFormat::Rawlog
-               ? (info.rawlog_has_actions ? ", action/sensory-frame layout" : ", observation-only layout")
-               : "")
-       << ")";
-  os << "\n";
-  os << "scans:              " << s.scans << "\n";
-  os << "with odometry:      " << s.with_odometry << "\n";
-  if (info.format != io::LogFormat::Simulated)
-    os << "odometry messages:  " << info.odometry_messages
-       << (info.format == io::LogFormat::Carmen ? " (ODOM lines)" : " (CObservationOdometry)") << "\n";
-  if (info.odometry_fallbacks)
-    os << "odometry fallbacks: " << info.odometry_fallbacks << " scans outside the ODOM time range kept the "
-       << "laser-line odometry\n";
-  if (s.scans) {
-    const io::LaserScan& f = first;
-    const double deg = 180.0 / M_PI;
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "first scan:         %zu beams, %.4g .. %.4g deg (step %.4g deg), max range %.4g m, laser at "
-                  "(%.4g m, %.4g m, %.4g deg)\n",
-                  f.size(), f.start_angle * deg, f.beamAngle(f.size() ? f.size() - 1 : 0) * deg,
-                  f.angle_increment * deg, f.max_range, f.sensor_pose.x, f.sensor_pose.y, f.sensor_pose.phi * deg);
-    os << buf;
-  }
-  os << "beams per scan:    ";
-  for (const auto& [n, count] : s.beams_per_scan) os << ' ' << n << " x " << count;
-  os << "\n";
-  if (s.scans) {
-    os << "time span:          " << io::formatDouble(s.t_first) << " .. " << io::formatDouble(s.t_last) << " (min "
-       << io::formatDouble(s.t_min) << ", max " << io::formatDouble(s.t_max) << ", "
-       << io::formatDouble(std::round((s.t_max - s.t_min) * 1e6) / 1e6) << " s)\n";
-  }
-  os << "backward steps:     " << s.backward_steps;
-  if (s.backward_steps) os << " (largest " << io::formatDouble(std::round(s.max_backward_step * 1e6) / 1e6) << " s)";
-  os << "\n";
-  char pct[32];
-  std::snprintf(pct, sizeof pct, "%.2f", s.beams ? 100.0 * static_cast<double>(s.no_return) / s.beams : 0.0);
-  os << "no-return readings: " << s.no_return << " (" << pct << " % of " << s.beams << " beams)\n";
-  os << "no-info readings:   " << s.no_information << " (zero, negative or NaN)\n";
-  if (info.format == io::LogFormat::Carmen) {
-    os << "lines:              " << info.lines_or_entries << "\n";
-    os << "skipped bad lines:  " << info.skipped_lines << "\n";
-    for (const auto& m : info.skipped) os << "  skipped: " << m << "\n";
-    os << "skipped messages: ";
-    if (info.skipped_messages.empty()) os << "  none";
-    for (const auto& [type, lines] : info.skipped_messages) os << "  " << type << " x " << lines;
-    os << "\n";
-    for (const auto& n : info.notes) os << "note:               " << n << "\n";
-    for (const auto& w : info.warnings) os << "warning:            " << w << "\n";
-  }
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   return gridtopo::runApp("gridtopo-import", [&]() -> int {
@@ -173,39 +70,20 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
-    io::LogReadOptions ropt;
-    ropt.carmen.skip_bad_lines = skip_arg.getValue();
-    ropt.carmen.read_rear_laser = rear_arg.getValue();
-    if (!(maxr_arg.getValue() > 0.0) || !std::isfinite(maxr_arg.getValue()))
-      throw std::invalid_argument("--max-range must be a positive number of metres");
-    ropt.carmen.default_max_range = maxr_arg.getValue();
-    if (odo_arg.getValue() == "laser")
-      ropt.odometry = io::OdometrySource::LaserLines;
-    else if (odo_arg.getValue() == "odom")
-      ropt.odometry = io::OdometrySource::OdomLines;
-    else
-      throw std::invalid_argument("--odometry must be 'laser' or 'odom', not '" + odo_arg.getValue() + "'");
-
-    io::RawlogWriteOptions wopt;
-    wopt.layout = io::parseRawlogLayout(layout_arg.getValue());
-    if (model_arg.getValue() == "gaussian")
-      wopt.motion_model = io::MotionModel::Gaussian;
-    else if (model_arg.getValue() == "thrun")
-      wopt.motion_model = io::MotionModel::Thrun;
-    else
-      throw std::invalid_argument("--motion-model must be 'gaussian' or 'thrun'");
-    wopt.compression_level = level_arg.getValue();
-    if (wopt.compression_level > 9 || wopt.compression_level < -1)
-      throw std::invalid_argument("--compression must be 0..9");
-    if (gz_arg.getValue() && wopt.compression_level < 0) wopt.compression_level = 1;
-    wopt.scan.sensor_label = label_arg.getValue();
+    io::LogImportOptions io_opt;
+    io_opt.odometry = odo_arg.getValue(), io_opt.motion_model = model_arg.getValue();
+    io_opt.layout = layout_arg.getValue(), io_opt.sensor_label = label_arg.getValue();
+    io_opt.max_range = maxr_arg.getValue(), io_opt.compression = level_arg.getValue(), io_opt.gz = gz_arg.getValue();
+    io_opt.skip_bad_lines = skip_arg.getValue(), io_opt.rear_laser = rear_arg.getValue();
+    const io::LogReadOptions ropt = io::logReadOptions(io_opt);
+    const io::RawlogWriteOptions wopt = io::rawlogWriteOptions(io_opt);
 
     const bool quiet = quiet_arg.getValue();
     const bool simulate = sim_arg.isSet();
     if (simulate == in_arg.isSet()) throw std::invalid_argument("give either --input or --simulate");
     if (gt_arg.isSet() && !simulate) throw std::invalid_argument("--ground-truth needs --simulate");
     io::ScanLogInfo info;
-    std::vector<io::ScanRecord> scans;
+    std::vector<ScanRecord> scans;
     std::string input = in_arg.getValue();
     OutputSet outputs;  // the rawlog and the ground truth appear together or not at all
     if (simulate) {
@@ -226,19 +104,12 @@ int main(int argc, char** argv) {
       scans = io::readScanLog(input, ropt, info);
     }
     if (!quiet)
-      printSummary(std::cout, input, info, summarize(scans), scans.empty() ? io::LaserScan{} : scans.front().scan);
+      io::printLogSummary(std::cout, input, info, io::summarizeScans(scans),
+                          scans.empty() ? LaserScan{} : scans.front().scan);
 
     if (!out_arg.getValue().empty()) {
-      if (scans.empty()) throw InputError(in_arg.getValue(), "the log holds no laser scans: nothing to write");
-      ProgressBar bar(scans.size(), "writing", "scans", quiet ? 0 : -1);
-      wopt.progress = [&](std::size_t done) { bar.update(done); };
-      io::RawlogWriteStats stats;
-      outputs.write(out_arg.getValue(), [&](const std::string& tmp) { stats = io::writeRawlog(tmp, scans, wopt); });
-      bar.finish();
-      if (!quiet)
-        std::cout << "output:             " << out_arg.getValue() << " (" << io::rawlogLayoutName(wopt.layout)
-                  << " layout, " << stats.entries << " entries, " << stats.scans << " scans, " << stats.with_odometry
-                  << " with odometry)\n";
+      const std::string line = io::stageRawlog(outputs, out_arg.getValue(), scans, wopt, quiet, in_arg.getValue());
+      if (!quiet) std::cout << line;
     }
     outputs.commit();
     return 0;

@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
 
     const auto t0 = std::chrono::steady_clock::now();
     io::ScanLogInfo info;
-    auto records = std::make_shared<std::vector<io::ScanRecord>>(io::readScanLog(spec.input, {}, info));
+    auto records = std::make_shared<std::vector<ScanRecord>>(io::readScanLog(spec.input, {}, info));
     // What the reader decided against the log's word is always said; which variant it read, unless quiet.
     for (const auto& w : info.warnings) std::cerr << "gridtopo-slam: warning: " << spec.input << ": " << w << "\n";
     if (!quiet.getValue())

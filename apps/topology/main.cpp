@@ -11,10 +11,9 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/map_io.h"
-#include "gridtopo/places/labelling.h"
 #include "gridtopo/places/model.h"
 #include "gridtopo/topology/pipeline.h"
-#include "gridtopo/topology/segmentation.h"
+#include "gridtopo/topology/run_summary.h"
 #include "gridtopo/topology/topology_outputs.h"
 #include "gridtopo/topology/topology_run_ini.h"
 
@@ -66,36 +65,21 @@ int main(int argc, char** argv) {
 
     io::MapReadOptions ro;
     ro.resolution = opt.resolution;
-    const auto grid = io::readGridMap(spec.map, ro);
-    const cv::Mat grey = io::gridToImage(*grid);
-    const io::MapKind kind = io::mapFileKind(spec.map);
-    if (grid->getResolution() > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)
-      std::cerr << "warning: map resolution " << grid->getResolution() << " m is coarser than the model's lattice ("
-                << model.scan.lattice_spacing << " m); results may differ from training\n";
+    const MapImage map = io::readMap(spec.map, ro);
+    std::cerr << topology::resolutionWarning(map.resolution, model);
 
     ProgressBar bar(100, "topology", "%", quiet.getValue() ? 0 : -1);
-    const auto run = topology::topologyOfMap(grey, grid->getResolution(), kind,
-                                             cv::Point2d(grid->getXMin(), grid->getYMin()), spec.map, model, opt,
-                                             [&](const std::string& stage, std::size_t d, std::size_t n) {
-                                               if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
-                                               else bar.update(stage == "regions" ? 90 : 85, stage);
-                                             });
-    const auto& occ = run.occ;
-    const auto& topo = run.topo;
-    const auto& lab = run.labelling;
+    const auto run = topology::topologyOfMap(map, model, opt, [&](const std::string& stage, std::size_t d, std::size_t n) {
+      if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
+      else bar.update(stage == "regions" ? 90 : 85, stage);
+    });
     bar.update(100, "exports");
     bar.finish();
 
-    topology::writeTopologyOutputs(spec.output, occ, topo, lab.labels, opt.overlay_scale, topology::topologyRunIni(spec));
+    topology::writeTopologyOutputs(spec.output, run.occ, run.topo, run.labelling.labels, opt.overlay_scale,
+                                   topology::topologyRunIni(spec));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    int counts[3] = {0, 0, 0};
-    for (const auto& n : topo.graph.nodes) counts[n.label]++;
-    std::cerr << spec.map << ": " << occ.cols() << "x" << occ.rows() << " cells, "
-              << lab.lattice.samples.size() << " classified, relaxation " << lab.relaxation.iterations
-              << " iterations; " << counts[0] << " rooms, " << counts[1] << " corridors, " << counts[2]
-              << " doorways, " << topo.graph.edges.size() << " edges, " << topology::segmentCount(topo.segmentation)
-              << " segments; " << secs << " s (scans " << lab.seconds_scans << ", features " << lab.seconds_features
-              << ", classify " << lab.seconds_classify << ", relax " << lab.seconds_relax << ")\n";
+    std::cerr << topology::runSummary(run, spec.map, secs);
     return 0;
   });
 }

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "gridtopo/io/scan_conversion.h"
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::testing_feed {
 
-inline void feedActionObservation(mrpt::slam::CMetricMapBuilder& builder, const std::vector<io::ScanRecord>& records) {
+inline void feedActionObservation(mrpt::slam::CMetricMapBuilder& builder, const std::vector<gridtopo::ScanRecord>& records) {
   if (records.empty()) return;
   mrpt::poses::CPose2D prev(records[0].odometry);
   for (const auto& r : records) {

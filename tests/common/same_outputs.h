@@ -43,7 +43,7 @@ inline std::string statsWithoutTimeAndRss(const std::string& text) {
 }
 
 /// The same poses at the same timestamps, bit for bit.
-inline void expectSameTrajectory(const std::vector<io::TimedPose>& a, const std::vector<io::TimedPose>& b) {
+inline void expectSameTrajectory(const std::vector<gridtopo::TimedPose>& a, const std::vector<gridtopo::TimedPose>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].timestamp, b[i].timestamp) << i;

@@ -47,7 +47,7 @@ TEST(EvalApp, GmappingReferenceWithJson) {
 
 TEST(EvalApp, ShuffledTrajectoryFileEqualsBaseline) {
   const auto log = gridtopo::io::readCarmenLog(data("intel.clf.gz"));
-  std::vector<gridtopo::io::TimedPose> traj;
+  std::vector<gridtopo::TimedPose> traj;
   for (const auto& s : log.scans) traj.push_back({s.scan.timestamp, s.odometry});
   std::mt19937 rng(7);
   std::shuffle(traj.begin(), traj.end(), rng);

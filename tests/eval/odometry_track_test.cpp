@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "gridtopo/eval/odometry_track.h"
+#include "gridtopo/io/carmen_log.h"
 
 using namespace gridtopo::eval;
-using gridtopo::io::TimedPose;
+using gridtopo::TimedPose;
 using mrpt::math::TPose2D;
 
 namespace {
@@ -129,14 +130,14 @@ gridtopo::io::CarmenLog logWith(bool odom_lines) {
   if (odom_lines) {
     // File order need not be time order.
     for (double t : {2.0, 1.0}) {
-      gridtopo::io::OdometryReading o;
+      gridtopo::OdometryReading o;
       o.timestamp = t;
       o.pose = {100 + t, 0, 0};
       log.odometry.push_back(o);
     }
   }
   for (int k = 0; k < 3; ++k) {
-    gridtopo::io::ScanRecord s;
+    gridtopo::ScanRecord s;
     s.scan.timestamp = 10.0 - k;  // 10, 9, 8
     s.has_odometry = k != 1;      // the scan at 9 carries no odometry
     s.odometry = {static_cast<double>(k), 0, 0};
@@ -146,10 +147,12 @@ gridtopo::io::CarmenLog logWith(bool odom_lines) {
 }
 }  // namespace
 
-TEST(OdometryTrack, FromLogPicksOdomLinesOrLaserLines) {
+TEST(OdometryTrack, FromScansPicksOdomReadingsOrTheScansOdometry) {
   OdometrySource used = OdometrySource::Auto;
+  // Any log reader's output: the scan records and the odometry readings (here a CARMEN log's).
+  const auto with_odom = logWith(true), without_odom = logWith(false);
   // Auto with ODOM lines: the ODOM lines, sorted by time.
-  auto t = OdometryTrack::fromLog(logWith(true), OdometrySource::Auto, &used);
+  auto t = OdometryTrack::fromScans(with_odom.scans, with_odom.odometry, OdometrySource::Auto, &used);
   EXPECT_EQ(used, OdometrySource::OdomLines);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t.poses()[0].timestamp, 1.0);
@@ -157,7 +160,7 @@ TEST(OdometryTrack, FromLogPicksOdomLinesOrLaserLines) {
   EXPECT_EQ(t.poses()[1].pose.x, 102.0);
 
   // Auto without ODOM lines: the laser lines that carry odometry, sorted by time.
-  t = OdometryTrack::fromLog(logWith(false), OdometrySource::Auto, &used);
+  t = OdometryTrack::fromScans(without_odom.scans, without_odom.odometry, OdometrySource::Auto, &used);
   EXPECT_EQ(used, OdometrySource::LaserLines);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t.poses()[0].timestamp, 8.0);
@@ -166,12 +169,12 @@ TEST(OdometryTrack, FromLogPicksOdomLinesOrLaserLines) {
   EXPECT_EQ(t.poses()[1].pose.x, 0.0);
 
   // Explicit choices are obeyed even when the other source exists or this one is empty.
-  t = OdometryTrack::fromLog(logWith(true), OdometrySource::LaserLines, &used);
+  t = OdometryTrack::fromScans(with_odom.scans, with_odom.odometry, OdometrySource::LaserLines, &used);
   EXPECT_EQ(used, OdometrySource::LaserLines);
   EXPECT_EQ(t.size(), 2u);
-  t = OdometryTrack::fromLog(logWith(false), OdometrySource::OdomLines, &used);
+  t = OdometryTrack::fromScans(without_odom.scans, without_odom.odometry, OdometrySource::OdomLines, &used);
   EXPECT_EQ(used, OdometrySource::OdomLines);
   EXPECT_TRUE(t.empty());
   // `used` is optional.
-  EXPECT_EQ(OdometryTrack::fromLog(logWith(true), OdometrySource::Auto).size(), 2u);
+  EXPECT_EQ(OdometryTrack::fromScans(with_odom.scans, with_odom.odometry, OdometrySource::Auto).size(), 2u);
 }

@@ -35,12 +35,12 @@ RelationsResult evalGfs(OdometrySource src, CorrectedTimeMatch match = Corrected
   CorrectedLogOptions co;
   co.match = match;
   CorrectedTimeMatch used;
-  const auto est = correctedTrajectory(d.gfs, d.raw, co, &used);
+  const auto est = correctedTrajectory(d.gfs.scans, d.gfs.path, d.raw.scans, d.raw.path, co, &used);
   EXPECT_EQ(est.size(), 910u);
   if (match == CorrectedTimeMatch::Auto) {
     EXPECT_EQ(used, CorrectedTimeMatch::Logger);
   }
-  const auto odo = OdometryTrack::fromLog(d.raw, src);
+  const auto odo = OdometryTrack::fromScans(d.raw.scans, d.raw.odometry, src);
   RelationsMetricOptions o;
   o.odometry = src;
   o.interpolate_odometry = interpolate;
@@ -59,7 +59,7 @@ TEST(IntelReference, RelationsFile) {
 
 TEST(IntelReference, RawOdometry) {
   const auto& d = intel();
-  std::vector<io::TimedPose> est;
+  std::vector<TimedPose> est;
   for (const auto& s : d.raw.scans) est.push_back({s.scan.timestamp, s.odometry});
   const auto r = evaluateRelations(est, d.relations, nullptr);
   EXPECT_EQ(r.translational.count, 2984u);
@@ -123,7 +123,7 @@ TEST(AcesReference, RawOdometry) {
   const auto raw = io::readCarmenLog(dir + "aces.clf.gz");
   const auto rel = readRelations(dir + "aces.relations.gz");
   ASSERT_EQ(rel.size(), 1279u);
-  std::vector<io::TimedPose> est;
+  std::vector<TimedPose> est;
   for (const auto& s : raw.scans) est.push_back({s.scan.timestamp, s.odometry});
   const auto r = evaluateRelations(est, rel, nullptr);
   EXPECT_EQ(r.endpoints_direct, 2 * 1279u);
@@ -135,8 +135,8 @@ TEST(AcesReference, RawOdometry) {
 
 TEST(IntelReference, EstimateInterpolationVariant) {
   const auto& d = intel();
-  const auto est = correctedTrajectory(d.gfs, d.raw);
-  const auto odo = OdometryTrack::fromLog(d.raw, OdometrySource::LaserLines);
+  const auto est = correctedTrajectory(d.gfs.scans, d.gfs.path, d.raw.scans, d.raw.path);
+  const auto odo = OdometryTrack::fromScans(d.raw.scans, d.raw.odometry, OdometrySource::LaserLines);
   RelationsMetricOptions o;
   o.interpolate_estimate = true;
   const auto r = evaluateRelations(est, d.relations, &odo, o);

@@ -107,7 +107,7 @@ TEST(CorrectedLog, MatchesSixDigitLoggerTimestamps) {
                                flaser(2.5, "3.5 0.5 0.3", "1300.25", "1300.25");
   const auto gfs = parseLog(gfs_text, "gfs.log");
   CorrectedTimeMatch used;
-  const auto est = correctedTrajectory(gfs, raw, {}, &used);
+  const auto est = correctedTrajectory(gfs.scans, gfs.path, raw.scans, raw.path, {}, &used);
   EXPECT_EQ(used, CorrectedTimeMatch::Logger);
   ASSERT_EQ(est.size(), 3u);
   EXPECT_EQ(est[0].timestamp, 5010.000001);
@@ -118,19 +118,19 @@ TEST(CorrectedLog, MatchesSixDigitLoggerTimestamps) {
 
   CorrectedLogOptions by_ranges;
   by_ranges.match = CorrectedTimeMatch::LoggerAndRanges;
-  const auto exact = correctedTrajectory(gfs, raw, by_ranges);
+  const auto exact = correctedTrajectory(gfs.scans, gfs.path, raw.scans, raw.path, by_ranges);
   EXPECT_EQ(exact[1].timestamp, 6234.5612);  // the scan with the same ranges
 
   // A corrected log stamped with the raw ipc timestamps is used as is (auto -> ipc).
   const auto ipc_log = parseLog(flaser(2.0, "7 7 0", "6234.5612", "0"), "ipc.log");
-  const auto e2 = correctedTrajectory(ipc_log, raw, {}, &used);
+  const auto e2 = correctedTrajectory(ipc_log.scans, ipc_log.path, raw.scans, raw.path, {}, &used);
   EXPECT_EQ(used, CorrectedTimeMatch::Ipc);
   EXPECT_EQ(e2[0].timestamp, 6234.5612);
 
   // No raw scan within the printed precision: an error naming the corrected log's line and field.
   const auto bad = parseLog(flaser(1.0, "0 0 0", "10", "10") + flaser(1.0, "0 0 0", "1250.5", "1250.5"), "bad.log");
   try {
-    correctedTrajectory(bad, raw);
+    correctedTrajectory(bad.scans, bad.path, raw.scans, raw.path);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "bad.log");
@@ -139,19 +139,19 @@ TEST(CorrectedLog, MatchesSixDigitLoggerTimestamps) {
   }
   CorrectedLogOptions ipc_only;
   ipc_only.match = CorrectedTimeMatch::Ipc;
-  EXPECT_THROW(correctedTrajectory(gfs, raw, ipc_only), InputError);
-  EXPECT_THROW(correctedTrajectory(parseLog("", "empty.log"), raw), InputError);
+  EXPECT_THROW(correctedTrajectory(gfs.scans, gfs.path, raw.scans, raw.path, ipc_only), InputError);
+  EXPECT_THROW(correctedTrajectory({}, "empty.log", raw.scans, raw.path), InputError);
 }
 
 TEST(CorrectedLog, RobotOrLaserPose) {
   const auto raw = parseLog(flaser(1.0, "0 0 0", "100", "1"), "raw.clf");
   // Laser 0.2 m ahead of the robot at (1, 1, 90°): laser world pose (1, 1.2, 90°).
   const auto gfs = parseLog("FLASER 3 1 2 3 1 1.2 1.5707963267948966 1 1 1.5707963267948966 100 h 1\n", "gfs");
-  const auto robot = correctedTrajectory(gfs, raw);
+  const auto robot = correctedTrajectory(gfs.scans, gfs.path, raw.scans, raw.path);
   EXPECT_NEAR(robot[0].pose.y, 1.0, 1e-12);
   CorrectedLogOptions o;
   o.pose = CorrectedPose::Laser;
-  const auto laser = correctedTrajectory(gfs, raw, o);
+  const auto laser = correctedTrajectory(gfs.scans, gfs.path, raw.scans, raw.path, o);
   EXPECT_NEAR(laser[0].pose.x, 1.0, 1e-12);
   EXPECT_NEAR(laser[0].pose.y, 1.2, 1e-12);
 }

@@ -12,7 +12,7 @@
 #include "gridtopo/eval/relations_metric.h"
 
 using namespace gridtopo::eval;
-using gridtopo::io::TimedPose;
+using gridtopo::TimedPose;
 using mrpt::math::TPose2D;
 
 namespace {

@@ -36,7 +36,7 @@ TEST(MapLayer, SizesAndOccupancy) {
   EXPECT_DOUBLE_EQ(m.occupancy(0, 1), 0.8);
   EXPECT_DOUBLE_EQ(m.occupancy(0, 3), 0.0);
   EXPECT_TRUE(MapLayer{}.empty());
-  EXPECT_EQ(MapLayer{}.kind, io::MapKind::PlainImage);
+  EXPECT_EQ(MapLayer{}.kind, MapKind::PlainImage);
 }
 
 TEST(MapLayer, CellCentresAndWorldToCellAgreeWithRowZeroAtTheTop) {
@@ -78,9 +78,9 @@ TEST(MapLayer, FromGridIsTheGridImageWithTheGridGeometry) {
   ASSERT_EQ(g.getSizeY(), 3u);
   g.setCell(0, 0, 0.0f);  // bottom-left cell occupied
   g.setCell(3, 2, 1.0f);  // top-right cell free
-  const MapLayer m = session::mapLayerFromGrid(g, "a.gridmap", io::MapKind::ProbabilisticGrid);
+  const MapLayer m = session::mapLayerFromGrid(g, "a.gridmap", MapKind::ProbabilisticGrid);
   EXPECT_EQ(m.source, "a.gridmap");
-  EXPECT_EQ(m.kind, io::MapKind::ProbabilisticGrid);
+  EXPECT_EQ(m.kind, MapKind::ProbabilisticGrid);
   EXPECT_DOUBLE_EQ(m.resolution, 0.5);
   EXPECT_DOUBLE_EQ(m.origin_x, -1.0);
   EXPECT_DOUBLE_EQ(m.origin_y, 2.0);
@@ -104,7 +104,7 @@ TEST(MapLayer, FromSlamCoversTheAllocatedTilesWithUnknownElsewhere) {
   g.mutableLogOdds(21, -1) = 20.0f;  // beyond the table: clamped (p_free ~ 0)
   g.mutableLogOdds(22, -1) = -20.0f; // p_free ~ 1
   const MapLayer m = session::mapLayerFromSlam(g);
-  EXPECT_EQ(m.kind, io::MapKind::ProbabilisticGrid);
+  EXPECT_EQ(m.kind, MapKind::ProbabilisticGrid);
   EXPECT_EQ(m.source, "<slam>");
   EXPECT_DOUBLE_EQ(m.resolution, 0.05);
   // Tiles of 16 cells: x in [-16, 32), y in [-16, 16).
@@ -132,12 +132,12 @@ TEST(MapLayer, FromSlamCoversTheAllocatedTilesWithUnknownElsewhere) {
   const MapLayer e = session::mapLayerFromSlam(slam::GridMap(0.1));
   EXPECT_TRUE(e.empty());
   EXPECT_DOUBLE_EQ(e.resolution, 0.1);
-  EXPECT_EQ(e.kind, io::MapKind::ProbabilisticGrid);
+  EXPECT_EQ(e.kind, MapKind::ProbabilisticGrid);
 }
 
 TEST(MapLayer, TiledRepeatsTheSourceAndKeepsItsGeometry) {
   MapLayer src = smallLayer();
-  src.kind = io::MapKind::RosMap;
+  src.kind = MapKind::RosMap;
   const MapLayer t = session::tiledMap(src, 9, 7);
   ASSERT_EQ(t.cols(), 9);
   ASSERT_EQ(t.rows(), 7);
@@ -147,7 +147,7 @@ TEST(MapLayer, TiledRepeatsTheSourceAndKeepsItsGeometry) {
   EXPECT_DOUBLE_EQ(t.resolution, 0.5);
   EXPECT_DOUBLE_EQ(t.origin_x, -1.0);
   EXPECT_DOUBLE_EQ(t.origin_y, 2.0);
-  EXPECT_EQ(t.kind, io::MapKind::RosMap);
+  EXPECT_EQ(t.kind, MapKind::RosMap);
   EXPECT_EQ(src.grey.at<unsigned char>(0, 0), 0);  // the source is not written through
   const MapLayer smaller = session::tiledMap(src, 2, 1);
   EXPECT_EQ(smaller.grey.at<unsigned char>(0, 1), 51);
@@ -167,7 +167,7 @@ TEST(MapLayer, GridFromLayerKeepsGeometryOrientationAndValues) {
     for (int c = 0; c < 4; ++c)
       EXPECT_NEAR(g.getCell(c, 2 - r), m.grey.at<unsigned char>(r, c) / 255.0, 0.01) << r << "," << c;
   // And back: the same image within two grey levels (MRPT's 8-bit log-odds cells), free / occupied / unknown exact.
-  const MapLayer back = session::mapLayerFromGrid(g, "x", io::MapKind::PlainImage);
+  const MapLayer back = session::mapLayerFromGrid(g, "x", MapKind::PlainImage);
   ASSERT_EQ(back.grey.size(), m.grey.size());
   cv::Mat diff;
   cv::absdiff(back.grey, m.grey, diff);

@@ -30,11 +30,11 @@ namespace {
 const std::string kIntel = GRIDTOPO_DATA_DIR "/slam/intel.clf.gz";
 constexpr std::size_t kScans = 250;
 
-std::shared_ptr<const std::vector<io::ScanRecord>> intelSlice() {
+std::shared_ptr<const std::vector<ScanRecord>> intelSlice() {
   static const auto s = [] {
     auto v = io::readScanLog(kIntel);
     v.resize(kScans);
-    return std::make_shared<const std::vector<io::ScanRecord>>(std::move(v));
+    return std::make_shared<const std::vector<ScanRecord>>(std::move(v));
   }();
   return s;
 }
@@ -46,7 +46,7 @@ slam::SlamOptions smallOptions() {
   return o;
 }
 // The reference: the filter run directly, without the runner.
-const std::vector<io::TimedPose>& directTrajectory() {
+const std::vector<TimedPose>& directTrajectory() {
   static const auto t = [] {
     slam::RbpfSlam f(smallOptions());
     for (const auto& r : *intelSlice()) f.processScan(r);
@@ -137,7 +137,7 @@ TEST(SlamRunner, BadOptionsAndEmptyLogsThrowBeforeAnyThreadStarts) {
   o = smallOptions();
   o.resolution = -0.05;
   EXPECT_THROW(session::SlamRunner(intelSlice(), o), InputError);
-  EXPECT_THROW(session::SlamRunner(std::make_shared<const std::vector<io::ScanRecord>>(), smallOptions()), InputError);
+  EXPECT_THROW(session::SlamRunner(std::make_shared<const std::vector<ScanRecord>>(), smallOptions()), InputError);
 }
 
 TEST(SessionSlam, SavesTheSameFilesAsTheWritersAndSendsTheMapToTopology) {

@@ -161,12 +161,13 @@ TEST(TopologyState, SavedOutputsLoadBackAsJsonAndGraphML) {
   // loaded on it: the free threshold of its kind (204), not the plain images' 250 (which left no free cell).
   {
     session::MapLayer grid = t->map;
-    grid.kind = io::MapKind::ProbabilisticGrid;
+    grid.kind = MapKind::ProbabilisticGrid;
     grid.grey = t->map.grey.clone();
     grid.grey.setTo(cv::Scalar(230), grid.grey >= 250);
     const auto loaded = session::loadTopologyOutput(f.tmp / "out/topology.json", grid, f.s.topologyOptions());
-    const auto direct = topology::occupancyForTopology(grid.grey, grid.resolution, "grid", 204,
-                                                       f.s.topologyOptions().grid_free_opening_radius);
+    topology::TopologyOptions o = f.s.topologyOptions();
+    o.grid_free_threshold = 204;
+    const auto direct = topology::occupancyForTopology(grid.image(), o);
     EXPECT_GT(places::countFree(loaded.occ), 1000u);
     EXPECT_EQ(places::countFree(loaded.occ), places::countFree(direct));
   }

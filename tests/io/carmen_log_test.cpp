@@ -16,6 +16,7 @@
 #include "gridtopo/io/carmen_log.h"
 
 namespace fs = std::filesystem;
+using namespace gridtopo;
 using namespace gridtopo::io;
 using gridtopo::InputError;
 

@@ -12,6 +12,7 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/carmen_log.h"
 
+using namespace gridtopo;
 using namespace gridtopo::io;
 using gridtopo::InputError;
 

@@ -13,6 +13,7 @@
 #include "synthetic_scans.h"
 
 namespace fs = std::filesystem;
+using namespace gridtopo;
 using namespace gridtopo::io;
 
 using gridtopo::test::tmpDir;

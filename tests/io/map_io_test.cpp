@@ -355,7 +355,7 @@ TEST(MapIo, GridmapWithOriginOffTheCellGridKeepsItsExactOrigin) {
 }
 
 TEST(MapIo, MapFileKindFollowsTheReader) {
-  using gridtopo::io::MapKind;
+  using gridtopo::MapKind;
   using gridtopo::io::mapFileKind;
   EXPECT_EQ(mapFileKind("a/map.gridmap"), MapKind::ProbabilisticGrid);
   EXPECT_EQ(mapFileKind("a/MAP.GRIDMAP.GZ"), MapKind::ProbabilisticGrid);
@@ -367,4 +367,30 @@ TEST(MapIo, MapFileKindFollowsTheReader) {
   EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapKind::PlainImage);
   std::ofstream(d / "plan.yaml") << "image: plan.png\n";
   EXPECT_EQ(mapFileKind((d / "plan.png").string()), MapKind::RosMap);  // a .yaml beside the image
+}
+
+TEST(MapIo, ReadMapReturnsTheTypedMapWithTheKindOfItsFormat) {
+  // A plain image, the same map as a .gridmap.gz: the same grey image and origin, the kind from the reader.
+  const fs::path d = tmpDir() / "typed";
+  fs::create_directories(d);
+  const fs::path png = d / "m.png";
+  writeMapPng(*sampleGrid(0.0f, 0.0f), png.string());
+  const gridtopo::MapImage plain = gridtopo::io::readMap(png.string(), MapReadOptions{0.05, -1.5, 2.25});
+  EXPECT_EQ(plain.kind, gridtopo::MapKind::PlainImage);
+  EXPECT_EQ(plain.source, png.string());
+  EXPECT_EQ(plain.grey.size(), cv::Size(40, 30));
+  EXPECT_DOUBLE_EQ(plain.resolution, 0.05f);
+  EXPECT_DOUBLE_EQ(plain.origin.x, -1.5);
+  EXPECT_DOUBLE_EQ(plain.origin.y, 2.25);
+  const auto grid = readGridMap(png.string(), MapReadOptions{0.05, -1.5, 2.25});
+  writeGridmapGz(*grid, (d / "m.gridmap.gz").string());
+  const gridtopo::MapImage prob = gridtopo::io::readMap((d / "m.gridmap.gz").string());
+  EXPECT_EQ(prob.kind, gridtopo::MapKind::ProbabilisticGrid);
+  EXPECT_EQ(cv::countNonZero(prob.grey != plain.grey), 0);
+  EXPECT_DOUBLE_EQ(prob.origin.x, -1.5);
+  // Whoever builds a map names its kind: mapImageOfGrid keeps it.
+  const auto built = gridtopo::io::mapImageOfGrid(*grid, gridtopo::MapKind::ProbabilisticGrid, "<slam map>");
+  EXPECT_EQ(built.kind, gridtopo::MapKind::ProbabilisticGrid);
+  EXPECT_EQ(built.source, "<slam map>");
+  EXPECT_EQ(cv::countNonZero(built.grey != plain.grey), 0);
 }

@@ -21,6 +21,7 @@
 #include "test_tmp_dir.h"
 
 namespace fs = std::filesystem;
+using namespace gridtopo;
 using namespace gridtopo::io;
 
 using gridtopo::test::tmpDir;

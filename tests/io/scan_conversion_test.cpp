@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+using namespace gridtopo;
 using namespace gridtopo::io;
 
 namespace {

@@ -14,6 +14,7 @@
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 
+using namespace gridtopo;
 using namespace gridtopo::io;
 
 namespace {

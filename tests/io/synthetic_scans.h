@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::test {
 
@@ -33,11 +33,11 @@ inline double rayToBox(double x, double y, double a) {
   return t;
 }
 
-inline std::vector<io::ScanRecord> syntheticRecords(const SyntheticOptions& o = {}) {
-  std::vector<io::ScanRecord> out;
+inline std::vector<gridtopo::ScanRecord> syntheticRecords(const SyntheticOptions& o = {}) {
+  std::vector<gridtopo::ScanRecord> out;
   const double deg = M_PI / 180.0;
   for (std::size_t i = 0; i < o.scans; ++i) {
-    io::ScanRecord r;
+    gridtopo::ScanRecord r;
     const double u = static_cast<double>(i) / static_cast<double>(o.scans);
     // An ellipse inside the room, heading along the tangent.
     const double ang = 2.0 * M_PI * u;
@@ -45,7 +45,7 @@ inline std::vector<io::ScanRecord> syntheticRecords(const SyntheticOptions& o = 
                   std::atan2(1.5 * std::cos(ang), -3.5 * std::sin(ang))};
     r.has_odometry = true;
     r.source_index = i;
-    io::LaserScan& s = r.scan;
+    gridtopo::LaserScan& s = r.scan;
     // Microsecond Unix timestamps, 0.2 s apart; scan 7 is logged 0.05 s before scan 6.
     s.timestamp = 1002560357.218569 + 0.2 * static_cast<double>(i) - (i == 7 ? 0.25 : 0.0);
     s.timestamp = std::round(s.timestamp * 1e6) / 1e6;

@@ -7,6 +7,7 @@
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
+using namespace gridtopo;
 using namespace gridtopo::io;
 
 TEST(TrajectoryIo, RoundTripsExactly) {

@@ -9,7 +9,7 @@ using namespace gridtopo;
 
 namespace {
 struct RunResult {
-  std::vector<io::TimedPose> traj;
+  std::vector<TimedPose> traj;
   std::vector<double> neff;
   std::vector<std::vector<float>> maps;  // log-odds of every particle map over a fixed window
 };

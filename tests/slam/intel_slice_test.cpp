@@ -30,7 +30,7 @@ TEST(IntelSlice, SmallErrorOnTheRelationsOfTheSlice) {
               records.size(), filter.stepsProcessed(), inside.size(), res.translational.mean, res.translational.std,
               res.rotational.mean, res.translational.max);
   // Odometry alone on the same relations, for scale.
-  std::vector<io::TimedPose> odo(records.size());
+  std::vector<TimedPose> odo(records.size());
   for (std::size_t i = 0; i < odo.size(); ++i) odo[i] = {records[i].scan.timestamp, records[i].odometry};
   const auto ro = eval::evaluateRelations(odo, inside, nullptr);
   std::printf("odometry: %.4f m, %.3f deg\n", ro.translational.mean, ro.rotational.mean);

@@ -13,7 +13,7 @@ using namespace gridtopo::slam;
 namespace {
 // A 2 m wide corridor along x (walls y = 0 and y = 2, 60 m long) and a scan from (10, 1) heading east, laser at
 // the robot's centre, 181 beams over 180 degrees, max range 12 m, 1 cm range noise.
-io::LaserScan corridorScan(double range_sigma = 0.01) {
+LaserScan corridorScan(double range_sigma = 0.01) {
   const sim::FloorPlan p = sim::FloorPlan::straightCorridor(60, 2);
   sim::SimOptions so;
   so.max_range = 12;
@@ -42,7 +42,7 @@ TEST(PreparedScan, NormalsOfAWallArePerpendicularToIt) {
 
 TEST(PreparedScan, NoNormalWhereTheNeighboursAreNotOnOneLine) {
   // A corner: beams 0..4 on a wall x = 3 (from the laser at the origin), beams 5..9 on a wall y = 3.
-  io::LaserScan s;
+  LaserScan s;
   s.start_angle = 0.2;
   s.angle_increment = 0.13;
   s.max_range = 30;
@@ -74,7 +74,7 @@ TEST(PreparedScan, NoNormalWhereTheNeighboursAreNotOnOneLine) {
 }
 
 TEST(PreparedScan, GrazingBeamsAreNotMatched) {
-  const io::LaserScan s = corridorScan();
+  const LaserScan s = corridorScan();
   BeamOptions o;
   o.matching_beam_step = 1;
   const std::size_t all = prepareScan(s, o, 0.05).size();
@@ -90,7 +90,7 @@ TEST(PreparedScan, GrazingBeamsAreNotMatched) {
 }
 
 TEST(PreparedScan, RangeMarginDropsTheLongestHits) {
-  const io::LaserScan s = corridorScan(0.0);
+  const LaserScan s = corridorScan(0.0);
   BeamOptions o;
   o.matching_beam_step = 1;
   o.matching_range_margin = 2.0;  // the sensor's 12 m: hits at 10 m or more are not matched

@@ -208,7 +208,7 @@ TEST(ScanMatcher, FailsOnAnEmptyMap) {
 }
 
 TEST(PreparedScan, ClassifiesReturnsNoReturnsAndNaN) {
-  io::LaserScan s;
+  LaserScan s;
   s.start_angle = 0;
   s.angle_increment = 0.1;
   s.max_range = 80;

@@ -13,7 +13,7 @@ namespace {
 struct Errors {
   double mean_xy = 0, max_xy = 0, mean_th = 0;
 };
-Errors compare(const std::vector<io::TimedPose>& est, const std::vector<mrpt::math::TPose2D>& truth) {
+Errors compare(const std::vector<TimedPose>& est, const std::vector<mrpt::math::TPose2D>& truth) {
   Errors e;
   for (std::size_t i = 0; i < est.size(); ++i) {
     const double d = std::hypot(est[i].pose.x - truth[i].x, est[i].pose.y - truth[i].y);
@@ -38,7 +38,7 @@ TEST(SimulatedSlam, LoopAroundOfficeStaysCloseToGroundTruth) {
   for (const auto& r : log.records) slam.processScan(r);
   const auto traj = slam.trajectory();
   ASSERT_EQ(traj.size(), log.records.size());
-  std::vector<io::TimedPose> odo(log.records.size());
+  std::vector<TimedPose> odo(log.records.size());
   for (std::size_t i = 0; i < odo.size(); ++i) odo[i].pose = log.records[i].odometry;
   if (std::getenv("GRIDTOPO_TEST_VERBOSE"))
     for (std::size_t i = 0; i < traj.size(); i += 25)
@@ -107,7 +107,7 @@ TEST(SimulatedSlam, HalfDegreeLaserWith361BeamsAndOffCentreMount) {
 namespace {
 /// Mean error of the relative motion between consecutive processed scans (the relations metric of Kümmerle et
 /// al. 2009 on the pairs one processed step apart), in metres.
-double stepRelationError(const slam::RbpfSlam& slam, const std::vector<io::TimedPose>& traj,
+double stepRelationError(const slam::RbpfSlam& slam, const std::vector<TimedPose>& traj,
                          const std::vector<mrpt::math::TPose2D>& truth) {
   auto pose = [](const mrpt::math::TPose2D& p) { return slam::Pose2{p.x, p.y, p.phi}; };
   double sum = 0;
@@ -132,7 +132,7 @@ TEST(SimulatedSlam, ReportingTheProposalMeanRemovesTheSamplesNoise) {
   auto wp = sim::officeLoopWaypoints(1);
   wp.resize(5);
   const auto log = sim::simulate(plan, wp, so);
-  auto run = [&](bool report_mean, std::vector<io::TimedPose>& traj, double& log_weight) {
+  auto run = [&](bool report_mean, std::vector<TimedPose>& traj, double& log_weight) {
     slam::SlamOptions o;
     o.particles = 10;
     o.threads = 2;
@@ -143,7 +143,7 @@ TEST(SimulatedSlam, ReportingTheProposalMeanRemovesTheSamplesNoise) {
     log_weight = slam->bestParticle().log_weight_total;
     return slam;
   };
-  std::vector<io::TimedPose> t_mean, t_sample;
+  std::vector<TimedPose> t_mean, t_sample;
   double w_mean = 0, w_sample = 0;
   const auto s_mean = run(true, t_mean, w_mean);
   const auto s_sample = run(false, t_sample, w_sample);

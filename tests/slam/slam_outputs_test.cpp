@@ -19,7 +19,7 @@ namespace {
 const char* kFiles[] = {"map.png",        "map_trajectory.png", "map.pgm",   "map.yaml",   "map.gridmap.gz",
                         "map.simplemap", "trajectory.txt",     "stats.txt", "options.ini"};
 
-slam::SlamOutputs smallRun(std::vector<io::ScanRecord>& records) {
+slam::SlamOutputs smallRun(std::vector<ScanRecord>& records) {
   sim::SimOptions so;
   so.seed = 3;
   auto log = sim::simulate(sim::FloorPlan::officeLoop(), {{2, 2, 0}, {8, 2, 0}}, so);
@@ -42,7 +42,7 @@ slam::SlamOutputs smallRun(std::vector<io::ScanRecord>& records) {
 }  // namespace
 
 TEST(SlamOutputs, WritesTheWholeSet) {
-  std::vector<io::ScanRecord> records;
+  std::vector<ScanRecord> records;
   const slam::SlamOutputs o = smallRun(records);
   const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_outputs_test";
   fs::remove_all(dir);
@@ -58,7 +58,7 @@ TEST(SlamOutputs, WritesTheWholeSet) {
 }
 
 TEST(SlamOutputs, WritesNothingWhenOneFileFails) {
-  std::vector<io::ScanRecord> records;
+  std::vector<ScanRecord> records;
   const slam::SlamOutputs o = smallRun(records);
   const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_outputs_fail";
   fs::remove_all(dir);

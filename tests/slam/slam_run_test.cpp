@@ -23,11 +23,11 @@ namespace fs = std::filesystem;
 
 namespace {
 // The first three legs of the simulated office loop: 204 scans, of which the update policy processes 70.
-std::shared_ptr<const std::vector<io::ScanRecord>> simulatedLog() {
+std::shared_ptr<const std::vector<ScanRecord>> simulatedLog() {
   static const auto log = [] {
     auto wp = sim::officeLoopWaypoints(1);
     wp.resize(3);
-    return std::make_shared<const std::vector<io::ScanRecord>>(
+    return std::make_shared<const std::vector<ScanRecord>>(
         sim::simulate(sim::FloorPlan::officeLoop(), wp, sim::SimOptions{}).records);
   }();
   return log;
@@ -181,5 +181,5 @@ TEST(SlamRun, BadOptionsAndEmptyLogsAreInputErrors) {
   o.particles = 0;
   EXPECT_THROW(slam::SlamRun(simulatedLog(), o), InputError);
   EXPECT_THROW(slam::SlamRun{o}, InputError);
-  EXPECT_THROW(slam::SlamRun(std::make_shared<const std::vector<io::ScanRecord>>(), smallOptions()), InputError);
+  EXPECT_THROW(slam::SlamRun(std::make_shared<const std::vector<ScanRecord>>(), smallOptions()), InputError);
 }

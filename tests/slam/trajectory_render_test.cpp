@@ -13,8 +13,8 @@ using namespace gridtopo;
 namespace {
 
 /// A square of side `side` driven counter-clockwise from the origin in steps of `step`, `laps` times.
-std::vector<io::TimedPose> squarePath(double side, double step, int laps) {
-  std::vector<io::TimedPose> out;
+std::vector<TimedPose> squarePath(double side, double step, int laps) {
+  std::vector<TimedPose> out;
   const int per_side = static_cast<int>(std::lround(side / step));
   double t = 0;
   for (int lap = 0; lap < laps; ++lap)
@@ -42,7 +42,7 @@ double distanceToWalls(const sim::FloorPlan& plan, double x, double y) {
 struct OfficeRun {
   sim::FloorPlan plan = sim::FloorPlan::officeLoop();
   sim::SimLog log;
-  std::vector<io::TimedPose> truth;
+  std::vector<TimedPose> truth;
   OfficeRun() {
     sim::SimOptions so;
     so.range_sigma = 0.005;
@@ -66,7 +66,7 @@ TEST(TrajectoryRender, FirstLoopClosureIsWhereTheSquareComesBack) {
   EXPECT_NEAR(lc->travelled, 39.5, 1e-6);
   // One side back and forth never travels 30 m before coming back: no closure with a longer minimum travel.
   EXPECT_FALSE(slam::firstLoopClosure(path, 0.5, 100.0).has_value());
-  std::vector<io::TimedPose> line;
+  std::vector<TimedPose> line;
   for (int k = 0; k < 500; ++k) line.push_back({k * 0.1, {k * 0.1, 0, 0}});
   EXPECT_FALSE(slam::firstLoopClosure(line).has_value());
 }

@@ -9,11 +9,13 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
+#include "gridtopo/eval/oracle_diagnostics.h"
 #include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
+using namespace gridtopo::eval;
 namespace fs = std::filesystem;
 
 namespace {

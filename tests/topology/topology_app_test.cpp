@@ -11,7 +11,7 @@
 
 #include "common/same_outputs.h"
 #include "gridtopo/io/map_io.h"
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
 #include "gridtopo/topology/export.h"
 
 namespace fs = std::filesystem;
@@ -62,9 +62,9 @@ TEST(TopologyApp, LabIntelEndToEnd) {
   // Segmentation against the benchmark ground truth (the shipped model saw this building: a regression bound).
   cv::Mat seg;
   seg16.convertTo(seg, CV_32S);
-  const cv::Mat gt = topology::groundTruthRooms(
+  const cv::Mat gt = eval::groundTruthRooms(
       cv::imread(kData + "/places/groundtruth/lab_intel_gt_segmentation.png", cv::IMREAD_UNCHANGED));
-  const auto s = topology::scoreSegmentation(seg, gt);
+  const auto s = eval::scoreSegmentation(seg, gt);
   // Round-2 model with S0 / S1: recall 99.3 %, precision 97.3 % (21 segments, 26 rooms).
   EXPECT_GT(s.recall, 0.96);
   EXPECT_GT(s.precision, 0.94);

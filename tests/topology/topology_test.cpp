@@ -8,7 +8,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/mrpt_graph.h"
 #include "gridtopo/topology/pipeline.h"
@@ -16,6 +16,7 @@
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
+using namespace gridtopo::eval;
 namespace fs = std::filesystem;
 
 namespace {

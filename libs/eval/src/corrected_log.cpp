@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::eval {
 namespace {
@@ -16,7 +17,7 @@ double sixDigitTolerance(double v) {
   return 0.5 * std::pow(10.0, std::floor(std::log10(a)) - 5.0) * (1.0 + 1e-9) + 1e-12;
 }
 
-bool sameRanges(const io::LaserScan& a, const io::LaserScan& b) {
+bool sameRanges(const LaserScan& a, const LaserScan& b) {
   if (a.ranges.size() != b.ranges.size()) return false;
   for (std::size_t k = 0; k < a.ranges.size(); ++k) {
     const float x = a.ranges[k], y = b.ranges[k];
@@ -28,7 +29,7 @@ bool sameRanges(const io::LaserScan& a, const io::LaserScan& b) {
 
 struct RawStamp {
   double key;        // logger or ipc timestamp
-  std::size_t scan;  // index into raw.scans
+  std::size_t scan;  // index into raw
 };
 
 }  // namespace
@@ -55,15 +56,16 @@ CorrectedTimeMatch correctedTimeMatchFromString(const std::string& s) {
   throw std::invalid_argument("time matching must be auto, ipc, logger or ranges (got '" + s + "')");
 }
 
-std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, const io::CarmenLog& raw,
-                                               const CorrectedLogOptions& options, CorrectedTimeMatch* used) {
-  if (corrected.scans.empty()) throw InputError(corrected.path, "no laser lines with corrected poses");
-  if (raw.scans.empty()) throw InputError(raw.path, "no laser lines to match the corrected log's timestamps to");
+std::vector<TimedPose> correctedTrajectory(const std::vector<ScanRecord>& corrected, const std::string& corrected_name,
+                                           const std::vector<ScanRecord>& raw, const std::string& raw_name,
+                                           const CorrectedLogOptions& options, CorrectedTimeMatch* used) {
+  if (corrected.empty()) throw InputError(corrected_name, "no laser lines with corrected poses");
+  if (raw.empty()) throw InputError(raw_name, "no laser lines to match the corrected log's timestamps to");
 
   auto sorted = [&](bool logger) {
-    std::vector<RawStamp> v(raw.scans.size());
-    for (std::size_t i = 0; i < raw.scans.size(); ++i)
-      v[i] = {logger ? raw.scans[i].scan.logger_timestamp : raw.scans[i].scan.timestamp, i};
+    std::vector<RawStamp> v(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i)
+      v[i] = {logger ? raw[i].scan.logger_timestamp : raw[i].scan.timestamp, i};
     std::stable_sort(v.begin(), v.end(), [](const RawStamp& a, const RawStamp& b) { return a.key < b.key; });
     return v;
   };
@@ -77,7 +79,7 @@ std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, c
   CorrectedTimeMatch match = options.match;
   if (match == CorrectedTimeMatch::Auto) {
     match = CorrectedTimeMatch::Ipc;
-    for (const auto& s : corrected.scans)
+    for (const auto& s : corrected)
       if (!exact_ipc(s.scan.timestamp)) {
         match = CorrectedTimeMatch::Logger;
         break;
@@ -86,18 +88,18 @@ std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, c
   if (used) *used = match;
 
   const auto by_logger = sorted(true);
-  std::vector<io::TimedPose> out;
-  out.reserve(corrected.scans.size());
-  for (const auto& rec : corrected.scans) {
+  std::vector<TimedPose> out;
+  out.reserve(corrected.size());
+  for (const auto& rec : corrected) {
     if (!rec.has_odometry)
-      throw InputError(corrected.path, rec.source_index, "pose", "laser line without a pose");
+      throw InputError(corrected_name, rec.source_index, "pose", "laser line without a pose");
     const mrpt::math::TPose2D pose =
         options.pose == CorrectedPose::Robot ? rec.odometry : rec.odometry + rec.scan.sensor_pose;
     double t = rec.scan.timestamp;
     if (match == CorrectedTimeMatch::Ipc) {
       if (!exact_ipc(t))
-        throw InputError(corrected.path, rec.source_index, "ipc_timestamp",
-                         "no laser line of " + raw.path + " has this ipc timestamp");
+        throw InputError(corrected_name, rec.source_index, "ipc_timestamp",
+                         "no laser line of " + raw_name + " has this ipc timestamp");
     } else {
       const double L = rec.scan.logger_timestamp;
       const double tol = sixDigitTolerance(L);
@@ -106,8 +108,8 @@ std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, c
       const auto hi = std::upper_bound(by_logger.begin(), by_logger.end(), L + tol,
                                        [](double v, const RawStamp& a) { return v < a.key; });
       if (lo == hi)
-        throw InputError(corrected.path, rec.source_index, "logger_timestamp",
-                         "no laser line of " + raw.path + " has a logger timestamp within " + std::to_string(tol) +
+        throw InputError(corrected_name, rec.source_index, "logger_timestamp",
+                         "no laser line of " + raw_name + " has a logger timestamp within " + std::to_string(tol) +
                              " s of " + io::formatDouble(L));
       // Nearest logger timestamp (ties: the earlier one in time, then in file order).
       auto best = lo;
@@ -116,12 +118,12 @@ std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, c
       if (match == CorrectedTimeMatch::LoggerAndRanges) {
         auto by_ranges = hi;
         for (auto it = lo; it != hi; ++it) {
-          if (!sameRanges(raw.scans[it->scan].scan, rec.scan)) continue;
+          if (!sameRanges(raw[it->scan].scan, rec.scan)) continue;
           if (by_ranges == hi || std::abs(it->key - L) < std::abs(by_ranges->key - L)) by_ranges = it;
         }
         if (by_ranges != hi) best = by_ranges;
       }
-      t = raw.scans[best->scan].scan.timestamp;
+      t = raw[best->scan].scan.timestamp;
     }
     out.push_back({t, pose});
   }

@@ -26,30 +26,32 @@ OdometrySource odometrySourceFromString(const std::string& s) {
   throw std::invalid_argument("odometry source must be auto, odom or laser (got '" + s + "')");
 }
 
-OdometryTrack::OdometryTrack(std::vector<io::TimedPose> readings) : poses_(std::move(readings)) {
+OdometryTrack::OdometryTrack(std::vector<TimedPose> readings) : poses_(std::move(readings)) {
   sortByTime(poses_);
 }
 
-OdometryTrack OdometryTrack::fromLog(const io::CarmenLog& log, OdometrySource source, OdometrySource* used) {
+OdometryTrack OdometryTrack::fromScans(const std::vector<ScanRecord>& scans,
+                                       const std::vector<OdometryReading>& odometry, OdometrySource source,
+                                       OdometrySource* used) {
   if (source == OdometrySource::Auto)
-    source = log.odometry.empty() ? OdometrySource::LaserLines : OdometrySource::OdomLines;
+    source = odometry.empty() ? OdometrySource::LaserLines : OdometrySource::OdomLines;
   if (used) *used = source;
-  std::vector<io::TimedPose> r;
+  std::vector<TimedPose> r;
   if (source == OdometrySource::OdomLines) {
-    r.reserve(log.odometry.size());
-    for (const auto& o : log.odometry) r.push_back({o.timestamp, o.pose});
+    r.reserve(odometry.size());
+    for (const auto& o : odometry) r.push_back({o.timestamp, o.pose});
   } else {
-    r.reserve(log.scans.size());
-    for (const auto& s : log.scans)
+    r.reserve(scans.size());
+    for (const auto& s : scans)
       if (s.has_odometry) r.push_back({s.scan.timestamp, s.odometry});
   }
   return OdometryTrack(std::move(r));
 }
 
-const io::TimedPose& nearestInTime(const std::vector<io::TimedPose>& sorted, double t) {
+const TimedPose& nearestInTime(const std::vector<TimedPose>& sorted, double t) {
   if (sorted.empty()) throw std::logic_error("nearestInTime on an empty sequence");
   const auto it = std::lower_bound(sorted.begin(), sorted.end(), t,
-                                   [](const io::TimedPose& p, double v) { return p.timestamp < v; });
+                                   [](const TimedPose& p, double v) { return p.timestamp < v; });
   if (it == sorted.begin()) return *it;
   // The first element at or after t versus the last one before it; a tie goes to the earlier one, and among
   // equal timestamps to the first of them.
@@ -61,17 +63,17 @@ const io::TimedPose& nearestInTime(const std::vector<io::TimedPose>& sorted, dou
   return *it;
 }
 
-void sortByTime(std::vector<io::TimedPose>& poses) {
+void sortByTime(std::vector<TimedPose>& poses) {
   std::stable_sort(poses.begin(), poses.end(),
-                   [](const io::TimedPose& a, const io::TimedPose& b) { return a.timestamp < b.timestamp; });
+                   [](const TimedPose& a, const TimedPose& b) { return a.timestamp < b.timestamp; });
 }
 
-const io::TimedPose& OdometryTrack::nearest(double t) const { return nearestInTime(poses_, t); }
+const TimedPose& OdometryTrack::nearest(double t) const { return nearestInTime(poses_, t); }
 
 mrpt::math::TPose2D OdometryTrack::interpolate(double t) const {
   if (poses_.empty()) throw std::logic_error("OdometryTrack::interpolate on an empty track");
   const auto it = std::lower_bound(poses_.begin(), poses_.end(), t,
-                                   [](const io::TimedPose& p, double v) { return p.timestamp < v; });
+                                   [](const TimedPose& p, double v) { return p.timestamp < v; });
   if (it == poses_.begin()) return it->pose;
   if (it == poses_.end()) return poses_.back().pose;
   const auto& b = *it;

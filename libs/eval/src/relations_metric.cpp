@@ -57,7 +57,7 @@ ErrorStats ErrorStats::of(const std::vector<double>& v) {
   return s;
 }
 
-TrajectoryLookup::TrajectoryLookup(std::vector<io::TimedPose> estimate, const OdometryTrack* odometry,
+TrajectoryLookup::TrajectoryLookup(std::vector<TimedPose> estimate, const OdometryTrack* odometry,
                                    const RelationsMetricOptions& options)
     : estimate_(std::move(estimate)), odometry_(odometry), options_(options) {
   if (estimate_.empty()) throw std::invalid_argument("the estimated trajectory is empty");
@@ -65,7 +65,7 @@ TrajectoryLookup::TrajectoryLookup(std::vector<io::TimedPose> estimate, const Od
 }
 
 TrajectoryLookup::Result TrajectoryLookup::poseAt(double t) const {
-  const io::TimedPose* e = &nearestInTime(estimate_, t);
+  const TimedPose* e = &nearestInTime(estimate_, t);
   Result r;
   r.pose = e->pose;
   r.gap = std::abs(e->timestamp - t);
@@ -74,7 +74,7 @@ TrajectoryLookup::Result TrajectoryLookup::poseAt(double t) const {
   if (options_.interpolate_estimate) {
     // Estimates on both sides of t: the last one at or before t and the first one after it.
     const auto next = std::upper_bound(estimate_.begin(), estimate_.end(), t,
-                                       [](double v, const io::TimedPose& p) { return v < p.timestamp; });
+                                       [](double v, const TimedPose& p) { return v < p.timestamp; });
     if (next != estimate_.begin() && next != estimate_.end()) {
       auto prev = std::prev(next);
       while (prev != estimate_.begin() && std::prev(prev)->timestamp == prev->timestamp) --prev;
@@ -98,7 +98,7 @@ TrajectoryLookup::Result TrajectoryLookup::poseAt(double t) const {
   return r;
 }
 
-mrpt::math::TPose2D TrajectoryLookup::carry(const io::TimedPose& from, double t) const {
+mrpt::math::TPose2D TrajectoryLookup::carry(const TimedPose& from, double t) const {
   // p(t) = p(t_e) ⊕ (o(t_e)⁻¹ ⊕ o(t)): the odometry motion between the two times, applied in the estimate's frame.
   const auto o_e = odometry_->at(from.timestamp, options_.interpolate_odometry);
   const auto o_t = odometry_->at(t, options_.interpolate_odometry);
@@ -107,7 +107,7 @@ mrpt::math::TPose2D TrajectoryLookup::carry(const io::TimedPose& from, double t)
   return p;
 }
 
-RelationsResult evaluateRelations(const std::vector<io::TimedPose>& estimate, const std::vector<Relation>& relations,
+RelationsResult evaluateRelations(const std::vector<TimedPose>& estimate, const std::vector<Relation>& relations,
                                   const OdometryTrack* odometry, const RelationsMetricOptions& options) {
   if (relations.empty()) throw std::invalid_argument("no relations to evaluate");
   const TrajectoryLookup lookup(estimate, odometry, options);

@@ -32,7 +32,7 @@ StepSummary summarizeSteps(const std::string& stats_text, const std::string& nam
 }
 
 std::vector<eval::Relation> relationsWithin(const std::vector<eval::Relation>& relations,
-                                            const std::vector<io::TimedPose>& trajectory) {
+                                            const std::vector<TimedPose>& trajectory) {
   if (trajectory.empty()) return {};
   double first = trajectory.front().timestamp, last = first;
   for (const auto& p : trajectory) {
@@ -45,7 +45,7 @@ std::vector<eval::Relation> relationsWithin(const std::vector<eval::Relation>& r
   return out;
 }
 
-ErrorScores RunScorer::score(const std::vector<io::TimedPose>& trajectory, const std::string& log,
+ErrorScores RunScorer::score(const std::vector<TimedPose>& trajectory, const std::string& log,
                              const std::string& relations) {
   ErrorScores s;
   if (relations.empty() || trajectory.empty()) return s;
@@ -55,7 +55,10 @@ ErrorScores RunScorer::score(const std::vector<io::TimedPose>& trajectory, const
     ref->relations = eval::readRelations(relations);
     // Gap correction by the log's odometry when it is a CARMEN log (as gridtopo-eval --log); none otherwise.
     const bool carmen = log.find(".clf") != std::string::npos || log.find(".log") != std::string::npos;
-    if (carmen) ref->odometry = eval::OdometryTrack::fromLog(io::readCarmenLog(log), eval::OdometrySource::Auto);
+    if (carmen) {
+      const io::CarmenLog l = io::readCarmenLog(log);
+      ref->odometry = eval::OdometryTrack::fromScans(l.scans, l.odometry, eval::OdometrySource::Auto);
+    }
 #if defined(__GLIBC__)
     // Give the parsed log's pages back: a run forked later starts with this process's resident pages, and its
     // peak RSS (wait4) is at least that.

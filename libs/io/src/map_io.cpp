@@ -275,6 +275,20 @@ MapKind mapFileKind(const std::string& path) {
   return MapKind::PlainImage;
 }
 
+MapImage mapImageOfGrid(const mrpt::maps::COccupancyGridMap2D& grid, MapKind kind, const std::string& source) {
+  MapImage m;
+  m.grey = gridToImage(grid);
+  m.resolution = grid.getResolution();
+  m.origin = cv::Point2d(grid.getXMin(), grid.getYMin());
+  m.kind = kind;
+  m.source = source;
+  return m;
+}
+
+MapImage readMap(const std::string& path, const MapReadOptions& options) {
+  return mapImageOfGrid(*readGridMap(path, options), mapFileKind(path), path);
+}
+
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options) {
   const std::string l = lower(path);
   if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path);

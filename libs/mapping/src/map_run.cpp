@@ -35,7 +35,7 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   const auto t0 = std::chrono::steady_clock::now();
   MapRunSummary summary;
   io::ScanLogInfo info;
-  std::vector<io::ScanRecord> records = io::readScanLog(spec.input, {}, info);
+  std::vector<ScanRecord> records = io::readScanLog(spec.input, {}, info);
   for (const auto& w : info.warnings)
     if (hooks.warning) hooks.warning(w);
   for (const auto& n : info.notes)
@@ -51,7 +51,7 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   CMetricMapBuilderTopology builder(model, spec.topology, spec.builder, slam_builder);
   builder.onTopologyUpdated = hooks.topologyUpdated;
   for (std::size_t i = 0; i < records.size(); ++i) {
-    const io::ScanRecord& r = records[i];
+    const ScanRecord& r = records[i];
     if (r.has_odometry) {
       auto odo = mrpt::obs::CObservationOdometry::Create();
       odo->odometry = mrpt::poses::CPose2D(r.odometry);

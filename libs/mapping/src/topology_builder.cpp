@@ -9,7 +9,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/map_io.h"
-#include "gridtopo/io/map_kind.h"
+#include "gridtopo/core/map_image.h"
 #include "gridtopo/slam/map_builder.h"
 
 namespace gridtopo::mapping {
@@ -17,12 +17,11 @@ namespace gridtopo::mapping {
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
                                const topology::TopologyOptions& options, const std::string& source) {
   // The same calls as gridtopo-topology on a .gridmap(.gz): a SLAM grid's free threshold and opening.
-  constexpr io::MapKind kind = io::MapKind::ProbabilisticGrid;
+  const MapImage map = io::mapImageOfGrid(grid, MapKind::ProbabilisticGrid, source);
   MapTopology t;
   t.source = source;
-  t.origin = cv::Point2d(grid.getXMin(), grid.getYMin());
-  topology::MapTopology run = topology::topologyOfMap(io::gridToImage(grid), grid.getResolution(), kind, t.origin,
-                                                      source, model, options);
+  t.origin = map.origin;
+  topology::MapTopology run = topology::topologyOfMap(map, model, options);
   t.occ = std::move(run.occ);
   t.labelling = std::move(run.labelling);
   t.topo = std::move(run.topo);

@@ -31,6 +31,10 @@ OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const 
   return occ;
 }
 
+OccupancyImage occupancyFromMap(const MapImage& map, int free_threshold, int occupied_threshold) {
+  return occupancyFromGrey(map.grey, map.resolution, map.source, free_threshold, occupied_threshold);
+}
+
 std::size_t openFreeSpace(OccupancyImage& occ, double radius) {
   if (occ.cells.empty() || !(radius > 0) || !std::isfinite(radius)) return 0;
   const int r = static_cast<int>(std::lround(radius / occ.resolution));

@@ -15,22 +15,26 @@ bool MapLayer::worldToCell(double x, double y, int& row, int& col) const {
   return true;
 }
 
-MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, io::MapKind kind) {
+MapLayer mapLayerFromImage(const MapImage& map) {
   MapLayer m;
-  m.grey = io::gridToImage(grid);
-  m.resolution = grid.getResolution();
-  m.origin_x = grid.getXMin();
-  m.origin_y = grid.getYMin();
-  m.source = source;
-  m.kind = kind;
+  m.grey = map.grey;
+  m.resolution = map.resolution;
+  m.origin_x = map.origin.x;
+  m.origin_y = map.origin.y;
+  m.source = map.source;
+  m.kind = map.kind;
   return m;
+}
+
+MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, MapKind kind) {
+  return mapLayerFromImage(io::mapImageOfGrid(grid, kind, source));
 }
 
 MapLayer mapLayerFromSlam(const slam::GridMap& map) {
   MapLayer m;
   m.resolution = map.resolution();
   m.source = "<slam>";
-  m.kind = io::MapKind::ProbabilisticGrid;
+  m.kind = MapKind::ProbabilisticGrid;
   int x0, y0, x1, y1;
   map.cellBounds(x0, y0, x1, y1);
   if (x1 <= x0 || y1 <= y0) return m;

@@ -138,15 +138,14 @@ void Session::openLog(const std::string& path, std::size_t max_scans) {
   if (scans.empty()) throw InputError(path, "the log holds no laser scans");
   runner_.reset();
   log_warnings_ = std::move(info.warnings);
-  scans_ = std::make_shared<const std::vector<io::ScanRecord>>(std::move(scans));
+  scans_ = std::make_shared<const std::vector<ScanRecord>>(std::move(scans));
   log_path_ = path;
   relations_cache_key_ = ~0ull;
   slam_raster_version_ = ~0ull;
 }
 
 void Session::openMap(const std::string& path, const io::MapReadOptions& options) {
-  auto grid = io::readGridMap(path, options);
-  MapLayer m = mapLayerFromGrid(*grid, path, io::mapFileKind(path));
+  MapLayer m = mapLayerFromImage(io::readMap(path, options));
   if (m.empty()) throw InputError(path, "the map is empty");
   map_ = std::move(m);
   ++map_generation_;
@@ -288,7 +287,7 @@ std::optional<eval::RelationsResult> Session::relationsError(const SlamSnapshot&
   for (const auto& r : relations_)
     if (std::max(r.t1, r.t2) <= t_end) rel.push_back(r);
   if (rel.empty()) return std::nullopt;
-  std::vector<io::TimedPose> odo;
+  std::vector<TimedPose> odo;
   for (const auto& r : *scans_)
     if (r.has_odometry) odo.push_back({r.scan.timestamp, r.odometry});
   const eval::OdometryTrack track(std::move(odo));
@@ -318,7 +317,7 @@ void Session::useSlamMap() {
   if (!s) throw std::runtime_error("no SLAM run");
   const auto grid = slam::toOccupancyGrid(s->best_map);
   map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>",
-                          io::MapKind::ProbabilisticGrid);
+                          MapKind::ProbabilisticGrid);
   ++map_generation_;
   topology_.reset();
   ++topo_generation_;

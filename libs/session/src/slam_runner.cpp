@@ -18,7 +18,7 @@ const char* toString(RunState s) {
   return "?";
 }
 
-SlamRunner::SlamRunner(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const slam::SlamOptions& options,
+SlamRunner::SlamRunner(std::shared_ptr<const std::vector<ScanRecord>> scans, const slam::SlamOptions& options,
                        const RunnerOptions& runner)
     : scans_(std::move(scans)), options_(options), ropt_(runner) {
   run_ = std::make_unique<slam::SlamRun>(scans_, options_, ropt_.max_scans);

@@ -40,9 +40,7 @@ TopologyData computeTopology(const MapLayer& map, std::shared_ptr<const places::
   t.map = map;
   t.model = model;
   // The one topology run, keeping the scans and the features for the cell inspector.
-  topology::MapTopology run = topology::topologyOfMap(map.grey, map.resolution, map.kind,
-                                                      cv::Point2d(map.origin_x, map.origin_y), map.source, *model,
-                                                      options, progress, true);
+  topology::MapTopology run = topology::topologyOfMap(map.image(), *model, options, progress, true);
   t.occ = std::move(run.occ);
   t.labelling = std::move(run.labelling);
   t.topo = std::move(run.topo);
@@ -151,8 +149,7 @@ TopologyData loadTopologyOutput(const std::string& path, const MapLayer& map, co
                          " map but the open map is " + std::to_string(map.cols()) + "x" + std::to_string(map.rows()));
   }
   if (!map.empty())
-    t.occ = topology::occupancyForTopology(map.grey, map.resolution, map.source, options.freeThresholdFor(map.kind),
-                                           options.freeOpeningRadiusFor(map.kind));
+    t.occ = topology::occupancyForTopology(map.image(), options);
   return t;
 }
 

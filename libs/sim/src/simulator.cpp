@@ -109,8 +109,8 @@ mrpt::math::TPose2D between(const mrpt::math::TPose2D& a, const mrpt::math::TPos
 
 }  // namespace
 
-std::vector<io::TimedPose> SimLog::timedTruth() const {
-  std::vector<io::TimedPose> out;
+std::vector<TimedPose> SimLog::timedTruth() const {
+  std::vector<TimedPose> out;
   out.reserve(truth.size());
   for (std::size_t i = 0; i < truth.size() && i < records.size(); ++i)
     out.push_back({records[i].scan.timestamp, truth[i]});
@@ -146,7 +146,7 @@ SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D
       odo = compose(odo, {inc.x + nx, inc.y + ny, inc.phi + nth});
     }
 
-    io::ScanRecord r;
+    ScanRecord r;
     r.has_odometry = true;
     r.odometry = odo;
     r.source_index = i;

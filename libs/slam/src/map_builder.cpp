@@ -43,7 +43,7 @@ void CMetricMapBuilderGridRbpf::initialize(const mrpt::maps::CSimpleMap& initial
 void CMetricMapBuilderGridRbpf::feed(const mrpt::obs::CObservation& obs) {
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation2DRangeScan*>(&obs);
   if (!scan) return;
-  io::ScanRecord r;
+  ScanRecord r;
   r.scan = io::fromMrptScan(*scan);
   r.scan.timestamp = mrpt::Clock::toDouble(scan->timestamp);
   r.has_odometry = has_odometry_;

@@ -41,7 +41,7 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map) {
   return g;
 }
 
-cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<io::TimedPose>& trajectory) {
+cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory) {
   const int w = static_cast<int>(grid.getSizeX()), h = static_cast<int>(grid.getSizeY());
   cv::Mat img(h, w, CV_8UC3);
   for (int y = 0; y < h; ++y)

@@ -49,7 +49,7 @@ void surfaceNormal(const std::vector<double>& hx, const std::vector<double>& hy,
 
 }  // namespace
 
-PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double resolution) {
+PreparedScan prepareScan(const LaserScan& scan, const BeamOptions& o, double resolution) {
   PreparedScan p;
   p.sensor = {scan.sensor_pose.x, scan.sensor_pose.y, scan.sensor_pose.phi};
   const double usable =

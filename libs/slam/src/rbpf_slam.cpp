@@ -30,13 +30,13 @@ void RbpfSlam::setInitialPose(const Pose2& pose) {
   has_initial_pose_ = true;
 }
 
-void RbpfSlam::insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan) {
+void RbpfSlam::insertKnownScan(const Pose2& robot_pose, const LaserScan& scan) {
   if (initialized_) throw std::logic_error("RbpfSlam::insertKnownScan: the filter has already started");
   const PreparedScan ps = prepareScan(scan, o_.beams, o_.resolution);
   prior_map_.insertScan(robot_pose, ps.sensor, ps.map_beams, o_.map);
 }
 
-bool RbpfSlam::shouldProcess(const io::ScanRecord& r) const {
+bool RbpfSlam::shouldProcess(const ScanRecord& r) const {
   if (!initialized_) return true;
   const ScanInfo& last = scans_[last_processed_];
   if (!r.has_odometry || !last.has_odometry) {
@@ -47,7 +47,7 @@ bool RbpfSlam::shouldProcess(const io::ScanRecord& r) const {
   return false;
 }
 
-bool RbpfSlam::processScan(const io::ScanRecord& record) {
+bool RbpfSlam::processScan(const ScanRecord& record) {
   const std::size_t index = scans_.size();
   if (index > 0 && record.has_odometry && scans_.back().has_odometry) {
     const Pose2 d = relative(scans_.back().odometry, toPose(record.odometry));
@@ -91,7 +91,7 @@ bool RbpfSlam::processScan(const io::ScanRecord& record) {
   return true;
 }
 
-void RbpfSlam::startParticles(const io::ScanRecord& record, const PreparedScan& scan, std::size_t index) {
+void RbpfSlam::startParticles(const ScanRecord& record, const PreparedScan& scan, std::size_t index) {
   const std::size_t n = static_cast<std::size_t>(o_.particles);
   // The map frame starts at the first odometry pose (identity without odometry).
   const Pose2 start = has_initial_pose_ ? initial_pose_ : (record.has_odometry ? toPose(record.odometry) : Pose2{});
@@ -109,7 +109,7 @@ void RbpfSlam::startParticles(const io::ScanRecord& record, const PreparedScan& 
   initialized_ = true;
 }
 
-RbpfSlam::Odometry RbpfSlam::odometrySinceLastStep(const io::ScanRecord& record) const {
+RbpfSlam::Odometry RbpfSlam::odometrySinceLastStep(const ScanRecord& record) const {
   const ScanInfo& last = scans_[last_processed_];
   Odometry odo;
   odo.available = record.has_odometry && last.has_odometry;
@@ -117,7 +117,7 @@ RbpfSlam::Odometry RbpfSlam::odometrySinceLastStep(const io::ScanRecord& record)
   return odo;
 }
 
-std::vector<Pose2> RbpfSlam::predictWithOdometry(const io::ScanRecord& record, const Odometry& odo) {
+std::vector<Pose2> RbpfSlam::predictWithOdometry(const ScanRecord& record, const Odometry& odo) {
   const std::size_t n = particles_.size();
   const std::size_t step = stats_.size();
   if (odo.available && o_.motion.scale_walk_sigma > 0.0) {
@@ -309,8 +309,8 @@ std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
   return seen.size();
 }
 
-std::vector<io::TimedPose> RbpfSlam::trajectory() const {
-  std::vector<io::TimedPose> out(scans_.size());
+std::vector<TimedPose> RbpfSlam::trajectory() const {
+  std::vector<TimedPose> out(scans_.size());
   if (scans_.empty() || particles_.empty()) return out;
   const auto path = pathOf(bestParticle().node);
   // The odometry between processed scans, scaled by the best particle's (current) odometry scale.

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace gridtopo::slam {
 
-mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<io::ScanRecord>& scans) {
+mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<ScanRecord>& scans) {
   mrpt::maps::CSimpleMap sm;
   for (const TrajectoryNode* n : pathOf(leaf)) {
     auto sf = mrpt::obs::CSensoryFrame::Create();

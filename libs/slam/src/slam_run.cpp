@@ -11,7 +11,7 @@
 
 namespace gridtopo::slam {
 
-SlamRun::SlamRun(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const SlamOptions& options,
+SlamRun::SlamRun(std::shared_ptr<const std::vector<ScanRecord>> scans, const SlamOptions& options,
                  std::size_t max_scans)
     : options_(options), scans_(std::move(scans)) {
   if (!scans_ || scans_->empty()) throw InputError("<log>", "the log holds no laser scans");
@@ -21,7 +21,7 @@ SlamRun::SlamRun(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const
 }
 
 SlamRun::SlamRun(const SlamOptions& options)
-    : options_(options), appended_(std::make_shared<std::vector<io::ScanRecord>>()) {
+    : options_(options), appended_(std::make_shared<std::vector<ScanRecord>>()) {
   options_.validate("<options>", "slam");
   scans_ = appended_;
   filter_ = std::make_unique<RbpfSlam>(options_);
@@ -65,14 +65,14 @@ void SlamRun::runToEnd(const std::function<void(std::size_t, std::size_t)>& prog
   if (progress) progress(fed_, limit_);
 }
 
-bool SlamRun::feed(io::ScanRecord record) {
+bool SlamRun::feed(ScanRecord record) {
   requireFilter("feed");
   if (!appended_) throw std::logic_error("SlamRun::feed: this run reads its scans from a log (use step)");
   appended_->push_back(std::move(record));
   limit_ = appended_->size();
   const bool processed = feedNext();
   if (!processed) {  // only processed scans are ever read again (simpleMap)
-    io::LaserScan& s = appended_->back().scan;
+    LaserScan& s = appended_->back().scan;
     std::vector<float>().swap(s.ranges);
     std::vector<std::uint8_t>().swap(s.valid);
   }

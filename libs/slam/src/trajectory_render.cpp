@@ -8,7 +8,7 @@
 
 namespace gridtopo::slam {
 
-std::optional<LoopClosure> firstLoopClosure(const std::vector<io::TimedPose>& trajectory, double radius,
+std::optional<LoopClosure> firstLoopClosure(const std::vector<TimedPose>& trajectory, double radius,
                                             double min_travel) {
   const std::size_t n = trajectory.size();
   std::vector<double> travelled(n, 0.0);
@@ -85,7 +85,7 @@ std::vector<MapBeam> beamsInWindow(const PreparedScan& scan, const Pose2& robot,
 
 }  // namespace
 
-GridMap mapFromTrajectory(const std::vector<io::ScanRecord>& scans, const std::vector<io::TimedPose>& trajectory,
+GridMap mapFromTrajectory(const std::vector<ScanRecord>& scans, const std::vector<TimedPose>& trajectory,
                           const TrajectoryRenderOptions& o, std::size_t* inserted) {
   if (trajectory.size() > scans.size()) {
     TrajectoryMismatch e("the trajectory has " + std::to_string(trajectory.size()) + " poses but the log only " +
@@ -167,8 +167,8 @@ WallAgreement wallAgreement(const GridMap& a, const GridMap& b, const MapWindow&
   return out;
 }
 
-std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<io::ScanRecord>& scans,
-                                                      const std::vector<io::TimedPose>& trajectory,
+std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<ScanRecord>& scans,
+                                                      const std::vector<TimedPose>& trajectory,
                                                       const TrajectoryRenderOptions& options, double size,
                                                       double radius, double min_travel) {
   const auto lc = firstLoopClosure(trajectory, radius, min_travel);

@@ -103,43 +103,15 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
   return blobs(cv::Rect(1, 1, free_mask.cols, free_mask.rows)).clone();
 }
 
-cv::Mat voteLabelsInAreas(const cv::Mat& labels, const cv::Mat& areas, const cv::Mat& cell_probs, double min_share) {
-  return voteAreas(labels, areas, cell_probs, min_share, false);
+cv::Mat voteLabelsInAreas(const cv::Mat& labels, const cv::Mat& areas, const cv::Mat& cell_probs, double min_share,
+                          bool vote_doorway_cells) {
+  return voteAreas(labels, areas, cell_probs, min_share, vote_doorway_cells);
 }
 
 cv::Mat voteInGeometricBlobs(const cv::Mat& labels, double resolution, const BlobVoteOptions& options,
                              const places::Lattice& lattice, const cv::Mat& lattice_probs) {
   const cv::Mat blobs = geometricBlobs(labels < places::kNumLabels, resolution, options);
   return voteLabelsInAreas(labels, blobs, cellProbabilities(labels, lattice, lattice_probs), options.min_share);
-}
-
-cv::Mat groundTruthRegions(const cv::Mat& truth_codes, const cv::Mat& labels, std::vector<int>* region_label) {
-  CV_Assert(truth_codes.type() == CV_8U && labels.type() == CV_8U && truth_codes.size() == labels.size());
-  cv::Mat out(labels.size(), CV_32S, cv::Scalar(0));
-  if (region_label) region_label->assign(1, -1);
-  int offset = 0;
-  for (int l = 0; l < places::kNumLabels; ++l) {
-    cv::Mat mask = (truth_codes == places::labelCode(l)) & (labels < places::kNumLabels), cc;
-    const int n = cv::connectedComponents(mask, cc, 8, CV_32S);
-    for (int y = 0; y < cc.rows; ++y)
-      for (int x = 0; x < cc.cols; ++x)
-        if (const int c = cc.at<int>(y, x)) out.at<int>(y, x) = offset + c;
-    if (region_label) region_label->insert(region_label->end(), static_cast<std::size_t>(n - 1), l);
-    offset += n - 1;
-  }
-  return out;
-}
-
-cv::Mat oracleRegionVote(const cv::Mat& truth_codes, const cv::Mat& labels, const cv::Mat& cell_probs,
-                         bool keep_predicted_doorways) {
-  std::vector<int> region_label;
-  cv::Mat regions = groundTruthRegions(truth_codes, labels, &region_label);
-  for (int y = 0; y < regions.rows; ++y)
-    for (int x = 0; x < regions.cols; ++x) {
-      int& r = regions.at<int>(y, x);
-      if (r > 0 && region_label[static_cast<std::size_t>(r)] == kDoorway) r = 0;  // doorway regions: not voted
-    }
-  return voteAreas(labels, regions, cell_probs, 0.5, !keep_predicted_doorways);
 }
 
 }  // namespace gridtopo::topology

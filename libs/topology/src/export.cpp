@@ -229,20 +229,4 @@ cv::Mat colourSegmentation(const cv::Mat& seg) {
   return out;
 }
 
-cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted) {
-  static const cv::Vec3b pale[3] = {{250, 215, 190}, {200, 240, 200}, {200, 200, 250}};
-  cv::Mat out(occ.cells.size(), CV_8UC3);
-  for (int r = 0; r < out.rows; ++r)
-    for (int c = 0; c < out.cols; ++c) {
-      cv::Vec3b& o = out.at<cv::Vec3b>(r, c);
-      o = occ.isFree(r, c) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(90, 90, 90);
-      const int t = places::labelFromCode(truth_codes.at<unsigned char>(r, c));
-      if (t < 0 || !occ.isFree(r, c)) continue;
-      const int p = predicted.at<unsigned char>(r, c);
-      if (p >= places::kNumLabels) o = cv::Vec3b(0, 0, 0);
-      else o = p == t ? pale[t] : kLabelColoursBgr[p];
-    }
-  return out;
-}
-
 }  // namespace gridtopo::topology

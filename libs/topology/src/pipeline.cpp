@@ -112,17 +112,18 @@ TopologyOptions loadTopologyOptions(const std::string& ini_path) {
   return opt;
 }
 
-int TopologyOptions::freeThresholdFor(io::MapKind kind) const {
-  return kind == io::MapKind::ProbabilisticGrid ? grid_free_threshold : free_threshold;
+int TopologyOptions::freeThresholdFor(MapKind kind) const {
+  return kind == MapKind::ProbabilisticGrid ? grid_free_threshold : free_threshold;
 }
 
-double TopologyOptions::freeOpeningRadiusFor(io::MapKind kind) const {
-  return kind == io::MapKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
+double TopologyOptions::freeOpeningRadiusFor(MapKind kind) const {
+  return kind == MapKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
 }
 
-places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
-                                            int free_threshold, double opening_radius) {
-  places::OccupancyImage occ = places::occupancyFromGrey(grey, resolution, source, free_threshold);
+places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o) {
+  const double opening_radius = o.freeOpeningRadiusFor(map.kind);
+  places::OccupancyImage occ = places::occupancyFromMap(map, o.freeThresholdFor(map.kind));
+  const std::string& source = map.source;
   if (places::countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
   places::openFreeSpace(occ, opening_radius);
   if (places::countFree(occ) == 0)
@@ -156,15 +157,15 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   return r;
 }
 
-MapTopology topologyOfMap(const cv::Mat& grey, double resolution, io::MapKind kind, cv::Point2d origin,
-                          const std::string& source, const places::PlacesModel& model, const TopologyOptions& o,
+MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
                           bool keep_scans_and_features) {
   MapTopology t;
-  t.occ = occupancyForTopology(grey, resolution, source, o.freeThresholdFor(kind), o.freeOpeningRadiusFor(kind));
-  t.labelling = places::labelPlaces(t.occ, model, o.relaxation, o.threads, source, progress, keep_scans_and_features);
+  t.occ = occupancyForTopology(map, o);
+  t.labelling =
+      places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
   if (progress) progress("regions", 0, 1);
-  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, origin);
+  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin);
   return t;
 }
 

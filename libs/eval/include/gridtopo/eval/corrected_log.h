@@ -5,8 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gridtopo/io/carmen_log.h"
-#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::eval {
 
@@ -31,11 +30,12 @@ struct CorrectedLogOptions {
 const char* toString(CorrectedTimeMatch m);
 CorrectedTimeMatch correctedTimeMatchFromString(const std::string& s);  ///< auto|ipc|logger|ranges
 
-/// Poses of the corrected log's laser lines, stamped with the ipc timestamps of the matching laser lines of
-/// `raw`. Throws gridtopo::InputError (corrected log's file, line, field) when a line has no match: a logger
-/// timestamp further from every raw one than its printed precision allows.
-std::vector<io::TimedPose> correctedTrajectory(const io::CarmenLog& corrected, const io::CarmenLog& raw,
-                                               const CorrectedLogOptions& options = {},
-                                               CorrectedTimeMatch* used = nullptr);
+/// Poses of the corrected log's laser lines (`corrected`: the scan records of that log, as a log reader gives them),
+/// stamped with the ipc timestamps of the matching scans of the raw log (`raw`). `corrected_name` / `raw_name`
+/// name the logs in errors. Throws gridtopo::InputError (corrected log's name, line, field) when a line has no
+/// match: a logger timestamp further from every raw one than its printed precision allows.
+std::vector<TimedPose> correctedTrajectory(const std::vector<ScanRecord>& corrected, const std::string& corrected_name,
+                                           const std::vector<ScanRecord>& raw, const std::string& raw_name,
+                                           const CorrectedLogOptions& options = {}, CorrectedTimeMatch* used = nullptr);
 
 }  // namespace gridtopo::eval

@@ -6,8 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gridtopo/io/carmen_log.h"
-#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::eval {
 
@@ -23,25 +22,28 @@ OdometrySource odometrySourceFromString(const std::string& s);
 
 /// The element of `sorted` (sorted by timestamp) nearest in time to t. Ties go to the earlier timestamp; among
 /// equal timestamps the first element is returned. `sorted` must not be empty.
-const io::TimedPose& nearestInTime(const std::vector<io::TimedPose>& sorted, double t);
+const TimedPose& nearestInTime(const std::vector<TimedPose>& sorted, double t);
 
 /// Stable sort by timestamp (equal timestamps keep their order).
-void sortByTime(std::vector<io::TimedPose>& poses);
+void sortByTime(std::vector<TimedPose>& poses);
 
 class OdometryTrack {
  public:
   OdometryTrack() = default;
   /// Readings in any order; sorted by time (stable: readings with equal timestamps keep their order).
-  explicit OdometryTrack(std::vector<io::TimedPose> readings);
-  /// Picks the readings of `log` according to `source`; `used` receives the source actually used.
-  static OdometryTrack fromLog(const io::CarmenLog& log, OdometrySource source, OdometrySource* used = nullptr);
+  explicit OdometryTrack(std::vector<TimedPose> readings);
+  /// Picks the readings of a log as any log reader gives it: `odometry` (the log's own odometry messages: CARMEN
+  /// ODOM lines, MRPT CObservationOdometry) for OdomLines, the odometry inside the scan records `scans` for
+  /// LaserLines; Auto = `odometry` if it is not empty. `used` receives the source actually used.
+  static OdometryTrack fromScans(const std::vector<ScanRecord>& scans, const std::vector<OdometryReading>& odometry,
+                                 OdometrySource source, OdometrySource* used = nullptr);
 
   bool empty() const { return poses_.empty(); }
   std::size_t size() const { return poses_.size(); }
-  const std::vector<io::TimedPose>& poses() const { return poses_; }
+  const std::vector<TimedPose>& poses() const { return poses_; }
 
   /// The reading nearest in time to t (ties: the earlier one in time order).
-  const io::TimedPose& nearest(double t) const;
+  const TimedPose& nearest(double t) const;
   /// Odometry at time t linearly interpolated between the two readings around t (x, y linear; theta along the
   /// shorter arc); clamped to the first/last reading outside the covered time span.
   mrpt::math::TPose2D interpolate(double t) const;
@@ -49,7 +51,7 @@ class OdometryTrack {
   mrpt::math::TPose2D at(double t, bool interpolated) const;
 
  private:
-  std::vector<io::TimedPose> poses_;
+  std::vector<TimedPose> poses_;
 };
 
 }  // namespace gridtopo::eval

@@ -71,7 +71,7 @@ struct RelationsResult {
 /// options.max_time_gap (odometry may be null or empty: then the nearest pose is used as is).
 class TrajectoryLookup {
  public:
-  TrajectoryLookup(std::vector<io::TimedPose> estimate, const OdometryTrack* odometry,
+  TrajectoryLookup(std::vector<TimedPose> estimate, const OdometryTrack* odometry,
                    const RelationsMetricOptions& options);
   struct Result {
     mrpt::math::TPose2D pose{0, 0, 0};
@@ -81,16 +81,16 @@ class TrajectoryLookup {
   Result poseAt(double t) const;
 
  private:
-  mrpt::math::TPose2D carry(const io::TimedPose& from, double t) const;  // from ⊕ (o(t_from)⁻¹ ⊕ o(t))
+  mrpt::math::TPose2D carry(const TimedPose& from, double t) const;  // from ⊕ (o(t_from)⁻¹ ⊕ o(t))
 
-  std::vector<io::TimedPose> estimate_;  // sorted by time (stable)
+  std::vector<TimedPose> estimate_;  // sorted by time (stable)
   const OdometryTrack* odometry_;
   RelationsMetricOptions options_;
 };
 
 /// Scores `estimate` (any order, any timestamps) against `relations`. Throws std::invalid_argument if the
 /// estimate or the relations are empty.
-RelationsResult evaluateRelations(const std::vector<io::TimedPose>& estimate, const std::vector<Relation>& relations,
+RelationsResult evaluateRelations(const std::vector<TimedPose>& estimate, const std::vector<Relation>& relations,
                                   const OdometryTrack* odometry, const RelationsMetricOptions& options = {});
 
 }  // namespace gridtopo::eval

@@ -27,7 +27,7 @@ StepSummary summarizeSteps(const std::string& stats_text, const std::string& nam
 
 /// The relations whose t1 and t2 both lie in [first, last] timestamp of `trajectory`.
 std::vector<eval::Relation> relationsWithin(const std::vector<eval::Relation>& relations,
-                                            const std::vector<io::TimedPose>& trajectory);
+                                            const std::vector<TimedPose>& trajectory);
 
 struct ErrorScores {
   std::size_t relations = 0;                ///< relations scored (0: no relations, no error figures)
@@ -37,7 +37,7 @@ struct ErrorScores {
 /// Scores trajectories; keeps each dataset's relations and odometry after the first use.
 class RunScorer {
  public:
-  ErrorScores score(const std::vector<io::TimedPose>& trajectory, const std::string& log, const std::string& relations);
+  ErrorScores score(const std::vector<TimedPose>& trajectory, const std::string& log, const std::string& relations);
 
  private:
   struct Reference {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::io {
 

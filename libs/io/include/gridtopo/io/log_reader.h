@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "gridtopo/io/carmen_log.h"
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::io {
 

@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "gridtopo/io/map_kind.h"
+#include "gridtopo/core/map_image.h"
 
 namespace gridtopo::io {
 
@@ -26,8 +26,16 @@ mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const 
 
 /// The kind of the map file `path` as readGridMap reads it (extension case-insensitive): a probabilistic grid
 /// (.gridmap, .gridmap.gz), a ROS map (.yaml / .yml, or an image with a .yaml / .yml of the same stem beside it),
-/// or a plain image.
+/// or a plain image. The reader's own decision (readMap sets MapImage::kind from it); nothing else asks a name.
 MapKind mapFileKind(const std::string& path);
+
+/// The map of `grid` as a typed map: gridToImage, the grid's resolution and (x_min, y_min), `kind` and `source`.
+MapImage mapImageOfGrid(const mrpt::maps::COccupancyGridMap2D& grid, MapKind kind, const std::string& source);
+
+/// Reads a map file as readGridMap does and returns it typed: grey image, resolution, origin, and the kind the
+/// file's format gives (a .gridmap(.gz) is a probabilistic grid, a map with a ROS .yaml a ROS map, any other image
+/// a plain image); `source` = `path`.
+MapImage readMap(const std::string& path, const MapReadOptions& options = {});
 
 /// Grey image of a grid (CV_8UC1, 255 = free, 0 = occupied, value = round(255 * p_free)); row 0 is the
 /// map's top (largest y), so it has the size and orientation of the image the map was read from.

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "gridtopo/io/scan_conversion.h"
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::io {
 

@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <string>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 
 namespace gridtopo::io {
 

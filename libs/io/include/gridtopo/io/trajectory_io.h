@@ -1,17 +1,12 @@
 #pragma once
 // Trajectory text files: one line per laser scan, "timestamp x y theta" (seconds, metres, radians),
 // numbers in shortest round-trip form (full precision). '#' starts a comment line.
-#include <mrpt/math/TPose2D.h>
-
 #include <string>
 #include <vector>
 
-namespace gridtopo::io {
+#include "gridtopo/core/scan_record.h"
 
-struct TimedPose {
-  double timestamp = 0.0;
-  mrpt::math::TPose2D pose{0, 0, 0};
-};
+namespace gridtopo::io {
 
 /// Writes atomically (temporary file + rename). `header` lines are written as '#' comments.
 void writeTrajectory(const std::string& path, const std::vector<TimedPose>& poses,

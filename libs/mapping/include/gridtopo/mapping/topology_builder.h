@@ -5,7 +5,7 @@
 // labels, regions and the topological graph, recomputed every TopologyBuilderOptions::update_every processed scans
 // or on request (updateTopology()). The topology is made by the one pipeline of gridtopo-topology
 // (topology::occupancyForTopology, places::labelPlaces, topology::buildTopology) on the metric map thresholded as
-// a SLAM grid (io::MapKind::ProbabilisticGrid), so it equals gridtopo-topology's on the map.gridmap.gz of the same
+// a SLAM grid (MapKind::ProbabilisticGrid), so it equals gridtopo-topology's on the map.gridmap.gz of the same
 // map.
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/maps/CMultiMetricMap.h>
@@ -44,7 +44,7 @@ struct MapTopology {
 
 /// The semantic and topological map of an occupancy grid built by SLAM: the one topology pipeline with the grid's
 /// free threshold and opening (TopologyOptions::freeThresholdFor / freeOpeningRadiusFor of
-/// io::MapKind::ProbabilisticGrid). InputError (naming `source`) for a map without free cells.
+/// MapKind::ProbabilisticGrid). InputError (naming `source`) for a map without free cells.
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
                                const topology::TopologyOptions& options, const std::string& source);
 

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "gridtopo/core/map_image.h"
+
 namespace gridtopo::places {
 
 /// Cell states stored in OccupancyImage::cells.
@@ -24,6 +26,10 @@ struct OccupancyImage {
 /// (naming `source`) for an empty image, a non-8-bit image, or a non-positive / non-finite resolution.
 OccupancyImage occupancyFromGrey(const cv::Mat& image, double resolution, const std::string& source = "<image>",
                                  int free_threshold = 250, int occupied_threshold = 50);
+
+/// occupancyFromGrey of a typed map's grey image and resolution (errors name `map.source`). The threshold is the
+/// caller's choice for the map's kind (topology::TopologyOptions::freeThresholdFor(map.kind)).
+OccupancyImage occupancyFromMap(const MapImage& map, int free_threshold, int occupied_threshold = 50);
 
 /// Morphological opening of the free space (OpenCV erode then dilate, square kernel of half-side `radius` metres,
 /// rounded to whole cells; < half a cell does nothing): free passages narrower than about 2 * radius + 1 cell and

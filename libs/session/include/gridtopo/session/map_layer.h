@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "gridtopo/io/map_kind.h"
+#include "gridtopo/core/map_image.h"
 #include "gridtopo/slam/grid_map.h"
 
 namespace gridtopo::session {
@@ -19,9 +19,9 @@ struct MapLayer {
   double origin_x = 0.0;     ///< world x of the image's left edge (m)
   double origin_y = 0.0;     ///< world y of the image's bottom edge (m)
   std::string source;        ///< file it came from, or a name for display ("<slam map, N scans>")
-  /// How the grey levels read as free space (topology::TopologyOptions::freeThresholdFor): set from the file
-  /// (io::mapFileKind) or by whoever built the map, never guessed from `source`.
-  io::MapKind kind = io::MapKind::PlainImage;
+  /// How the grey levels read as free space (topology::TopologyOptions::freeThresholdFor): set by the map reader
+  /// (io::readMap) or by whoever built the map, never guessed from `source`.
+  MapKind kind = MapKind::PlainImage;
 
   bool empty() const { return grey.empty(); }
   int rows() const { return grey.rows; }
@@ -36,11 +36,16 @@ struct MapLayer {
   bool worldToCell(double x, double y, int& row, int& col) const;
   /// p(occupied) of a cell (1 - grey/255).
   double occupancy(int row, int col) const { return 1.0 - grey.at<unsigned char>(row, col) / 255.0; }
+  /// The layer as the typed map the topology takes (the grey image shared, not copied).
+  MapImage image() const { return {grey, resolution, {origin_x, origin_y}, kind, source}; }
 };
 
-/// From an MRPT grid (as read by io::readGridMap, or built by the SLAM: io::MapKind::ProbabilisticGrid): the exact
+/// The layer of a typed map (as io::readMap returns it).
+MapLayer mapLayerFromImage(const MapImage& map);
+
+/// From an MRPT grid (as read by io::readGridMap, or built by the SLAM: MapKind::ProbabilisticGrid): the exact
 /// image io::gridToImage() gives.
-MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, io::MapKind kind);
+MapLayer mapLayerFromGrid(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& source, MapKind kind);
 
 /// Fast conversion of the SLAM particle map for live display (a probabilistic grid): covers the allocated tiles,
 /// unknown = 128.

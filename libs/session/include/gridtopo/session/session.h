@@ -12,7 +12,7 @@
 #include "gridtopo/eval/relations.h"
 #include "gridtopo/eval/relations_metric.h"
 #include "gridtopo/io/map_io.h"
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/places/model.h"
 #include "gridtopo/session/label_canvas.h"
@@ -57,7 +57,7 @@ struct Layers {
 
 struct NamedTrajectory {
   std::string path;
-  std::vector<io::TimedPose> poses;
+  std::vector<TimedPose> poses;
 };
 
 struct Selection {
@@ -98,7 +98,7 @@ class Session {
   // ---- what is open
   const MapLayer& map() const { return map_; }
   bool hasLog() const { return scans_ != nullptr; }
-  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
+  const std::vector<ScanRecord>& scans() const { return *scans_; }
   const std::string& logPath() const { return log_path_; }
   /// What the reader decided against the open log's word (CARMEN: units of PARAMs, contradicted max range, ...).
   const std::vector<std::string>& logWarnings() const { return log_warnings_; }
@@ -175,7 +175,7 @@ class Session {
   const MapLayer& labelsMap() const;
 
   MapLayer map_;
-  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
+  std::shared_ptr<const std::vector<ScanRecord>> scans_;
   std::string log_path_;
   std::vector<std::string> log_warnings_;
   std::vector<NamedTrajectory> trajectories_;

@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/slam_run.h"
@@ -48,7 +48,7 @@ struct SlamSnapshot {
   slam::GridMap best_map;      ///< shares its tiles with the filter (copy-on-write)
   /// The pose of every scan fed so far (RbpfSlam::trajectory()); filled when the run pauses, ends, and at
   /// most every RunnerOptions::trajectory_interval seconds while running (see trajectory_scans).
-  std::vector<io::TimedPose> trajectory;
+  std::vector<TimedPose> trajectory;
   std::size_t trajectory_scans = 0;  ///< scans_fed when `trajectory` was computed
   std::vector<slam::StepStats> stats;  ///< one per processed scan
 
@@ -72,7 +72,7 @@ class SlamRunner {
  public:
   /// Validates the options and builds the filter (throws gridtopo::InputError on bad options or an empty log).
   /// The runner starts paused; the worker thread waits for play() or step().
-  SlamRunner(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const slam::SlamOptions& options,
+  SlamRunner(std::shared_ptr<const std::vector<ScanRecord>> scans, const slam::SlamOptions& options,
              const RunnerOptions& runner = {});
   ~SlamRunner();  ///< stops and joins the worker
   SlamRunner(const SlamRunner&) = delete;
@@ -89,8 +89,8 @@ class SlamRunner {
   std::shared_ptr<const SlamSnapshot> snapshot() const;
   std::uint64_t snapshotVersion() const { return version_.load(); }
   const slam::SlamOptions& options() const { return options_; }
-  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
-  std::shared_ptr<const std::vector<io::ScanRecord>> scansPtr() const { return scans_; }
+  const std::vector<ScanRecord>& scans() const { return *scans_; }
+  std::shared_ptr<const std::vector<ScanRecord>> scansPtr() const { return scans_; }
   std::size_t scanLimit() const { return limit_; }
 
   /// Writes the run's output set (slam::writeSlamOutputs, whole or nothing) into `dir`, with `trajectory_header`
@@ -104,7 +104,7 @@ class SlamRunner {
   void publish(bool with_trajectory);
   bool idle() const;  // requires mu_
 
-  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
+  std::shared_ptr<const std::vector<ScanRecord>> scans_;
   slam::SlamOptions options_;
   RunnerOptions ropt_;
   std::size_t limit_ = 0;
@@ -122,7 +122,7 @@ class SlamRunner {
   // worker-only
   std::chrono::steady_clock::time_point last_snapshot_{}, last_trajectory_{};
   std::size_t peak_rss_ = 0;
-  std::vector<io::TimedPose> last_trajectory_poses_;
+  std::vector<TimedPose> last_trajectory_poses_;
   std::size_t last_trajectory_scans_ = 0;
   std::string error_;
   std::thread worker_;

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::sim {
@@ -63,10 +63,10 @@ struct SimOptions {
 };
 
 struct SimLog {
-  std::vector<io::ScanRecord> records;
+  std::vector<ScanRecord> records;
   std::vector<mrpt::math::TPose2D> truth;  ///< ground-truth robot pose of each record
   /// The ground truth with the records' timestamps, as written to trajectory files.
-  std::vector<io::TimedPose> timedTruth() const;
+  std::vector<TimedPose> timedTruth() const;
 };
 
 /// Senses along a given true path: scan i is taken at truth[i] at time times[i], its odometry is the previous

@@ -16,6 +16,6 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map);
 
 /// BGR picture of an occupancy grid (free white, occupied black, unknown grey) with `trajectory` drawn in red
 /// (and its start in green). Row 0 is the top of the map (largest y).
-cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<io::TimedPose>& trajectory = {});
+cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {});
 
 }  // namespace gridtopo::slam

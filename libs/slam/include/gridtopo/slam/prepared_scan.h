@@ -3,7 +3,7 @@
 // (robot frame, hit or free-only) and the subset of end points used for matching.
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/pose2.h"
 
@@ -62,6 +62,6 @@ constexpr double kNormalSpan = 0.2;
 /// The neighbours' RMS distance to the fitted line (m) up to which they count as one surface.
 constexpr double kNormalMaxRms = 0.02;
 
-PreparedScan prepareScan(const io::LaserScan& scan, const BeamOptions& o, double resolution);
+PreparedScan prepareScan(const LaserScan& scan, const BeamOptions& o, double resolution);
 
 }  // namespace gridtopo::slam

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/motion_model.h"
@@ -55,16 +55,16 @@ class RbpfSlam {
   void setInitialPose(const Pose2& pose);
   /// Before the first scan: inserts a scan taken at a known pose into the map every particle starts from
   /// (to continue mapping on top of a previous map).
-  void insertKnownScan(const Pose2& robot_pose, const io::LaserScan& scan);
+  void insertKnownScan(const Pose2& robot_pose, const LaserScan& scan);
 
   /// Feeds the next scan (log order). Returns true if it was processed by the filter (update policy): then, the
   /// paper's steps for every particle: predict with the odometry, scan-match, sample around the mode and fit the
   /// proposal, draw the pose and weight it, update the map; resample when N_eff < resample_threshold·N.
-  bool processScan(const io::ScanRecord& record);
+  bool processScan(const ScanRecord& record);
 
   /// A pose for every scan fed so far: processed scans from the best particle's path, the others from the
   /// neighbouring processed poses plus odometry (blended between the previous and the next processed scan).
-  std::vector<io::TimedPose> trajectory() const;
+  std::vector<TimedPose> trajectory() const;
   std::size_t bestParticleIndex() const;
   const Particle& bestParticle() const { return particles_[bestParticleIndex()]; }
   const std::vector<Particle>& particles() const { return particles_; }
@@ -95,13 +95,13 @@ class RbpfSlam {
     std::vector<std::size_t> group_of;  ///< particle -> group
   };
 
-  bool shouldProcess(const io::ScanRecord& r) const;
+  bool shouldProcess(const ScanRecord& r) const;
   /// The first processed scan: every particle at the initial pose, with the prior map plus the scan.
-  void startParticles(const io::ScanRecord& record, const PreparedScan& scan, std::size_t index);
-  Odometry odometrySinceLastStep(const io::ScanRecord& record) const;
+  void startParticles(const ScanRecord& record, const PreparedScan& scan, std::size_t index);
+  Odometry odometrySinceLastStep(const ScanRecord& record) const;
   /// Predict: each particle's motion increment u (the odometry with the particle's odometry scale, after the
   /// scale's random walk; without odometry a constant-velocity prediction from its last two poses).
-  std::vector<Pose2> predictWithOdometry(const io::ScanRecord& record, const Odometry& odo);
+  std::vector<Pose2> predictWithOdometry(const ScanRecord& record, const Odometry& odo);
   ProposalGroups groupParticles(bool has_odometry) const;
   /// Scan-match, sample around the mode and fit the proposal (planProposal), once per group, in parallel.
   std::vector<ProposalPlan> matchAndFitProposals(const ProposalGroups& groups, const std::vector<Pose2>& u,

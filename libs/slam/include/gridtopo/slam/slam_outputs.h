@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/trajectory_tree.h"
@@ -17,7 +17,7 @@
 namespace gridtopo::slam {
 
 /// The processed scans along the path that ends at `leaf` (the best particle's), at its poses: MRPT's simple map.
-mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<io::ScanRecord>& scans);
+mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<ScanRecord>& scans);
 
 /// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
 inline constexpr const char* kStatsColumns =
@@ -27,7 +27,7 @@ std::string statsRow(const StepStats& s);
 
 struct SlamOutputs {
   mrpt::maps::COccupancyGridMap2D grid;   ///< the best particle's map (toOccupancyGrid)
-  std::vector<io::TimedPose> trajectory;  ///< a pose for every scan
+  std::vector<TimedPose> trajectory;  ///< a pose for every scan
   std::vector<std::string> trajectory_header;  ///< '#' lines of trajectory.txt
   mrpt::maps::CSimpleMap simplemap;       ///< simpleMapOf
   std::string stats;                      ///< the text of stats.txt

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/slam_options.h"
 #include "gridtopo/slam/slam_outputs.h"
@@ -22,7 +22,7 @@ class SlamRun {
  public:
   /// A run over a log read whole (shared with the caller, e.g. the GUI, which draws its scans): its first
   /// `max_scans` scans, 0 = all. Throws InputError on bad options ("<options>" [slam] key) or an empty log.
-  SlamRun(std::shared_ptr<const std::vector<io::ScanRecord>> scans, const SlamOptions& options,
+  SlamRun(std::shared_ptr<const std::vector<ScanRecord>> scans, const SlamOptions& options,
           std::size_t max_scans = 0);
   /// A run without a log, fed scan by scan with feed() (the MRPT map builder). It keeps the ranges of the
   /// processed scans only (what the simple map needs); the other records keep their time and odometry.
@@ -38,13 +38,13 @@ class SlamRun {
   /// Feeds every remaining scan; `progress(fed, total)` every 64 scans and once at the end.
   void runToEnd(const std::function<void(std::size_t fed, std::size_t total)>& progress = {});
   /// A run without a log: appends `record` and feeds it. std::logic_error for a run over a log.
-  bool feed(io::ScanRecord record);
+  bool feed(ScanRecord record);
 
   bool atEnd() const { return fed_ >= limit_; }
   std::size_t scansFed() const { return fed_; }
   /// The scans this run feeds: min(max_scans, log size), or the scans appended so far by feed().
   std::size_t scanLimit() const { return limit_; }
-  const std::vector<io::ScanRecord>& scans() const { return *scans_; }
+  const std::vector<ScanRecord>& scans() const { return *scans_; }
   /// Wall time spent in the filter (s), pauses excluded.
   double filterSeconds() const { return filter_seconds_; }
 
@@ -71,8 +71,8 @@ class SlamRun {
   void requireFilter(const char* what) const;
 
   SlamOptions options_;
-  std::shared_ptr<const std::vector<io::ScanRecord>> scans_;
-  std::shared_ptr<std::vector<io::ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
+  std::shared_ptr<const std::vector<ScanRecord>> scans_;
+  std::shared_ptr<std::vector<ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
   std::unique_ptr<RbpfSlam> filter_;
   std::size_t limit_ = 0;
   std::size_t fed_ = 0;

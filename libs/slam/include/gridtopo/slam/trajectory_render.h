@@ -12,7 +12,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "gridtopo/io/scan_record.h"
+#include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/grid_map.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -37,7 +37,7 @@ struct LoopClosure {
 
 /// The first loop closure of a trajectory: the smallest `later` that lies within `radius` of a pose `earlier`
 /// after which the robot drove at least `min_travel` metres. nullopt if the trajectory never comes back.
-std::optional<LoopClosure> firstLoopClosure(const std::vector<io::TimedPose>& trajectory, double radius = 0.5,
+std::optional<LoopClosure> firstLoopClosure(const std::vector<TimedPose>& trajectory, double radius = 0.5,
                                             double min_travel = 30.0);
 
 struct TrajectoryRenderOptions {
@@ -63,7 +63,7 @@ struct TrajectoryMismatch : std::runtime_error {
 /// fed to the SLAM (trajectory.txt), in the log's order: pose k belongs to scan k, whose timestamp it must carry;
 /// a shorter trajectory (a run with --max-scans) renders its first scans. Throws TrajectoryMismatch otherwise.
 /// `inserted` (optional) receives the number of scans inserted.
-GridMap mapFromTrajectory(const std::vector<io::ScanRecord>& scans, const std::vector<io::TimedPose>& trajectory,
+GridMap mapFromTrajectory(const std::vector<ScanRecord>& scans, const std::vector<TimedPose>& trajectory,
                           const TrajectoryRenderOptions& options, std::size_t* inserted = nullptr);
 
 /// The window covering the allocated tiles of `map`.
@@ -95,8 +95,8 @@ struct LoopClosureRendering {
   GridMap map;            ///< every scan near the window
   std::size_t inserted = 0;
 };
-std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<io::ScanRecord>& scans,
-                                                      const std::vector<io::TimedPose>& trajectory,
+std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<ScanRecord>& scans,
+                                                      const std::vector<TimedPose>& trajectory,
                                                       const TrajectoryRenderOptions& options, double size,
                                                       double radius = 0.5, double min_travel = 30.0);
 

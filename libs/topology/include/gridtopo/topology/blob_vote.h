@@ -44,24 +44,14 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
 
 /// Vote: in every area of `areas` (CV_32S, > 0), the cells labelled room or corridor in `labels` (CV_8U) all take
 /// the one of the two whose summed probability (`cell_probs`, CV_32FC3) over those cells is larger, provided its
-/// share is at least `min_share`; doorway cells and cells outside areas keep their labels. Ties go to room.
+/// share is at least `min_share`; doorway cells (unless `vote_doorway_cells`: then they count and are voted too)
+/// and cells outside areas keep their labels. Ties go to room.
 cv::Mat voteLabelsInAreas(const cv::Mat& labels, const cv::Mat& areas, const cv::Mat& cell_probs,
-                          double min_share = 0.5);
+                          double min_share = 0.5, bool vote_doorway_cells = false);
 
 /// Step 7b, the blob vote: geometricBlobs of the labelled cells of `labels` (CV_8U, kNoLabel = not free), then
 /// voteLabelsInAreas with the per-cell relaxed probabilities (cellProbabilities of lattice / lattice_probs).
 cv::Mat voteInGeometricBlobs(const cv::Mat& labels, double resolution, const BlobVoteOptions& options,
                              const places::Lattice& lattice, const cv::Mat& lattice_probs);
-
-/// Ground-truth regions: 8-connected components of equal place code in `truth_codes` (CV_8U, codes 77/115/179)
-/// restricted to cells with a label 0..2 in `labels`. CV_32S ids 1..K; `region_label` receives each id's label.
-cv::Mat groundTruthRegions(const cv::Mat& truth_codes, const cv::Mat& labels, std::vector<int>* region_label = nullptr);
-
-/// Oracle region vote (evaluation diagnostic): every labelled cell of a room or corridor ground-truth region
-/// takes the room / corridor majority (summed `cell_probs`) of the region; with `keep_predicted_doorways`, cells
-/// predicted doorway keep that label (the ceiling of a vote that, like the blob vote, leaves doorways alone).
-/// Cells of doorway ground-truth regions keep their predicted label.
-cv::Mat oracleRegionVote(const cv::Mat& truth_codes, const cv::Mat& labels, const cv::Mat& cell_probs,
-                         bool keep_predicted_doorways = false);
 
 }  // namespace gridtopo::topology

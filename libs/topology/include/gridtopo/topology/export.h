@@ -29,11 +29,6 @@ cv::Mat segmentationImage16(const cv::Mat& segmentation);
 /// Saturated label colours (BGR) of the evaluation views: room blue, corridor green, doorway red.
 inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
-/// Label errors for viewing: non-free cells dark grey, free cells white, labelled free cells pale in their true
-/// label's colour when `predicted` (CV_8U labels 0..2, else none) agrees with `truth_codes` (77 / 115 / 179), in the
-/// saturated colour of the *predicted* label when it does not (room blue, corridor green, doorway red), black when
-/// there is no prediction.
-cv::Mat labelErrorOverlay(const places::OccupancyImage& occ, const cv::Mat& truth_codes, const cv::Mat& predicted);
 
 /// A colour rendering of a segmentation (random but fixed colour per id) for viewing.
 cv::Mat colourSegmentation(const cv::Mat& segmentation);

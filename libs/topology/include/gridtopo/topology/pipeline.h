@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/map_image.h"
 #include "gridtopo/core/option_schema.h"
-#include "gridtopo/io/map_kind.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
@@ -50,14 +50,14 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
 
-  /// The free threshold for a map of kind `kind` (a file's: io::mapFileKind): grid_free_threshold for probabilistic
+  /// The free threshold for a map of kind `kind` (MapImage::kind, as the map reader or builder set it): grid_free_threshold for probabilistic
   /// grids (.gridmap(.gz), the SLAM's map), free_threshold otherwise (plain images and ROS YAML maps, whose readers
   /// already give 0 / 205 / 254-255 greys).
-  int freeThresholdFor(io::MapKind kind) const;
+  int freeThresholdFor(MapKind kind) const;
 
   /// The free-space opening radius for a map of kind `kind`: free_opening_radius for plain images,
   /// grid_free_opening_radius for ROS maps and probabilistic grids.
-  double freeOpeningRadiusFor(io::MapKind kind) const;
+  double freeOpeningRadiusFor(MapKind kind) const;
 };
 
 /// The key table of [topology]: the keys TopologyOptions holds itself ([relaxation] and [correction] have their own:
@@ -88,11 +88,10 @@ struct TopologyResult {
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
 };
 
-/// The occupancy image that labelling sees: places::occupancyFromGrey with `free_threshold`, then
-/// places::openFreeSpace with `opening_radius`. Throws InputError (naming `source`) for an unusable image or a map
-/// without free cells.
-places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resolution, const std::string& source,
-                                            int free_threshold, double opening_radius);
+/// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
+/// (o.freeThresholdFor(map.kind)), then places::openFreeSpace with o.freeOpeningRadiusFor(map.kind). Throws
+/// InputError (naming map.source) for an unusable image or a map without free cells.
+places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o);
 
 /// Steps 6-8 of the method, the one call every app and the GUI make after labelling: builds regions, graph and
 /// segmentation from per-cell labels (e.g. LabellingResult::labels) with the run's options (`o.correction`,
@@ -104,7 +103,7 @@ places::OccupancyImage occupancyForTopology(const cv::Mat& grey, double resoluti
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0});
 
-/// A whole topology run on one map (grey image, resolution, its kind, the world position of its lower-left corner):
+/// A whole topology run on one typed map (grey image, resolution, world position of its lower-left corner, kind):
 /// the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces), then the regions and
 /// graph (buildTopology). gridtopo-topology, the GUI and the topology map builder call this one function.
 struct MapTopology {
@@ -112,8 +111,7 @@ struct MapTopology {
   places::LabellingResult labelling;
   TopologyResult topo;
 };
-MapTopology topologyOfMap(const cv::Mat& grey, double resolution, io::MapKind kind, cv::Point2d origin,
-                          const std::string& source, const places::PlacesModel& model, const TopologyOptions& o,
+MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
                           bool keep_scans_and_features = false);
 

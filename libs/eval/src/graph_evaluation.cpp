@@ -1,4 +1,4 @@
-#include "gridtopo/topology/graph_evaluation.h"
+#include "gridtopo/eval/graph_evaluation.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -10,7 +10,9 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/pipeline.h"
 
-namespace gridtopo::topology {
+namespace gridtopo::eval {
+
+using namespace gridtopo::topology;
 
 namespace {
 constexpr int kRoom = static_cast<int>(places::PlaceLabel::Room);
@@ -300,4 +302,4 @@ std::string GraphScore::toJson() const {
   return o.str();
 }
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

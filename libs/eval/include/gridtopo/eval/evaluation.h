@@ -7,7 +7,7 @@
 
 #include "gridtopo/places/place_label.h"
 
-namespace gridtopo::topology {
+namespace gridtopo::eval {
 
 struct ConfusionMatrix {
   std::array<std::array<long long, places::kNumLabels>, places::kNumLabels> count{};  ///< [truth][predicted]
@@ -37,4 +37,4 @@ struct SegmentationScore {
 /// segment / room size. Both images CV_32S with 0 = nothing, same size.
 SegmentationScore scoreSegmentation(const cv::Mat& segments, const cv::Mat& gt_rooms);
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

@@ -17,10 +17,14 @@
 #include <vector>
 
 #include "gridtopo/topology/graph.h"
-#include "gridtopo/topology/reference_alignment.h"
+#include "gridtopo/eval/reference_alignment.h"
 #include "gridtopo/topology/regions.h"
 
 namespace gridtopo::topology {
+struct TopologyOptions;
+}
+
+namespace gridtopo::eval {
 
 /// The plan, in the map's frame.
 struct PlanGraph {
@@ -81,13 +85,12 @@ struct GraphScore {
 };
 
 /// Scores the graph `g` whose regions are `regions` (the region map it was built from) against `plan`.
-GraphScore scoreGraph(const TopologicalGraph& g, const RegionMap& regions, const PlanGraph& plan,
+GraphScore scoreGraph(const topology::TopologicalGraph& g, const topology::RegionMap& regions, const PlanGraph& plan,
                       const GraphScoreOptions& options = {});
 
-struct TopologyOptions;
 
 struct GraphComparison {
-  TopologicalGraph graph;   ///< the graph of the labels, rebuilt as gridtopo-topology builds it
+  topology::TopologicalGraph graph;   ///< the graph of the labels, rebuilt as gridtopo-topology builds it
   GraphScore score;         ///< that graph against the plan
   GraphScore plan_labels;   ///< the ceiling: the graph the same steps make of the plan's own labels on the map
 };
@@ -97,8 +100,8 @@ struct GraphComparison {
 /// against the plan (planGraphFromReference), and the ceiling: buildTopology of planLabelsOnMap with `options`
 /// (blob vote off: it needs a labelling), scored the same way.
 GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& labels, double resolution,
-                                     const TopologyOptions& options, const cv::Mat& reference_free,
+                                     const topology::TopologyOptions& options, const cv::Mat& reference_free,
                                      const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
                                      const ReferenceAlignment& alignment);
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

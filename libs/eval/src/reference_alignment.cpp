@@ -1,4 +1,4 @@
-#include "gridtopo/topology/reference_alignment.h"
+#include "gridtopo/eval/reference_alignment.h"
 
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -9,7 +9,7 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/place_label.h"
 
-namespace gridtopo::topology {
+namespace gridtopo::eval {
 
 namespace {
 // Free mask as a smooth float image: ECC needs gradients away from the walls, so the masks are blurred.
@@ -114,4 +114,4 @@ ReferenceScore scoreAgainstReference(const cv::Mat& map_free, const cv::Mat& lab
   return r;
 }
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

@@ -1,13 +1,14 @@
 #pragma once
-// The one stream every gridtopo algorithm consumes: laser scans with the robot's odometry at scan time,
-// whatever the source log (CARMEN .clf/.log/.gz, MRPT rawlog in either layout).
+// The data every gridtopo algorithm consumes, whatever the source log (CARMEN .clf/.log/.gz, MRPT rawlog in either
+// layout; io holds the readers): laser scans with the robot's odometry at scan time, odometry readings, and timed
+// poses (trajectories).
 #include <mrpt/math/TPose2D.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-namespace gridtopo::io {
+namespace gridtopo {
 
 /// One planar laser scan as recorded, in the laser's own frame.
 /// Beam k points at angle start_angle + k * angle_increment (radians, counter-clockwise, i.e. right to left
@@ -47,4 +48,10 @@ struct OdometryReading {
   std::size_t source_index = 0;
 };
 
-}  // namespace gridtopo::io
+/// A pose with its time (an estimated trajectory, odometry as a function of time).
+struct TimedPose {
+  double timestamp = 0.0;
+  mrpt::math::TPose2D pose{0, 0, 0};
+};
+
+}  // namespace gridtopo

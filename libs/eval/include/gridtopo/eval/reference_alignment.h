@@ -11,9 +11,9 @@
 
 #include <string>
 
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
 
-namespace gridtopo::topology {
+namespace gridtopo::eval {
 
 struct ReferenceAlignment {
   cv::Matx23d map_to_reference;  ///< affine warp: map pixel (x, y) -> reference pixel
@@ -44,4 +44,4 @@ ReferenceScore scoreAgainstReference(const cv::Mat& map_free, const cv::Mat& lab
                                      const cv::Mat& reference_rooms, int min_room_cells = 100,
                                      const std::string& source = "<reference>");
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

@@ -7,12 +7,13 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
 #include "gridtopo/topology/pipeline.h"
-#include "gridtopo/topology/reference_alignment.h"
+#include "gridtopo/eval/reference_alignment.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
+using namespace gridtopo::eval;
 
 namespace {
 const std::string kPlaces = std::string(GRIDTOPO_DATA_DIR) + "/places";
@@ -92,12 +93,12 @@ TEST(ReferenceAlignment, EmptyMasksAreClearErrors) {
 
 TEST(TopologyOptions, FreeOpeningKeysAreReadCheckedAndPickedByMapKind) {
   TopologyOptions opt;
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::PlainImage), 0.0);
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::RosMap), 0.05);
-  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(io::MapKind::ProbabilisticGrid), 0.05);
-  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::PlainImage), 250);
-  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::RosMap), 250);
-  EXPECT_EQ(opt.freeThresholdFor(io::MapKind::ProbabilisticGrid), 204);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(MapKind::PlainImage), 0.0);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(MapKind::RosMap), 0.05);
+  EXPECT_DOUBLE_EQ(opt.freeOpeningRadiusFor(MapKind::ProbabilisticGrid), 0.05);
+  EXPECT_EQ(opt.freeThresholdFor(MapKind::PlainImage), 250);
+  EXPECT_EQ(opt.freeThresholdFor(MapKind::RosMap), 250);
+  EXPECT_EQ(opt.freeThresholdFor(MapKind::ProbabilisticGrid), 204);
   const std::string ini = testing::TempDir() + "/opening.ini";
   for (const std::string bad : {"grid_free_opening_radius = -0.1", "free_opening_radius = 2", "free_opening_radius = x"}) {
     FILE* f = std::fopen(ini.c_str(), "w");

@@ -1,10 +1,10 @@
-#include "gridtopo/topology/evaluation.h"
+#include "gridtopo/eval/evaluation.h"
 
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-namespace gridtopo::topology {
+namespace gridtopo::eval {
 
 void ConfusionMatrix::add(const cv::Mat& truth, const cv::Mat& pred) {
   CV_Assert(truth.size() == pred.size() && truth.type() == CV_8U && pred.type() == CV_8U);
@@ -121,4 +121,4 @@ std::string SegmentationScore::toJson() const {
   return o.str();
 }
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo::eval

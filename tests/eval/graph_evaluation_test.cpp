@@ -5,11 +5,12 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/graph.h"
-#include "gridtopo/topology/graph_evaluation.h"
+#include "gridtopo/eval/graph_evaluation.h"
 #include "gridtopo/topology/graph_rules.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
+using namespace gridtopo::eval;
 
 namespace {
 constexpr double kRes = 0.05;

@@ -1,0 +1,52 @@
+#pragma once
+// gridtopo-topology-compare's measurement: a gridtopo-topology result (labels.png, segmentation.png, topology.json
+// of an output directory) on a map, scored against a labelled reference plan of the same building drawn in another
+// frame (reference_alignment.h): cell-label accuracy, room segmentation and the graph against the plan
+// (graph_evaluation.h), on the map's free cells.
+#include <opencv2/core.hpp>
+
+#include <string>
+
+#include "gridtopo/eval/graph_evaluation.h"
+#include "gridtopo/eval/reference_alignment.h"
+#include "gridtopo/places/occupancy.h"
+#include "gridtopo/topology/pipeline.h"
+
+namespace gridtopo::eval {
+
+/// The reference plan: its map (free = grey > 250), place labels (77 / 115 / 179) and room-segmentation ground
+/// truth (rooms white), all in one frame.
+struct ReferencePlan {
+  std::string map, labels, segmentation;
+};
+
+struct TopologyComparison {
+  std::string map;                ///< the map's path, as given
+  places::OccupancyImage occ;     ///< the map's cells as thresholded (no free-space opening)
+  cv::Mat map_free;               ///< CV_8U mask of occ's free cells
+  cv::Mat labels, segmentation;   ///< the topology's labels (0..2 / kNoLabel) and segments (CV_32S)
+  cv::Mat reference_codes, reference_rooms;  ///< the plan's label codes and rooms, in the plan's frame
+  ReferenceScore score;           ///< alignment, labels and segmentation against the plan
+  GraphComparison graph;          ///< the graph of the labels against the plan, and the plan labels' ceiling
+};
+
+/// Reads the map (io::readMap: its kind picks the free threshold of `options`) and the topology directory
+/// `topology_dir`, aligns the plan and scores. When topology_dir holds topology.json, its node and edge counts must
+/// equal the graph the labels give with `options` (InputError otherwise: the INI gridtopo-topology ran with is
+/// needed). InputError naming the file for missing or unreadable images and mismatched sizes.
+TopologyComparison compareWithReference(const std::string& map, const std::string& topology_dir,
+                                        const ReferencePlan& plan, const topology::TopologyOptions& options);
+
+/// The JSON of gridtopo-topology-compare (format "gridtopo-topology-compare").
+std::string comparisonJson(const TopologyComparison& c);
+
+/// One line: alignment correlation, cell accuracy and recalls, segmentation, rooms attached and loops closed.
+std::string comparisonSummary(const TopologyComparison& c);
+
+/// Our segments in colours with the plan's room borders (warped to the map) in red.
+cv::Mat comparisonOverlay(const TopologyComparison& c);
+
+/// The label errors (labelErrorOverlay) against the plan's labels warped to the map.
+cv::Mat comparisonLabelErrors(const TopologyComparison& c);
+
+}  // namespace gridtopo::eval

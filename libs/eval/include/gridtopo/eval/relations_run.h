@@ -1,0 +1,73 @@
+#pragma once
+// One gridtopo-eval run: an estimate (a trajectory file, a CARMEN log with corrected poses, or the raw log's own
+// odometry as the no-SLAM baseline) scored against ground-truth relations with the relations metric, the gaps
+// carried over by the raw log's odometry (doc/evaluation.md).
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/eval/corrected_log.h"
+#include "gridtopo/eval/relations.h"
+#include "gridtopo/eval/relations_metric.h"
+#include "gridtopo/io/carmen_log.h"
+
+namespace gridtopo::eval {
+
+struct RelationsRunSpec {
+  std::string relations;      ///< ground-truth relations file (plain or .gz)
+  std::string log;            ///< raw CARMEN log: odometry for the gap correction (empty: none)
+  std::string trajectory;     ///< estimate: 'timestamp x y theta' lines ...
+  std::string corrected_log;  ///< ... or a CARMEN log with corrected poses (needs `log`) ...
+  bool baseline_odometry = false;  ///< ... or the raw log's odometry (needs `log`)
+  RelationsMetricOptions metric;
+  CorrectedLogOptions corrected;
+  io::CarmenReadOptions read;  ///< how the CARMEN logs are read (skip_bad_lines)
+};
+
+/// The [relations_metric] section of an INI file (config-ini/eval.ini); InputError naming the file and the key.
+RelationsMetricOptions loadRelationsMetricIni(const std::string& path);
+
+/// gridtopo-eval's flags as given (empty / unset = not given).
+struct RelationsFlags {
+  std::string odometry;  ///< auto | odom | laser (overrides the INI)
+  std::string gfs_match = "auto", gfs_pose = "robot";
+  bool interpolate = false, interpolate_estimate = false;  ///< switch on (never off)
+  std::optional<double> max_gap;
+};
+
+/// Applies the flags over spec.metric (e.g. read by loadRelationsMetricIni) and spec.corrected. UsageError naming
+/// the flag for an unknown word or a negative max gap.
+void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& flags);
+
+/// UsageError unless exactly one estimate is named, and the corrected log and the baseline have the raw log.
+void checkRelationsRunSpec(const RelationsRunSpec& spec);
+
+struct RelationsRun {
+  std::size_t relation_count = 0;
+  /// What was scored, in order: relations, log, odometry (the source used), interpolation flags, max gap, the
+  /// estimate (trajectory / gfs + its time match and pose), estimated_poses.
+  std::vector<std::pair<std::string, std::string>> info;
+  RelationsResult result;
+};
+
+/// Reads the relations, the raw log (its ODOM lines or laser-line odometry as spec.metric.odometry says; skipped
+/// malformed lines are reported to `log`) and the estimate, then evaluateRelations. InputError for an empty
+/// relations file, an estimate without poses, or --odometry odom on a log without ODOM lines.
+RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log);
+
+/// What gridtopo-eval prints on stdout: the relations line, the info lines and formatSummary.
+std::string relationsRunText(const RelationsRun& run);
+
+/// Stages the JSON (formatJson with the run's info) and the per-relation errors (formatErrors) in `outputs`; an
+/// empty path writes nothing.
+void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
+                           const std::string& errors_path);
+
+/// The warnings of a run (relation endpoints left uncorrected, a relation far from every estimated pose), each a
+/// line with its newline; "" when there are none.
+std::string relationsRunWarnings(const RelationsRun& run);
+
+}  // namespace gridtopo::eval

@@ -1,0 +1,115 @@
+#include "gridtopo/eval/reference_comparison.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/eval/label_views.h"
+#include "gridtopo/eval/lomo_report.h"
+#include "gridtopo/io/map_io.h"
+#include "gridtopo/places/labelling.h"
+#include "gridtopo/topology/export.h"
+
+namespace gridtopo::eval {
+
+namespace {
+
+cv::Mat readImage(const std::string& path, int flags) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "file not found");
+  cv::Mat m = cv::imread(path, flags);
+  if (m.empty()) throw InputError(path, "cannot read the image (missing file or unknown format)");
+  return m;
+}
+
+}  // namespace
+
+TopologyComparison compareWithReference(const std::string& map, const std::string& dir, const ReferencePlan& plan,
+                                        const topology::TopologyOptions& opt) {
+  TopologyComparison c;
+  c.map = map;
+  const MapImage m = io::readMap(map, io::MapReadOptions{});
+  // The map's free cells as thresholded, without the free-space opening: the scored area does not depend on it.
+  c.occ = places::occupancyFromMap(m, opt.freeThresholdFor(m.kind));
+  c.map_free = c.occ.cells == places::kFree;
+
+  const cv::Mat codes = readImage(dir + "/labels.png", cv::IMREAD_GRAYSCALE);
+  const cv::Mat seg16 = readImage(dir + "/segmentation.png", cv::IMREAD_UNCHANGED);
+  if (codes.size() != c.map_free.size() || seg16.size() != c.map_free.size())
+    throw InputError(dir, "labels.png / segmentation.png are not the size of the map (" +
+                              std::to_string(c.map_free.cols) + "x" + std::to_string(c.map_free.rows) + ")");
+  c.labels = places::labelsFromCodes(codes);
+  seg16.convertTo(c.segmentation, CV_32S);
+
+  const cv::Mat rmap = readImage(plan.map, cv::IMREAD_GRAYSCALE);
+  c.reference_codes = readImage(plan.labels, cv::IMREAD_GRAYSCALE);
+  c.reference_rooms = groundTruthRooms(readImage(plan.segmentation, cv::IMREAD_UNCHANGED));
+  if (c.reference_codes.size() != rmap.size() || c.reference_rooms.size() != rmap.size())
+    throw InputError(plan.labels, "reference map, labels and segmentation differ in size");
+  const cv::Mat ref_free = rmap > 250;
+
+  c.score = scoreAgainstReference(c.map_free, c.labels, c.segmentation, ref_free, c.reference_codes,
+                                  c.reference_rooms, 100, plan.map);
+  // The graph as gridtopo-topology built it from labels.png (the same INI is needed: checked on topology.json).
+  c.graph = compareGraphWithPlan(c.map_free, c.labels, m.resolution, opt, ref_free, c.reference_codes,
+                                 c.reference_rooms, c.score.alignment);
+  if (std::filesystem::is_regular_file(dir + "/topology.json")) {
+    const auto written = topology::graphFromJson(dir + "/topology.json");
+    const auto& g = c.graph.graph;
+    if (written.nodes.size() != g.nodes.size() || written.edges.size() != g.edges.size())
+      throw InputError(dir + "/topology.json", 0, "nodes",
+                       std::to_string(written.nodes.size()) + " nodes, " + std::to_string(written.edges.size()) +
+                           " edges, but labels.png with this INI gives " + std::to_string(g.nodes.size()) + " and " +
+                           std::to_string(g.edges.size()) + ": use the INI gridtopo-topology ran with");
+  }
+  return c;
+}
+
+std::string comparisonJson(const TopologyComparison& c) {
+  const auto& s = c.score;
+  const auto& a = s.alignment;
+  std::ostringstream js;
+  js << std::setprecision(6) << "{\n  \"format\": \"gridtopo-topology-compare\",\n  \"map\": \"" << c.map
+     << "\",\n  \"alignment\": {\"correlation\": " << a.correlation << ", \"start\": " << a.start
+     << ", \"map_to_reference\": [" << a.map_to_reference(0, 0) << ", " << a.map_to_reference(0, 1) << ", "
+     << a.map_to_reference(0, 2) << ", " << a.map_to_reference(1, 0) << ", " << a.map_to_reference(1, 1) << ", "
+     << a.map_to_reference(1, 2) << "]},\n  \"cell_accuracy\": " << s.labels.accuracy()
+     << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson()
+     << ",\n  \"graph\": " << c.graph.score.toJson() << ",\n  \"graph_of_plan_labels\": "
+     << c.graph.plan_labels.toJson() << "\n}\n";
+  return js.str();
+}
+
+std::string comparisonSummary(const TopologyComparison& c) {
+  const auto& s = c.score;
+  const auto &gs = c.graph.score, &ceiling = c.graph.plan_labels;
+  std::ostringstream o;
+  o << "alignment correlation " << std::setprecision(3) << s.alignment.correlation << "; cell accuracy "
+    << percent(s.labels.accuracy()) << " % (room / corridor / doorway recall " << percent(s.labels.recall(0))
+    << " / " << percent(s.labels.recall(1)) << " / " << percent(s.labels.recall(2)) << " %); segmentation: "
+    << s.segmentation.segments << " segments, " << s.segmentation.rooms << " rooms, recall "
+    << percent(s.segmentation.recall) << " %, precision " << percent(s.segmentation.precision) << " %; graph: "
+    << gs.attached << " of " << gs.plan_rooms << " plan rooms one room node attached through a doorway ("
+    << percent(gs.attachedFraction()) << " %), " << gs.loops_closed << " of " << gs.plan_loops
+    << " plan corridor loops a cycle of corridor nodes (with the plan's labels: "
+    << percent(ceiling.attachedFraction()) << " %, " << ceiling.loops_closed << " of " << ceiling.plan_loops << ")";
+  return o.str();
+}
+
+cv::Mat comparisonOverlay(const TopologyComparison& c) {
+  cv::Mat img = topology::colourSegmentation(c.segmentation);
+  const cv::Mat r = warpReferenceToMap(c.reference_rooms, c.score.alignment, c.map_free.size());
+  for (int y = 1; y < r.rows; ++y)
+    for (int x = 1; x < r.cols; ++x)
+      if (r.at<int>(y, x) != r.at<int>(y - 1, x) || r.at<int>(y, x) != r.at<int>(y, x - 1))
+        img.at<cv::Vec3b>(y, x) = cv::Vec3b(0, 0, 255);
+  return img;
+}
+
+cv::Mat comparisonLabelErrors(const TopologyComparison& c) {
+  const cv::Mat truth = warpReferenceToMap(c.reference_codes, c.score.alignment, c.map_free.size());
+  return labelErrorOverlay(c.occ, truth, c.labels);
+}
+
+}  // namespace gridtopo::eval

@@ -1,0 +1,148 @@
+#include "gridtopo/eval/relations_run.h"
+
+#include <mrpt/config/CConfigFile.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/error.h"
+#include "gridtopo/eval/odometry_track.h"
+#include "gridtopo/eval/report.h"
+#include "gridtopo/io/trajectory_io.h"
+
+namespace gridtopo::eval {
+
+RelationsMetricOptions loadRelationsMetricIni(const std::string& path) {
+  RelationsMetricOptions opt;
+  if (!std::filesystem::exists(path)) throw InputError(path, "cannot open INI file");
+  mrpt::config::CConfigFile ini(path);
+  try {
+    opt.loadFromConfigFile(ini, "relations_metric");
+  } catch (const InputError& e) {
+    throw InputError(path, 0, "relations_metric." + e.field(), e.message());
+  }
+  return opt;
+}
+
+void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& f) {
+  const auto parsed = [](const char* flag, auto parse, const std::string& v) {
+    try {
+      return parse(v);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string(flag) + ": " + e.what());
+    }
+  };
+  RelationsMetricOptions& opt = spec.metric;
+  if (!f.odometry.empty()) opt.odometry = parsed("--odometry", odometrySourceFromString, f.odometry);
+  if (f.interpolate) opt.interpolate_odometry = true;
+  if (f.interpolate_estimate) opt.interpolate_estimate = true;
+  if (f.max_gap) {
+    if (!(*f.max_gap >= 0.0)) throw UsageError("--max-gap must be >= 0");
+    opt.max_time_gap = *f.max_gap;
+  }
+  spec.corrected.match = parsed("--gfs-match", correctedTimeMatchFromString, f.gfs_match);
+  if (f.gfs_pose == "laser") spec.corrected.pose = CorrectedPose::Laser;
+  else if (f.gfs_pose != "robot") throw UsageError("--gfs-pose must be robot or laser");
+}
+
+void checkRelationsRunSpec(const RelationsRunSpec& s) {
+  const int sources = !s.trajectory.empty() + !s.corrected_log.empty() + s.baseline_odometry;
+  if (sources != 1) throw UsageError("give exactly one estimate: --trajectory, --gfs or --baseline-odometry");
+  if ((!s.corrected_log.empty() || s.baseline_odometry) && s.log.empty())
+    throw UsageError("--gfs and --baseline-odometry need the raw log (--log)");
+}
+
+namespace {
+void reportSkips(const io::CarmenLog& l, std::ostream& log) {
+  if (l.skipped_lines == 0) return;
+  log << l.path << ": skipped " << l.skipped_lines << " malformed line(s)\n";
+  for (const auto& s : l.skipped) log << "  " << s << "\n";
+}
+}  // namespace
+
+RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
+  RelationsRun run;
+  auto& info = run.info;
+  const RelationsMetricOptions& opt = spec.metric;
+  info.emplace_back("relations", spec.relations);
+  const auto rels = readRelations(spec.relations);
+  if (rels.empty()) throw InputError(spec.relations, "no relations in the file");
+  run.relation_count = rels.size();
+
+  io::CarmenLog raw;
+  OdometryTrack odom;
+  if (!spec.log.empty()) {
+    raw = io::readCarmenLog(spec.log, spec.read);
+    reportSkips(raw, log);
+    OdometrySource used = opt.odometry;
+    odom = OdometryTrack::fromScans(raw.scans, raw.odometry, opt.odometry, &used);
+    if (used == OdometrySource::OdomLines && raw.odometry.empty())
+      throw InputError(spec.log, 0, "ODOM", "--odometry odom asked for, but the log has no ODOM lines");
+    info.emplace_back("log", spec.log);
+    info.emplace_back("odometry", toString(used));
+  } else {
+    info.emplace_back("odometry", "none");
+  }
+  info.emplace_back("odometry_interpolated", opt.interpolate_odometry ? "true" : "false");
+  info.emplace_back("estimate_interpolated", opt.interpolate_estimate ? "true" : "false");
+  info.emplace_back("max_time_gap_s", io::formatDouble(opt.max_time_gap));
+
+  std::vector<TimedPose> estimate;
+  if (!spec.trajectory.empty()) {
+    estimate = io::readTrajectory(spec.trajectory);
+    if (estimate.empty()) throw InputError(spec.trajectory, "the trajectory has no poses");
+    info.emplace_back("trajectory", spec.trajectory);
+  } else if (!spec.corrected_log.empty()) {
+    const io::CarmenLog corrected = io::readCarmenLog(spec.corrected_log, spec.read);
+    reportSkips(corrected, log);
+    CorrectedTimeMatch used = spec.corrected.match;
+    estimate = correctedTrajectory(corrected.scans, corrected.path, raw.scans, raw.path, spec.corrected, &used);
+    info.emplace_back("gfs", spec.corrected_log);
+    info.emplace_back("gfs_time_match", toString(used));
+    info.emplace_back("gfs_pose", spec.corrected.pose == CorrectedPose::Laser ? "laser" : "robot");
+  } else {
+    for (const auto& s : raw.scans)
+      if (s.has_odometry) estimate.push_back({s.scan.timestamp, s.odometry});
+    if (estimate.empty()) throw InputError(spec.log, "the log has no odometry in its laser lines");
+    info.emplace_back("trajectory", "baseline: odometry of the laser lines of " + spec.log);
+  }
+  info.emplace_back("estimated_poses", std::to_string(estimate.size()));
+  run.result = evaluateRelations(estimate, rels, odom.empty() ? nullptr : &odom, opt);
+  return run;
+}
+
+std::string relationsRunText(const RelationsRun& run) {
+  std::ostringstream o;
+  o << "relations:  " << run.info.front().second << " (" << run.relation_count << ")\n";
+  for (const auto& [k, v] : run.info)
+    if (k != "relations") o << k << ": " << v << "\n";
+  o << formatSummary(run.result);
+  return o.str();
+}
+
+void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
+                           const std::string& errors_path) {
+  if (!json_path.empty()) {
+    const std::string text = formatJson(run.result, run.info);
+    outputs.write(json_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
+  }
+  if (!errors_path.empty()) {
+    const std::string text = formatErrors(run.result);
+    outputs.write(errors_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
+  }
+}
+
+std::string relationsRunWarnings(const RelationsRun& run) {
+  std::ostringstream o;
+  if (run.result.endpoints_uncorrected)
+    o << "warning: " << run.result.endpoints_uncorrected
+      << " relation endpoints are further than --max-gap from every estimated pose and there is no "
+         "odometry (--log) to correct them\n";
+  if (run.result.max_gap > 60.0)
+    o << "warning: a relation timestamp is " << run.result.max_gap
+      << " s from the nearest estimated pose: are the trajectory's timestamps the log's ipc timestamps?\n";
+  return o.str();
+}
+
+}  // namespace gridtopo::eval

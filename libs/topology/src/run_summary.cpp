@@ -1,0 +1,29 @@
+#include "gridtopo/topology/run_summary.h"
+
+#include <sstream>
+
+namespace gridtopo::topology {
+
+std::string resolutionWarning(double resolution, const places::PlacesModel& model) {
+  if (!(resolution > model.scan.lattice_spacing * 1.5 && model.scan.lattice_spacing > 0)) return "";
+  std::ostringstream o;
+  o << "warning: map resolution " << resolution << " m is coarser than the model's lattice ("
+    << model.scan.lattice_spacing << " m); results may differ from training\n";
+  return o.str();
+}
+
+std::string runSummary(const MapTopology& run, const std::string& source, double seconds) {
+  const auto& lab = run.labelling;
+  int counts[places::kNumLabels] = {0, 0, 0};
+  for (const auto& n : run.topo.graph.nodes) counts[n.label]++;
+  std::ostringstream o;
+  o << source << ": " << run.occ.cols() << "x" << run.occ.rows() << " cells, " << lab.lattice.samples.size()
+    << " classified, relaxation " << lab.relaxation.iterations << " iterations; " << counts[0] << " rooms, "
+    << counts[1] << " corridors, " << counts[2] << " doorways, " << run.topo.graph.edges.size() << " edges, "
+    << segmentCount(run.topo.segmentation) << " segments; " << seconds << " s (scans " << lab.seconds_scans
+    << ", features " << lab.seconds_features << ", classify " << lab.seconds_classify << ", relax "
+    << lab.seconds_relax << ")\n";
+  return o.str();
+}
+
+}  // namespace gridtopo::topology
