@@ -172,6 +172,12 @@ int main(int argc, char** argv) {
       }
       bar.finish();
     }
+    // Issue 15: the simulated SLAM-like maps of the plans ([training] simulated_maps), trained on in every fold but
+    // the one of their own building.
+    std::vector<std::optional<places::MapSamples>> sim_samples(files.size());
+    for (std::size_t i = 0; i < files.size() && !fixed_model; ++i)
+      if (const auto sim = places::loadSimulatedLabelledMap(files[i], train, topo.resolution))
+        sim_samples[i] = places::computeSamples(sim->occ, &sim->codes, scan, feat);
     topology::ConfusionMatrix total_before, total_after, total_corrected, total_voted, total_blob, total_oracle,
         total_oracle_keep, total_blob_oracle;
     const bool vote = topo.seg_rules.segment_vote, blob = topo.blob_vote.enabled;
@@ -188,6 +194,8 @@ int main(int argc, char** argv) {
         for (std::size_t j = 0; j < files.size(); ++j)
           if (j != i) tr.push_back(&samples[j]);
         if (tr.empty()) tr.push_back(&samples[i]);
+        for (std::size_t j = 0; j < files.size(); ++j)
+          if (j != i && sim_samples[j]) tr.push_back(&*sim_samples[j]);
         const std::string cached = cache_arg.getValue().empty() ? ""
                                    : cache_arg.getValue() + "/fold_" + files[i].name + ".yml";
         if (!cached.empty() && fs::exists(cached)) model = places::PlacesModel::load(cached);
