@@ -69,3 +69,12 @@ TEST(SimulatedMaps, TrainingIniNamesAMissingDirectory) {
   std::ofstream(ini) << "[scan_simulation]\nmap_border = pass\n";
   EXPECT_THROW(loadTrainingConfig(ini), InputError);
 }
+
+TEST(SimulatedMaps, ShippedTrainingIniKeepsTheDefaults) {
+  const auto c = loadTrainingConfig(std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/topology_train.ini");
+  EXPECT_TRUE(c.training.simulated_maps.empty());
+  EXPECT_EQ(c.training.simulated_free_threshold, 204);
+  EXPECT_DOUBLE_EQ(c.training.simulated_free_opening_radius, 0.05);
+  EXPECT_EQ(c.scan.unknown_cells, BeamStop::kObstacle);
+  EXPECT_EQ(c.scan.map_border, BeamStop::kObstacle);
+}
