@@ -9,6 +9,7 @@
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/progress.h"
+#include "gridtopo/places/training.h"
 #include "gridtopo/simtrain/simulate_plans.h"
 
 using namespace gridtopo;
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
             << (slam_ini.getValue().empty() ? "''" : slam_ini.getValue()) << " -s " << seed.getValue()
             << " --room-visit-probability " << visit.getValue() << " --clearance " << clearance.getValue()
             << (maps.getValue().empty() ? "" : " --maps " + maps.getValue());
-    ProgressBar bar(only.empty() ? 9 : only.size(), "simulated maps", "maps");
+    ProgressBar bar(only.empty() ? places::standardLabelledMaps(dir.getValue()).size() : only.size(), "simulated maps",
+                    "maps");
     const auto runs = simtrain::simulatePlans(dir.getValue(), out.getValue(), o, only, command.str(),
                                               [&](std::size_t done, std::size_t, const std::string& name) {
                                                 bar.update(done, name);
