@@ -44,9 +44,13 @@ int main(int argc, char** argv) {
     scan.threads = threads.getValue();
 
     std::vector<std::pair<std::string, std::pair<std::string, std::string>>> inputs;
+    std::vector<places::LabelledMapFiles> standard;
     if (pairs.getValue().empty()) {
-      for (const auto& f : places::standardLabelledMaps(dir.getValue())) inputs.push_back({f.name, {f.labels, f.map}});
+      standard = places::standardLabelledMaps(dir.getValue());
+      for (const auto& f : standard) inputs.push_back({f.name, {f.labels, f.map}});
     } else {
+      if (!train.simulated_maps.empty())
+        throw InputError(ini.getValue(), 0, "[training] simulated_maps", "applies to the standard maps only, not to --pair");
       for (const auto& p : pairs.getValue()) {
         const auto colon = p.find(':');
         if (colon == std::string::npos) throw InputError("--pair", 0, p, "expected LABELS.png:MAP.png");
@@ -66,6 +70,12 @@ int main(int argc, char** argv) {
       notes << " " << fs::path(files.first).filename().string();
       bar.update(samples.size(), name);
     }
+    // Issue 15: the simulated SLAM-like map of each standard plan, with the plan's labels.
+    for (const auto& f : standard)
+      if (const auto sim = places::loadSimulatedLabelledMap(f, train, res.getValue())) {
+        samples.push_back(places::computeSamples(sim->occ, &sim->codes, scan, feat));
+        notes << " " << fs::path(places::simulatedMapPath(train.simulated_maps, f.name)).filename().string();
+      }
     bar.finish();
     std::vector<const places::MapSamples*> ptrs;
     for (const auto& s : samples) ptrs.push_back(&s);

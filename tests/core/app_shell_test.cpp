@@ -11,7 +11,8 @@ namespace {
 using Result = gridtopo::testing_app::AppRun;
 Result run(const std::string& app, const std::string& args) { return gridtopo::testing_app::runApp(app, args); }
 const char* kApps[] = {"gridtopo-slam",  "gridtopo-eval",  "gridtopo-import",          "gridtopo-topology",
-                       "gridtopo-train", "gridtopo-topology-eval", "gridtopo-topology-compare"};
+                       "gridtopo-train", "gridtopo-topology-eval", "gridtopo-topology-compare",
+                       "gridtopo-simulate-maps"};
 }  // namespace
 
 TEST(AppShell, EveryAppExitsWithTwoOnAnUnknownArgument) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -149,4 +150,60 @@ TEST(ScanSimulation, RejectsBadOptions) {
   o = ScanSimulationOptions();
   o.max_range = -1;
   EXPECT_THROW(o.validate(), gridtopo::InputError);
+}
+
+TEST(ScanSimulation, UnknownCellsAndBorderActAsChosen) {
+  // One free row of 100 cells (5 m) in an image 1 row high: cells 0..39 free, 40..49 unknown, 50..99 free;
+  // the image border closes both ends. Sample at cell 20: +x meets the unknown block 19.5 cells ahead, -x the
+  // border 20.5 cells behind. Max range 30 m.
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(1, 100, CV_8U, cv::Scalar(kFree));
+  occ.cells.colRange(40, 50).setTo(kUnknown);
+  const std::vector<cv::Point> s{{20, 0}, {70, 0}};
+  auto ranges = [&](BeamStop unknown, BeamStop border) {
+    ScanSimulationOptions o;
+    o.num_beams = 8;
+    o.unknown_cells = unknown;
+    o.map_border = border;
+    const auto sc = simulateScans(occ, s, o);
+    // beam 0 = +x (columns increasing), beam 4 = -x
+    return std::array<double, 4>{sc.scan(0)[0] * 1e-3, sc.scan(0)[4] * 1e-3, sc.scan(1)[0] * 1e-3,
+                                 sc.scan(1)[4] * 1e-3};
+  };
+  auto r = ranges(BeamStop::kObstacle, BeamStop::kObstacle);  // the behaviour before issue 15
+  EXPECT_NEAR(r[0], 19.5 * 0.05, 1e-3);   // stops at the unknown block
+  EXPECT_NEAR(r[1], 20.5 * 0.05, 1e-3);   // stops at the border
+  EXPECT_NEAR(r[2], 29.5 * 0.05, 1e-3);   // cell 70: border ahead
+  EXPECT_NEAR(r[3], 20.5 * 0.05, 1e-3);   // cell 70: unknown block behind (cells 49..50)
+  r = ranges(BeamStop::kMaxRange, BeamStop::kObstacle);
+  EXPECT_NEAR(r[0], 30.0, 1e-3);
+  EXPECT_NEAR(r[1], 20.5 * 0.05, 1e-3);
+  EXPECT_NEAR(r[3], 30.0, 1e-3);
+  r = ranges(BeamStop::kPass, BeamStop::kObstacle);
+  EXPECT_NEAR(r[0], 79.5 * 0.05, 1e-3);   // through the unknown block to the far border
+  EXPECT_NEAR(r[3], 70.5 * 0.05, 1e-3);
+  r = ranges(BeamStop::kObstacle, BeamStop::kMaxRange);
+  EXPECT_NEAR(r[0], 19.5 * 0.05, 1e-3);
+  EXPECT_NEAR(r[1], 30.0, 1e-3);
+  EXPECT_NEAR(r[2], 30.0, 1e-3);
+  r = ranges(BeamStop::kPass, BeamStop::kMaxRange);
+  EXPECT_NEAR(r[0], 30.0, 1e-3);          // through the unknown, then off the map
+  // An occupied cell still stops every beam: wall at cell 10.
+  occ.cells.at<unsigned char>(0, 10) = kOccupied;
+  r = ranges(BeamStop::kMaxRange, BeamStop::kMaxRange);
+  EXPECT_NEAR(r[1], 9.5 * 0.05, 1e-3);
+}
+
+TEST(ScanSimulation, BeamStopOptionsParseAndRoundTrip) {
+  EXPECT_EQ(parseBeamStop("max_range", "x", "unknown_cells", true), BeamStop::kMaxRange);
+  EXPECT_EQ(parseBeamStop("pass", "x", "unknown_cells", true), BeamStop::kPass);
+  EXPECT_EQ(beamStopName(BeamStop::kObstacle), "obstacle");
+  try {
+    parseBeamStop("pass", "topology_train.ini", "map_border", false);
+    FAIL() << "pass accepted for the map border";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_EQ(e.field(), "map_border");
+  }
+  EXPECT_THROW(parseBeamStop("wall", "x", "unknown_cells", true), gridtopo::InputError);
 }

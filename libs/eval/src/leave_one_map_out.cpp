@@ -59,13 +59,18 @@ void writeImage(const std::string& dir, const std::string& name, const cv::Mat& 
 }  // namespace
 
 places::PlacesModel foldModel(const std::vector<places::MapSamples>& samples, std::size_t held_out,
-                              const std::string& held_out_name, const LomoOptions& options) {
+                              const std::string& held_out_name, const LomoOptions& options,
+                              const std::vector<std::optional<places::MapSamples>>& simulated) {
   if (options.fixed_model) return *options.fixed_model;
   const auto& train = options.training.training;
   std::vector<const places::MapSamples*> tr;
   for (std::size_t j = 0; j < samples.size(); ++j)
     if (j != held_out) tr.push_back(&samples[j]);
   if (tr.empty()) tr.push_back(&samples[held_out]);
+  // Issue 15: the simulated SLAM-like maps of the plans ([training] simulated_maps), in every fold but the one of
+  // their own building.
+  for (std::size_t j = 0; j < simulated.size(); ++j)
+    if (j != held_out && simulated[j]) tr.push_back(&*simulated[j]);
   const std::string cached =
       options.model_cache.empty() ? "" : options.model_cache + "/fold_" + held_out_name + ".yml";
   places::PlacesModel model;
@@ -189,9 +194,13 @@ LomoResult runLeaveOneMapOut(const std::vector<places::LabelledMapFiles>& maps, 
     }
     bar.finish();
   }
+  std::vector<std::optional<places::MapSamples>> simulated(maps.size());
+  for (std::size_t i = 0; i < maps.size() && !options.fixed_model; ++i)
+    if (const auto sim = places::loadSimulatedLabelledMap(maps[i], options.training.training, topo.resolution))
+      simulated[i] = places::computeSamples(sim->occ, &sim->codes, scan, feat);
   ProgressBar bar(maps.size(), "leave-one-map-out", "folds");
   for (std::size_t i = 0; i < maps.size(); ++i) {
-    const places::PlacesModel model = foldModel(samples, i, maps[i].name, options);
+    const places::PlacesModel model = foldModel(samples, i, maps[i].name, options, simulated);
     const MapLabelScores s = scoreLabelledMap(lmaps[i], samples[i], model, options);
     result.pooled.add(s);
     result.maps.push_back(s);

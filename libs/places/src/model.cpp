@@ -66,6 +66,7 @@ void PlacesModel::save(const std::string& path) const {
     if (!fs.isOpened()) throw std::runtime_error("cannot write " + path);
     fs << "format" << kFormat << "version" << kVersion;
     fs << "num_beams" << scan.num_beams << "max_range" << scan.max_range << "lattice_spacing" << scan.lattice_spacing;
+    fs << "unknown_cells" << beamStopName(scan.unknown_cells) << "map_border" << beamStopName(scan.map_border);
     fs << "beam_cap" << features.beam_cap << "gap_small" << features.gap_small << "gap_large" << features.gap_large
        << "context_radius" << features.context_radius;
     fs << "capped_ranges" << "[";
@@ -106,6 +107,11 @@ PlacesModel PlacesModel::load(const std::string& path) {
   m.scan.num_beams = static_cast<int>(fs["num_beams"]);
   m.scan.max_range = static_cast<double>(fs["max_range"]);
   m.scan.lattice_spacing = static_cast<double>(fs["lattice_spacing"]);
+  // Models written before issue 15 have neither key: their beams stopped at unknown cells and at the border.
+  if (!fs["unknown_cells"].empty())
+    m.scan.unknown_cells = parseBeamStop(static_cast<std::string>(fs["unknown_cells"]), path, "unknown_cells", true);
+  if (!fs["map_border"].empty())
+    m.scan.map_border = parseBeamStop(static_cast<std::string>(fs["map_border"]), path, "map_border", false);
   m.scan.validate(path);
   m.features.beam_cap = static_cast<double>(fs["beam_cap"]);
   m.features.gap_small = static_cast<double>(fs["gap_small"]);

@@ -12,11 +12,33 @@
 
 namespace gridtopo::places {
 
+std::string beamStopName(BeamStop b) {
+  switch (b) {
+    case BeamStop::kObstacle: return "obstacle";
+    case BeamStop::kMaxRange: return "max_range";
+    case BeamStop::kPass: return "pass";
+  }
+  return "?";
+}
+
+BeamStop parseBeamStop(const std::string& text, const std::string& where, const std::string& key, bool allow_pass) {
+  if (text == "obstacle") return BeamStop::kObstacle;
+  if (text == "max_range") return BeamStop::kMaxRange;
+  if (text == "pass" && allow_pass) return BeamStop::kPass;
+  throw InputError(where, 0, key,
+                   "must be obstacle or max_range" + std::string(allow_pass ? " or pass" : "") + ", got '" + text + "'");
+}
+
 void ScanSimulationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
   readIniValue(s, sec, "num_beams", num_beams);
   readIniValue(s, sec, "max_range", max_range);
   readIniValue(s, sec, "lattice_spacing", lattice_spacing);
   readIniValue(s, sec, "threads", threads);
+  std::string unknown = beamStopName(unknown_cells), border = beamStopName(map_border);
+  readIniValue(s, sec, "unknown_cells", unknown);
+  readIniValue(s, sec, "map_border", border);
+  unknown_cells = parseBeamStop(unknown, "[" + sec + "]", "unknown_cells", true);
+  map_border = parseBeamStop(border, "[" + sec + "]", "map_border", false);
   validate("[" + sec + "]");
 }
 
@@ -24,7 +46,9 @@ void ScanSimulationOptions::dumpToTextStream(std::ostream& out) const {
   out << "num_beams       = " << num_beams << "   // beams per simulated scan (even)\n"
       << "max_range       = " << max_range << "   // m, beams capped here\n"
       << "lattice_spacing = " << lattice_spacing << "   // m between classified cells\n"
-      << "threads         = " << threads << "\n";
+      << "threads         = " << threads << "\n"
+      << "unknown_cells   = " << beamStopName(unknown_cells) << "   // obstacle | max_range | pass\n"
+      << "map_border      = " << beamStopName(map_border) << "   // obstacle | max_range\n";
 }
 
 void ScanSimulationOptions::validate(const std::string& where) const {
@@ -35,6 +59,7 @@ void ScanSimulationOptions::validate(const std::string& where) const {
   if (!std::isfinite(lattice_spacing) || lattice_spacing < 0 || lattice_spacing > 2.0)
     throw InputError(where, 0, "lattice_spacing", "must be in [0, 2] metres");
   if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
+  if (map_border == BeamStop::kPass) throw InputError(where, 0, "map_border", "must be obstacle or max_range");
 }
 
 Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing) {
@@ -100,8 +125,12 @@ ColumnSamples samplesByColumn(const std::vector<cv::Point>& samples, int cols, b
 // The sweeps go column by column over all lines at once (`columns` holds the image's column k as its row k, so
 // it is read in memory order) with one run counter per line; the run lengths are those of walking each line on
 // its own (as this function did until 2026-12), without the cache misses of following a slanted line.
+// What an unknown cell and the border do to the counter (ScanSimulationOptions::unknown_cells, map_border): an
+// obstacle resets it to 0, max range saturates it (the beam from any later cell of the line reads max range until
+// the next obstacle), pass counts the unknown cell as free.
 void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double resolution, double slope,
-                 int beam_back, int beam_ahead, double max_range_mm, cv::Mat& by_beam) {
+                 int beam_back, int beam_ahead, double max_range_mm, BeamStop unknown_cells, BeamStop map_border,
+                 cv::Mat& by_beam) {
   const int n_major = columns.rows, n_minor = columns.cols;
   std::vector<int> offset(static_cast<std::size_t>(n_major));
   for (int k = 0; k < n_major; ++k) offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor(k * slope + 0.5));
@@ -117,8 +146,12 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
   // image), saturated at max_run (only min(run, max_run) is used). A line is inside the image for one interval
   // of k, so its counter is untouched (0) until it enters.
   std::vector<int> run(static_cast<std::size_t>(n_minor + max_off - min_off));
+  // A line enters the image with the counter of the border; each cell state maps the counter r to its next value
+  // through max(r + add, floor) capped at max_run: free (+1, 0), occupied (reset: -inf, 0), unknown by option.
+  const int border_run = map_border == BeamStop::kMaxRange ? max_run : 0;
+  const bool unknown_default = unknown_cells == BeamStop::kObstacle;
   for (int pass = 0; pass < 2; ++pass) {
-    std::fill(run.begin(), run.end(), 0);
+    std::fill(run.begin(), run.end(), border_run);
     // Beam-major output: one row per beam.
     std::uint16_t* out = by_beam.ptr<std::uint16_t>(pass == 0 ? beam_back : beam_ahead);
     for (int t = 0; t < n_major; ++t) {
@@ -130,7 +163,14 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
         out[idx] = mm[static_cast<std::size_t>(r[m])];
       }
       const unsigned char* c = columns.ptr<unsigned char>(k);
-      for (int m = 0; m < n_minor; ++m) r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : 0;
+      if (unknown_default) {
+        for (int m = 0; m < n_minor; ++m) r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : 0;
+      } else if (unknown_cells == BeamStop::kMaxRange) {
+        for (int m = 0; m < n_minor; ++m)
+          r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : c[m] == kUnknown ? max_run : 0;
+      } else {
+        for (int m = 0; m < n_minor; ++m) r[m] = c[m] != kOccupied ? std::min(r[m] + 1, max_run) : 0;
+      }
     }
   }
 }
@@ -169,10 +209,12 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
     if (std::abs(dc) >= std::abs(dr)) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm, by_beam);
+      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm,
+                  options.unknown_cells, options.map_border, by_beam);
     } else {
       // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
-      sweepFamily(occ.cells, by_row, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm, by_beam);
+      sweepFamily(occ.cells, by_row, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm,
+                  options.unknown_cells, options.map_border, by_beam);
     }
   };
   auto worker = [&](bool report) {

@@ -52,6 +52,31 @@ std::vector<LabelledMapFiles> standardLabelledMaps(const std::string& dir) {
   };
 }
 
+std::string simulatedMapPath(const std::string& dir, const std::string& name) {
+  return dir + "/" + name + "_sim_map.png";
+}
+
+std::optional<LabelledMap> loadSimulatedLabelledMap(const LabelledMapFiles& files, const TrainingOptions& o,
+                                                    double resolution) {
+  if (o.simulated_maps.empty()) return std::nullopt;
+  const std::string path = simulatedMapPath(o.simulated_maps, files.name);
+  if (!std::filesystem::is_regular_file(path)) return std::nullopt;
+  LabelledMap m;
+  m.name = files.name + "_sim";
+  cv::Mat lab = cv::imread(files.labels, cv::IMREAD_GRAYSCALE);
+  if (lab.empty()) throw InputError(files.labels, "cannot read labelled map image");
+  cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (img.empty()) throw InputError(path, "cannot read simulated map image");
+  if (lab.size() != img.size())
+    throw InputError(path, "simulated map is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                               " but its plan's labels " + files.labels + " are " + std::to_string(lab.cols) + "x" +
+                               std::to_string(lab.rows) + " (regenerate with gridtopo-simulate-maps)");
+  m.occ = occupancyFromGrey(img, resolution, path, o.simulated_free_threshold);
+  openFreeSpace(m.occ, o.simulated_free_opening_radius);
+  m.codes = lab;
+  return m;
+}
+
 MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const ScanSimulationOptions& scan,
                           const FeatureOptions& features,
                           const std::function<void(std::size_t, std::size_t)>& progress) {
@@ -116,6 +141,15 @@ void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s,
   readIniValue(s, sec, "prior_weight", prior_weight);
   readIniValue(s, sec, "order_folds", order_folds);
   readIniValue(s, sec, "order_samples_per_class", order_samples_per_class);
+  readIniValue(s, sec, "simulated_maps", simulated_maps);
+  readIniValue(s, sec, "simulated_free_threshold", simulated_free_threshold);
+  readIniValue(s, sec, "simulated_free_opening_radius", simulated_free_opening_radius);
+  if (simulated_free_threshold < 1 || simulated_free_threshold > 255)
+    throw InputError("[" + sec + "]", 0, "simulated_free_threshold", "must be in [1, 255]");
+  if (!(simulated_free_opening_radius >= 0 && simulated_free_opening_radius <= 1))
+    throw InputError("[" + sec + "]", 0, "simulated_free_opening_radius", "must be in [0, 1] metres");
+  if (!simulated_maps.empty() && !std::filesystem::is_directory(simulated_maps))
+    throw InputError("[" + sec + "]", 0, "simulated_maps", "directory '" + simulated_maps + "' not found");
   if (order_folds < 1 || order_folds > 20) throw InputError("[" + sec + "]", 0, "order_folds", "must be in [1, 20]");
   if (order_samples_per_class < 10)
     throw InputError("[" + sec + "]", 0, "order_samples_per_class", "must be >= 10");
@@ -127,7 +161,10 @@ void TrainingOptions::dumpToTextStream(std::ostream& out) const {
   out << "order                 = " << order << "\n"
       << "prior_weight          = " << prior_weight << "\n"
       << "order_folds           = " << order_folds << "\n"
-      << "order_samples_per_class = " << order_samples_per_class << "\n";
+      << "order_samples_per_class = " << order_samples_per_class << "\n"
+      << "simulated_maps        = " << simulated_maps << "\n"
+      << "simulated_free_threshold = " << simulated_free_threshold << "\n"
+      << "simulated_free_opening_radius = " << simulated_free_opening_radius << "\n";
 }
 
 std::string orderName(const std::array<int, kNumLabels>& o) {

@@ -119,12 +119,20 @@ std::vector<TimedPose> SimLog::timedTruth() const {
 
 SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& truth,
                     const std::vector<double>& times, const SimOptions& o) {
+  return simulatePath([&plan](double x, double y, double a) { return plan.rayCast(x, y, a); }, truth, times, o);
+}
+
+SimLog simulatePath(const RayCaster& world, const std::vector<mrpt::math::TPose2D>& truth,
+                    const std::vector<double>& times, const SimOptions& o) {
   if (truth.size() != times.size()) throw std::invalid_argument("simulation: one timestamp per pose is needed");
   if (o.beams < 2) throw std::invalid_argument("simulation: need at least 2 beams");
   if (!(o.max_range > 0) || !(o.fov > 0) || !(o.range_sigma >= 0) || !(o.range_quantum >= 0))
     throw std::invalid_argument("simulation: max range and field of view must be positive, noise not negative");
+  if (!(o.dropout_probability >= 0 && o.dropout_probability < 1))
+    throw std::invalid_argument("simulation: dropout probability must be in [0, 1)");
   std::mt19937_64 gen(o.seed);
   std::normal_distribution<double> n01(0.0, 1.0);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
   const double increment = o.fov / (o.beams - 1);
   const float no_return = static_cast<float>(o.no_return_range > 0 ? o.no_return_range : o.max_range);
 
@@ -160,8 +168,9 @@ SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D
     s.valid.reserve(o.beams);
     const auto laser = compose(gt, o.sensor_pose);
     for (int k = 0; k < o.beams; ++k) {
-      const double noisy = plan.rayCast(laser.x, laser.y, laser.phi + s.beamAngle(k)) + o.range_sigma * n01(gen);
-      if (!(noisy < o.max_range)) {
+      const double noisy = world(laser.x, laser.y, laser.phi + s.beamAngle(k)) + o.range_sigma * n01(gen);
+      const bool dropped = o.dropout_probability > 0 && u01(gen) < o.dropout_probability;
+      if (!(noisy < o.max_range) || dropped) {
         s.ranges.push_back(no_return);
         s.valid.push_back(0);
         continue;
@@ -178,6 +187,10 @@ SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D
 }
 
 SimLog simulate(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o) {
+  return simulate([&plan](double x, double y, double a) { return plan.rayCast(x, y, a); }, waypoints, o);
+}
+
+SimLog simulate(const RayCaster& world, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o) {
   if (waypoints.empty()) return {};
   std::vector<mrpt::math::TPose2D> path{waypoints[0]};
   std::vector<double> times{o.start_time};
@@ -200,7 +213,7 @@ SimLog simulate(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& w
     const int nmove = static_cast<int>(std::ceil(dist / o.scan_spacing));
     for (int i = 0; i < nmove; ++i) move(dist / nmove, 0.0);
   }
-  return simulatePath(plan, path, times, o);
+  return simulatePath(world, path, times, o);
 }
 
 SimOptions pillarRoomOptions() {

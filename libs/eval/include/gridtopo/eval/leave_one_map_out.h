@@ -71,7 +71,8 @@ std::vector<places::LabelledMapFiles> selectMaps(const std::vector<places::Label
 /// map itself when it is the only one), loaded from / saved to the model cache, its prior correction rescaled to
 /// `prior_weight` when that is >= 0 (InputError when the training INI's prior_weight is not > 0).
 places::PlacesModel foldModel(const std::vector<places::MapSamples>& samples, std::size_t held_out,
-                              const std::string& held_out_name, const LomoOptions& options);
+                              const std::string& held_out_name, const LomoOptions& options,
+                              const std::vector<std::optional<places::MapSamples>>& simulated = {});
 
 /// Labels one labelled map with `model` from its precomputed samples, builds its topology and scores every stage
 /// (MapLabelScores); writes its pictures to options.dump_dir when set.

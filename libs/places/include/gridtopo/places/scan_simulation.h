@@ -17,11 +17,26 @@
 
 namespace gridtopo::places {
 
+/// What a simulated beam reads when it meets an unknown cell or leaves the map (issue 15, item 2). A real laser
+/// logs a beam that meets nothing as "no return", which every reader turns into the maximum range, so no return
+/// and max range are one choice here.
+enum class BeamStop {
+  kObstacle,  ///< the beam ends there: range = distance to that cell (or to the map border)
+  kMaxRange,  ///< the beam reads max_range (no return)
+  kPass,      ///< unknown cells only: the beam goes on through them as through free cells
+};
+/// "obstacle" / "max_range" / "pass"; parseBeamStop throws InputError(where, 0, key, ...) for other text, and
+/// for "pass" when `allow_pass` is false (the map border: there is nothing beyond it to pass into).
+std::string beamStopName(BeamStop b);
+BeamStop parseBeamStop(const std::string& text, const std::string& where, const std::string& key, bool allow_pass);
+
 struct ScanSimulationOptions : public mrpt::config::CLoadableOptions {
   int num_beams = 360;          ///< beams per scan (even, >= 8); 360 = 1 degree apart
   double max_range = 30.0;      ///< metres; longer beams are capped here (<= 65 m)
   double lattice_spacing = 0.1; ///< metres between classified cells (block side); <= resolution = every cell
   int threads = 2;              ///< worker threads (results do not depend on it)
+  BeamStop unknown_cells = BeamStop::kObstacle;  ///< a beam that meets an unknown cell (`unknown_cells`)
+  BeamStop map_border = BeamStop::kObstacle;     ///< a beam that leaves the image (`map_border`; not kPass)
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
@@ -52,8 +67,9 @@ struct SimulatedScans {
   const std::uint16_t* scan(std::size_t i) const { return ranges_mm.data() + i * static_cast<std::size_t>(num_beams); }
 };
 
-/// Simulates the scans of `samples` (pixels that must be free). Beams stop at the first non-free cell or at
-/// the image border. `progress(done, total)` is called after each pair of directions (from the calling
+/// Simulates the scans of `samples` (pixels that must be free). Beams stop at the first occupied cell; at an
+/// unknown cell and at the image border they do what `unknown_cells` and `map_border` say (by default they stop
+/// there as at an obstacle). `progress(done, total)` is called after each pair of directions (from the calling
 /// thread only).
 SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Point>& samples,
                              const ScanSimulationOptions& options,

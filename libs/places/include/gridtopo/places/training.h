@@ -5,6 +5,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,10 +54,27 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   /// At most this many samples per class for the validation classifiers (the final two use
   /// max_samples_per_class); smaller = faster order choice.
   int order_samples_per_class = 5000;
+  /// Issue 15: a directory of simulated SLAM-like maps of the labelled plans (`gridtopo-simulate-maps`, e.g.
+  /// datasets/places/derived): for every standard labelled map NAME whose NAME_sim_map.png is there, that map is
+  /// trained on too, with the plan's labels (it is pixel-aligned with the plan). Empty = off.
+  std::string simulated_maps;
+  /// The simulated maps are read as the topology reads a SLAM grid (config-ini/topology.ini's grid_free_threshold
+  /// and grid_free_opening_radius): grey >= this is free ...
+  int simulated_free_threshold = 204;
+  /// ... then the free space is opened with this radius (m; places::openFreeSpace).
+  double simulated_free_opening_radius = 0.05;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void dumpToTextStream(std::ostream& out) const override;
 };
+
+/// NAME_sim_map.png in `dir`: the simulated map of the standard labelled map NAME.
+std::string simulatedMapPath(const std::string& dir, const std::string& name);
+/// The simulated map of a standard labelled map with the plan's labels, read as TrainingOptions says; nothing when
+/// options.simulated_maps is empty or holds no map for `files.name`. Throws InputError for unreadable files or a
+/// size that differs from the plan's.
+std::optional<LabelledMap> loadSimulatedLabelledMap(const LabelledMapFiles& files, const TrainingOptions& options,
+                                                    double resolution);
 
 /// Everything a training INI (config-ini/topology_train.ini) sets: [training], [scan_simulation], [features].
 struct TrainingConfig {

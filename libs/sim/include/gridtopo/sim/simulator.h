@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "gridtopo/core/scan_record.h"
@@ -40,6 +41,10 @@ struct FloorPlan {
   double rayCast(double x, double y, double a) const;
 };
 
+/// A world the laser senses: the distance from (x, y) along direction a (rad) to the nearest obstacle, +inf if
+/// none. FloorPlan::rayCast and GridPlan::rayCast (grid_plan.h) are the two.
+using RayCaster = std::function<double(double x, double y, double a)>;
+
 struct SimOptions {
   // Laser: beam k points at −fov/2 + k·fov/(beams−1) in the laser frame.
   int beams = 181;
@@ -49,6 +54,9 @@ struct SimOptions {
   double no_return_range = 0.0;         ///< range logged for a no-return beam; 0 means max_range
   double range_sigma = 0.01;            ///< m, Gaussian range noise
   double range_quantum = 0.0;           ///< readings rounded to this (0.01 like CARMEN logs); 0 keeps them exact
+  /// Probability that a beam returns nothing although it meets an obstacle in range (glass, black surfaces);
+  /// such a beam is logged as a no-return reading. 0 draws nothing (the logs of earlier versions, bit for bit).
+  double dropout_probability = 0.0;
   mrpt::math::TPose2D sensor_pose{0.1, 0.0, 0.0};  ///< laser pose on the robot
   // Driving through waypoints (simulate()): a scan every scan_spacing m of travel or rad of turning.
   double scan_spacing = 0.1;  ///< m of travel between scans (also every 0.1 rad of turning)
@@ -73,9 +81,14 @@ struct SimLog {
 /// odometry composed with the noisy true increment. Throws std::invalid_argument on inconsistent input.
 SimLog simulatePath(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& truth,
                     const std::vector<double>& times, const SimOptions& o);
+/// The same in any world.
+SimLog simulatePath(const RayCaster& world, const std::vector<mrpt::math::TPose2D>& truth,
+                    const std::vector<double>& times, const SimOptions& o);
 
 /// Drives through `waypoints` (turning on the spot, then driving straight) and records scans.
 SimLog simulate(const FloorPlan& plan, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o);
+/// The same in any world.
+SimLog simulate(const RayCaster& world, const std::vector<mrpt::math::TPose2D>& waypoints, const SimOptions& o);
 
 /// The waypoints of a loop around the central block of officeLoop(), `laps` times.
 std::vector<mrpt::math::TPose2D> officeLoopWaypoints(int laps = 1);

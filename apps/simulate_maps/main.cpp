@@ -1,0 +1,69 @@
+// gridtopo-simulate-maps: SLAM-like labelled training maps made exactly (issue 15, item 1). For every labelled plan
+// of datasets/places, a simulated robot run (a tour of the corridors and rooms, a 180° laser with noise and
+// no-return readings, drifting odometry) and the map of its scans at the true poses, pixel-aligned with the plan.
+#include <tclap/CmdLine.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/progress.h"
+#include "gridtopo/places/training.h"
+#include "gridtopo/simtrain/simulate_plans.h"
+
+using namespace gridtopo;
+
+int main(int argc, char** argv) {
+  return gridtopo::runApp("gridtopo-simulate-maps", [&]() -> int {
+    TCLAP::CmdLine cmd(
+        "Simulate a robot mapping run through every labelled plan of datasets/places and write the map of its scans "
+        "at the true poses (OUT/NAME_sim_map.png, pixel-aligned with the plan: its labels are the plan's) and "
+        "OUT/manifest.txt. Train on them with [training] simulated_maps = OUT.",
+        ' ', "0.1");
+    TCLAP::ValueArg<std::string> dir("d", "places-dir", "datasets/places directory", false, "datasets/places", "dir", cmd);
+    TCLAP::ValueArg<std::string> out("o", "output", "output directory", false, "datasets/places/derived", "dir", cmd);
+    TCLAP::ValueArg<std::string> slam_ini("c", "slam-ini", "gridtopo-slam INI whose [slam] map and beam options build "
+                                          "the maps (config-ini/slam.ini); empty = built-in defaults", false,
+                                          "config-ini/slam.ini", "file", cmd);
+    TCLAP::ValueArg<int> seed("s", "seed", "seed of the laser and odometry noise and of the rooms entered", false, 1,
+                              "n", cmd);
+    TCLAP::ValueArg<double> visit("", "room-visit-probability", "each room is entered with this probability", false,
+                                  0.7, "p", cmd);
+    TCLAP::ValueArg<double> clearance("", "clearance", "m the robot's path keeps from obstacles", false, 0.25, "m", cmd);
+    TCLAP::ValueArg<std::string> maps("", "maps", "comma-separated plan names (default: all 9)", false, "", "names", cmd);
+    cmd.setExceptionHandling(false);
+    cmd.parse(argc, argv);
+
+    simtrain::TrainingMapOptions o;
+    simtrain::loadSlamMapOptions(slam_ini.getValue(), o);
+    if (seed.getValue() < 0) throw InputError("--seed", "must be >= 0");
+    if (!(visit.getValue() >= 0 && visit.getValue() <= 1)) throw InputError("--room-visit-probability", "must be in [0, 1]");
+    if (!(clearance.getValue() >= 0 && clearance.getValue() <= 1)) throw InputError("--clearance", "must be in [0, 1] m");
+    o.laser.seed = static_cast<std::uint64_t>(seed.getValue());
+    o.tour.seed = static_cast<std::uint64_t>(seed.getValue());
+    o.tour.room_visit_probability = visit.getValue();
+    o.tour.clearance = clearance.getValue();
+    std::vector<std::string> only;
+    std::stringstream ss(maps.getValue());
+    for (std::string n; std::getline(ss, n, ',');)
+      if (!n.empty()) only.push_back(n);
+    std::ostringstream command;
+    command << "gridtopo-simulate-maps -d " << dir.getValue() << " -o " << out.getValue() << " -c "
+            << (slam_ini.getValue().empty() ? "''" : slam_ini.getValue()) << " -s " << seed.getValue()
+            << " --room-visit-probability " << visit.getValue() << " --clearance " << clearance.getValue()
+            << (maps.getValue().empty() ? "" : " --maps " + maps.getValue());
+    ProgressBar bar(only.empty() ? places::standardLabelledMaps(dir.getValue()).size() : only.size(), "simulated maps",
+                    "maps");
+    const auto runs = simtrain::simulatePlans(dir.getValue(), out.getValue(), o, only, command.str(),
+                                              [&](std::size_t done, std::size_t, const std::string& name) {
+                                                bar.update(done, name);
+                                              });
+    bar.finish();
+    for (const auto& p : runs)
+      std::cout << p.name << ": " << p.scans << " scans, " << p.path_length << " m, rooms entered "
+                << p.rooms_entered << " of " << p.rooms << " (" << p.rooms_unreachable << " unreachable), known "
+                << 100 * p.known_fraction << " % of the plan's free cells, free " << 100 * p.free_fraction << " %\n";
+    return 0;
+  });
+}

@@ -1,0 +1,92 @@
+#include "gridtopo/simtrain/simulate_plans.h"
+
+#include <mrpt/config/CConfigFile.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
+#include "gridtopo/places/training.h"
+#include "gridtopo/slam/slam_options.h"
+
+namespace gridtopo::simtrain {
+
+void loadSlamMapOptions(const std::string& slam_ini, TrainingMapOptions& o) {
+  if (slam_ini.empty()) return;
+  if (!std::filesystem::is_regular_file(slam_ini)) throw InputError(slam_ini, "SLAM INI file not found");
+  slam::SlamOptions s;
+  try {
+    s.loadFromConfigFile(mrpt::config::CConfigFile(slam_ini), "slam");
+  } catch (const InputError& e) {
+    throw InputError(slam_ini, 0, e.file() + " " + e.field(), e.message());
+  }
+  o.map = s.map;
+  o.beams = s.beams;
+}
+
+std::vector<SimulatedPlan> simulatePlans(const std::string& places_dir, const std::string& out_dir,
+                                         const TrainingMapOptions& o, const std::vector<std::string>& only,
+                                         const std::string& command_line,
+                                         const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
+  std::vector<places::LabelledMapFiles> files;
+  for (const auto& f : places::standardLabelledMaps(places_dir))
+    if (only.empty() || std::find(only.begin(), only.end(), f.name) != only.end()) files.push_back(f);
+  for (const auto& n : only)
+    if (std::none_of(files.begin(), files.end(), [&](const auto& f) { return f.name == n; }))
+      throw InputError("--maps", 0, n, "not a standard labelled map of " + places_dir);
+  const double res = 0.05;  // every plan of datasets/places (datasets/README.md)
+  std::vector<SimulatedPlan> out;
+  OutputSet outputs;
+  for (const auto& f : files) {
+    const cv::Mat grey = cv::imread(f.map, cv::IMREAD_UNCHANGED);
+    if (grey.empty()) throw InputError(f.map, "cannot read map image");
+    const cv::Mat codes = cv::imread(f.labels, cv::IMREAD_GRAYSCALE);
+    if (codes.empty()) throw InputError(f.labels, "cannot read labelled map image");
+    if (codes.size() != grey.size()) throw InputError(f.labels, "labels and map differ in size");
+    const TrainingMap tm = simulateTrainingMap(grey, codes, res, o, f.map);
+    SimulatedPlan p;
+    p.name = f.name;
+    p.scans = static_cast<int>(tm.log.records.size());
+    p.path_length = tm.tour.length;
+    p.rooms = tm.tour.rooms, p.rooms_entered = tm.tour.rooms_entered;
+    p.rooms_unreachable = tm.tour.rooms_unreachable, p.corridor_goals = tm.tour.corridor_goals;
+    const places::OccupancyImage plan = places::occupancyFromGrey(grey, res, f.map);
+    std::size_t plan_free = 0, known = 0, free = 0;
+    const int unknown = 128;  // grey of a never observed cell (io::gridToImage of p = 0.5)
+    for (int r = 0; r < plan.rows(); ++r)
+      for (int c = 0; c < plan.cols(); ++c) {
+        if (!plan.isFree(r, c)) continue;
+        ++plan_free;
+        const int g = tm.grey.at<unsigned char>(r, c);
+        known += g != unknown;
+        free += g >= 204;
+      }
+    p.known_fraction = plan_free ? static_cast<double>(known) / plan_free : 0;
+    p.free_fraction = plan_free ? static_cast<double>(free) / plan_free : 0;
+    const cv::Mat img = tm.grey;
+    outputs.write(places::simulatedMapPath(out_dir, f.name), [&img](const std::string& tmp) {
+      if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write " + tmp);
+    });
+    out.push_back(p);
+    if (progress) progress(out.size(), files.size(), f.name);
+  }
+  std::ostringstream m;
+  m << "# Simulated SLAM-like maps of the labelled plans (issue 15): NAME_sim_map.png is pixel-aligned with the plan\n"
+    << "# (labels: labelled/training_*.png of the same plan). Made by:\n# " << command_line << "\n"
+    << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction\n";
+  m << std::fixed;
+  for (const auto& p : out)
+    m << p.name << " " << p.scans << " " << std::setprecision(1) << p.path_length << " " << p.rooms << " "
+      << p.rooms_entered << " " << p.rooms_unreachable << " " << p.corridor_goals << " " << std::setprecision(4)
+      << p.known_fraction << " " << p.free_fraction << "\n";
+  const std::string text = m.str();
+  outputs.write(out_dir + "/manifest.txt", [&text](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
+  outputs.commit();
+  return out;
+}
+
+}  // namespace gridtopo::simtrain
