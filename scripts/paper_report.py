@@ -193,36 +193,26 @@ def main():
     counts = sorted({int(r["particles"]) for r in rows})
     w("Seeds that succeed / seeds run, and the mean translational error over them (m).")
     w("")
-    w("| log | proposal | " + " | ".join(str(c) for c in counts) + " |")
-    w("|---|---|" + "---|" * len(counts))
-    for d in datasets:
-        for p in PROPOSALS:
-            bp = table.get((d, p))
-            if not bp:
-                continue
-            cells = []
-            for c in counts:
-                runs = bp.get(c)
-                if not runs:
-                    cells.append("")
-                    continue
-                k = sum(r["success"] == "1" for r in runs)
-                m = statistics.mean(float(r["trans_mean_m"]) for r in runs)
-                cells.append(f"{k}/{len(runs)} ({m:.3f})")
-            w(f"| {LOG_NAMES.get(d, d)} | {PROPOSAL_NAMES[p]} | " + " | ".join(cells) + " |")
-    w("")
+    def per_count_table(cell):
+        """One row per log and proposal, one column per particle count; cell(runs) -> text."""
+        w("| log | proposal | " + " | ".join(str(c) for c in counts) + " |")
+        w("|---|---|" + "---|" * len(counts))
+        for d in datasets:
+            for p in PROPOSALS:
+                bp = table.get((d, p))
+                if bp:
+                    cells = [cell(bp[c]) if c in bp else "" for c in counts]
+                    w(f"| {LOG_NAMES.get(d, d)} | {PROPOSAL_NAMES[p]} | " + " | ".join(cells) + " |")
+        w("")
+
+    def success_cell(runs):
+        k = sum(r["success"] == "1" for r in runs)
+        return f"{k}/{len(runs)} ({statistics.mean(float(r['trans_mean_m']) for r in runs):.3f})"
+
+    per_count_table(success_cell)
     w("Mean CPU time per run (s):")
     w("")
-    w("| log | proposal | " + " | ".join(str(c) for c in counts) + " |")
-    w("|---|---|" + "---|" * len(counts))
-    for d in datasets:
-        for p in PROPOSALS:
-            bp = table.get((d, p))
-            if not bp:
-                continue
-            cells = [f"{statistics.mean(float(r['cpu_s']) for r in bp[c]):.0f}" if c in bp else "" for c in counts]
-            w(f"| {LOG_NAMES.get(d, d)} | {PROPOSAL_NAMES[p]} | " + " | ".join(cells) + " |")
-    w("")
+    per_count_table(lambda runs: f"{statistics.mean(float(r['cpu_s']) for r in runs):.0f}")
     w(f"![success rate vs particles]({a.img}/success_vs_particles.png)")
     w(f"![error vs particles]({a.img}/error_vs_particles.png)")
     w("")
