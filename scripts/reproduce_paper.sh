@@ -12,10 +12,11 @@
 #   5. doc/paper.md (scripts/paper_report.py) with the pictures in doc/img/paper/.
 # The experiments resume: an interrupted run continues where it stopped (gridtopo-experiment skips finished runs).
 #
-# Usage: scripts/reproduce_paper.sh [--quick | --core] [--out DIR] [--doc FILE] [-j N]
+# Usage: scripts/reproduce_paper.sh [--quick | --core] [--out DIR] [--doc FILE] [-j N] [--no-retrain]
 #   --out DIR   results (default out/paper, --quick: out/paper-quick)
 #   --doc FILE  the page (default doc/paper.md; --quick: DIR/paper.md, pictures in DIR/img)
 #   -j N        runs at a time (default: gridtopo-experiment's, cores / threads per run)
+#   --no-retrain  skip step 1 (the shipped Freiburg model is used either way)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${GRIDTOPO_BUILD_DIR:-build}/bin
@@ -23,6 +24,7 @@ MODE=full
 OUT=
 DOC=
 JOBS=()
+RETRAIN=1
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) MODE=quick; shift ;;
@@ -30,7 +32,8 @@ while [ $# -gt 0 ]; do
     --out) OUT=$2; shift 2 ;;
     --doc) DOC=$2; shift 2 ;;
     -j) JOBS=(-j "$2"); shift 2 ;;
-    -h|--help) sed -n 2,19p "$0"; exit 0 ;;
+    --no-retrain) RETRAIN=0; shift ;;
+    -h|--help) sed -n 2,20p "$0"; exit 0 ;;
     *) echo "reproduce_paper: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -59,7 +62,7 @@ P=datasets/places
 
 # 1. The place model of Fig. 3, trained on the two Freiburg plans only (as the paper did).
 TRAIN_NOTE="datasets/models/places_model_fr101_fr52.yml (gridtopo-train -c config-ini/topology_train.ini -p $P/labelled/training_Fr101.png:$P/maps/Fr101_original.png -p $P/labelled/training_Fr52.png:$P/maps/Fr52_original.png)"
-if [ "$MODE" != quick ]; then
+if [ "$MODE" != quick ] && [ "$RETRAIN" = 1 ]; then
   echo "== 1/5 place model: Fr101 + Fr52 -> $OUT/places_model_fr101_fr52.yml"
   "$BIN/gridtopo-train" -c config-ini/topology_train.ini -p $P/labelled/training_Fr101.png:$P/maps/Fr101_original.png \
     -p $P/labelled/training_Fr52.png:$P/maps/Fr52_original.png -o "$OUT/places_model_fr101_fr52.yml" > "$OUT/train.log" 2>&1
