@@ -50,10 +50,11 @@ int main(int argc, char** argv) {
     ro.map = so.map;
     nlohmann::ordered_json report{{"input", input.getValue()}, {"trajectory", traj.getValue()},
                                   {"resolution", ro.resolution}};
-    std::optional<slam::LoopClosureRendering> r;
+    cv::Mat img;
+    slam::MapWindow window;
     try {
       if (loop.isSet()) {
-        r = slam::renderLoopClosure(scans, trajectory, ro, size.getValue(), 0.5, min_travel.getValue());
+        const auto r = slam::renderLoopClosure(scans, trajectory, ro, size.getValue(), 0.5, min_travel.getValue());
         if (!r) throw InputError(traj.getValue(), "no loop closure: the trajectory never comes back within 0.5 m of a "
                                                   "pose it left " + std::to_string(min_travel.getValue()) + " m before");
         const auto& c = r->closure;
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
                   << c.earlier + 1 << " after " << c.travelled << " m of travel; walls after it vs before: median "
                   << a.median * 100 << " cm, 90th percentile " << a.p90 * 100 << " cm, " << a.within_2cells * 100
                   << " % within two cells (" << a.cells << " cells)\n";
+        window = r->window;
+        img = slam::renderWindow(r->map, window);
       } else {
         if (center.isSet()) {
           std::istringstream in(center.getValue());
@@ -73,14 +76,14 @@ int main(int argc, char** argv) {
           if (!(in >> x >> y)) throw UsageError("--center: expected \"X Y\", got \"" + center.getValue() + "\"");
           ro.window = slam::MapWindow::around(x, y, size.getValue(), size.getValue());
         }
-        r = slam::LoopClosureRendering{{}, {}, {}, slam::mapFromTrajectory(scans, trajectory, ro, nullptr), 0};
-        r->window = ro.window ? *ro.window : slam::boundsOf(r->map);
+        const slam::GridMap map = slam::mapFromTrajectory(scans, trajectory, ro);
+        window = ro.window ? *ro.window : slam::boundsOf(map);
+        img = slam::renderWindow(map, window);
       }
     } catch (const slam::TrajectoryMismatch& e) {
       throw InputError(traj.getValue(), 0, "timestamp", e.what());
     }
-    const cv::Mat img = slam::renderWindow(r->map, r->window);
-    report["window_m"] = {r->window.x0, r->window.y0, r->window.x1, r->window.y1};
+    report["window_m"] = {window.x0, window.y0, window.x1, window.y1};
     report["cells"] = {img.cols, img.rows};
     OutputSet out;
     out.write(output.getValue(), [&](const std::string& p) {

@@ -180,9 +180,7 @@ std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<ScanReco
   before.end_pose = after.first_pose = lc->later;
   const auto agreement =
       wallAgreement(mapFromTrajectory(scans, trajectory, before), mapFromTrajectory(scans, trajectory, after), *o.window);
-  std::size_t inserted = 0;
-  GridMap map = mapFromTrajectory(scans, trajectory, o, &inserted);
-  return LoopClosureRendering{*lc, *o.window, agreement, std::move(map), inserted};
+  return LoopClosureRendering{*lc, *o.window, agreement, mapFromTrajectory(scans, trajectory, o)};
 }
 
 }  // namespace gridtopo::slam

@@ -92,8 +92,7 @@ struct LoopClosureRendering {
   LoopClosure closure;
   MapWindow window;
   WallAgreement agreement;
-  GridMap map;            ///< every scan near the window
-  std::size_t inserted = 0;
+  GridMap map;  ///< every scan near the window
 };
 std::optional<LoopClosureRendering> renderLoopClosure(const std::vector<ScanRecord>& scans,
                                                       const std::vector<TimedPose>& trajectory,
