@@ -272,7 +272,7 @@ GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& lab
                                      const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
                                      const ReferenceAlignment& alignment) {
   GraphComparison c;
-  const RegionMap regions = graphRegions(labels, resolution, options.corridor_split, options.graph_rules);
+  const RegionMap regions = graphRegionsOfLabels(labels, resolution, options);
   c.graph = buildGraph(regions, resolution);
   const PlanGraph plan =
       planGraphFromReference(map_free, reference_free, reference_codes, reference_rooms, alignment, resolution);
