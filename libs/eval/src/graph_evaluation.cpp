@@ -282,6 +282,8 @@ GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& lab
   const TopologyResult ceiling =
       buildTopology(planLabelsOnMap(map_free, reference_codes, alignment), resolution, no_vote);
   c.plan_labels = scoreGraph(ceiling.graph, ceiling.regions, plan);
+  c.plan_labels_labels = ceiling.labels;
+  c.plan_labels_segmentation = ceiling.segmentation;
   return c;
 }
 
