@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Graph quality against the labelled plans (doc/topology.md, "Graph quality against the plan" and "G3"): labels each
-# plan of datasets/places with the shipped model, and each given SLAM map of the Intel lab, with
-# gridtopo-topology; scores labels, room segmentation and graph with gridtopo-topology-compare against the plan;
-# prints one row per map. lab_d is skipped (its labelled image has another size than its plan).
+# labelled plan of datasets/places (the *_original image its labels were drawn on) with the shipped model, and each
+# given SLAM map of the Intel lab, with gridtopo-topology; scores labels, room segmentation and graph with
+# gridtopo-topology-compare against the plan; prints one row per map. The plans are in the model's training set:
+# the rows measure the steps after labelling, not the classifier. lab_d is skipped (its labelled image is 992 x 800,
+# its room ground truth 840 x 581).
 #   usage: scripts/graph_quality.sh [-b build-dir] [-c topology.ini] [-o out-dir] [INTEL_SLAM_map.yaml ...]
 #   e.g.   scripts/graph_quality.sh out/intel/slam/map.yaml
 set -euo pipefail
@@ -40,12 +42,12 @@ done
 while read -r name map labels gt; do
   row "$name" $P/maps/$map $P/maps/$map $P/labelled/$labels $P/groundtruth/$gt
 done <<'PLANS'
-Fr101 Freiburg101_scan.png training_Fr101.png Freiburg101_scan_gt_segmentation.png
-Fr52 Freiburg52_scan.png training_Fr52.png Freiburg52_scan_gt_segmentation.png
-NLB NLB.png training_NLB_furniture.png NLB_gt_segmentation.png
-lab_c lab_c_scan.png training_lab_c_furnitures.png lab_c_scan_gt_segmentation.png
-lab_intel lab_intel.png training_intel.png lab_intel_gt_segmentation.png
-lab_ipa lab_ipa.png training_lab_ipa.png lab_ipa_gt_segmentation.png
-office_e office_e.png training_office_e.png office_e_gt_segmentation.png
-office_h office_h.png training_office_h.png office_h_gt_segmentation.png
+Fr101 Fr101_original.png training_Fr101.png Freiburg101_scan_gt_segmentation.png
+Fr52 Fr52_original.png training_Fr52.png Freiburg52_scan_gt_segmentation.png
+NLB NLB_original.png training_NLB_furniture.png NLB_gt_segmentation.png
+lab_c lab_c_furnitures_original.png training_lab_c_furnitures.png lab_c_scan_gt_segmentation.png
+lab_intel lab_intel_original.png training_intel.png lab_intel_gt_segmentation.png
+lab_ipa lab_ipa_original.png training_lab_ipa.png lab_ipa_gt_segmentation.png
+office_e office_e_original.png training_office_e.png office_e_gt_segmentation.png
+office_h office_h_original.png training_office_h.png office_h_gt_segmentation.png
 PLANS
