@@ -1,5 +1,9 @@
 #include "gridtopo/session/live_topology.h"
 
+#include <sched.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <stdexcept>
 
 #include "gridtopo/mapping/topology_builder.h"
@@ -107,6 +111,10 @@ std::size_t LiveTopology::computed() const {
 }
 
 void LiveTopology::run() {
+  // Below the SLAM worker: Linux schedules this thread (and the pipeline's threads, started from it, inherit the
+  // policy) only on CPU time no normal thread wants.
+  const sched_param idle{};
+  ::sched_setscheduler(static_cast<pid_t>(::syscall(SYS_gettid)), SCHED_IDLE, &idle);
   Queue& q = *queue_;
   for (;;) {
     Queue::Request req;

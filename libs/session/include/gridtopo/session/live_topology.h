@@ -7,7 +7,8 @@
 // maps are dropped when the topology is slower than the SLAM, and the last map is always computed. The
 // computation is the topology map builder's update step (mapping::topologyOfBuiltMap, the call gridtopo-map's
 // CMetricMapBuilderTopology makes), so the result for a given scan count is the same whatever the timing. Each
-// result is published as an immutable snapshot.
+// result is published as an immutable snapshot. The thread runs under Linux's SCHED_IDLE policy, so on a machine
+// with few cores the SLAM keeps its pace and the topology takes the idle time.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -44,6 +45,7 @@ std::string liveTopologyCaption(const LiveTopologyResult& r);
 
 class LiveTopology {
  public:
+
   /// Throws std::invalid_argument without a model. `on_result` (optional) is called on the topology thread after
   /// each result is published.
   LiveTopology(std::shared_ptr<const places::PlacesModel> model, const topology::TopologyOptions& options,
