@@ -510,6 +510,7 @@ void MainFrame::setView(ViewMode m) {
 
 void MainFrame::startSlam() {
   if (!applyOptionGrid()) return;
+  if (s_.liveTopologyOn() && !topology_grid_->applyEdits()) return;  // the live topology takes the topology options
   try {
     s_.startSlam(runner_options);
     failure_shown_ = false;
