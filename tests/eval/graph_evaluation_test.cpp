@@ -7,6 +7,7 @@
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/eval/graph_evaluation.h"
 #include "gridtopo/topology/graph_rules.h"
+#include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
@@ -60,9 +61,9 @@ ReferenceAlignment identity() {
 
 GraphScore score(const cv::Mat& labels) {
   const Plan p = reference();
-  CorridorSplitOptions split;
-  split.min_branch = 1.0;  // the 4 m spurs are branches
-  const RegionMap rm = graphRegions(labels, kRes, split, GraphRuleOptions{});
+  TopologyOptions o;
+  o.corridor_split.min_branch = 1.0;  // the 4 m spurs are branches
+  const RegionMap rm = graphRegionsOfLabels(labels, kRes, o);
   const TopologicalGraph g = buildGraph(rm, kRes);
   const PlanGraph plan = planGraphFromReference(labels != N, p.free, p.codes, p.rooms, identity(), kRes);
   return scoreGraph(g, rm, plan);

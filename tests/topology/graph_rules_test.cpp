@@ -10,6 +10,8 @@
 #include "gridtopo/topology/edge_route.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/graph_rules.h"
+#include "gridtopo/topology/pipeline.h"
+#include "gridtopo/topology/segmentation.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
@@ -94,8 +96,62 @@ TEST(GraphRules, TinyRegionsAreAbsorbedOrRemoved) {
   EXPECT_EQ(rm.ids.at<int>(10, 305), 0);
   // The labels the rules started from are untouched (graphRegions takes them by const reference) and the chain is
   // the same as the steps one by one.
-  const RegionMap chained = graphRegions(l, kRes, CorridorSplitOptions{}, GraphRuleOptions{});
+  const RegionMap regions = extractRegions(l, kRes);
+  const RegionMap chained = graphRegions(regions, roomSegmentation(regions), kRes, CorridorSplitOptions{}, GraphRuleOptions{});
   EXPECT_EQ(cv::countNonZero(chained.ids != rm.ids), 0);
+}
+
+// Two 5 x 5 m rooms side by side above a corridor, each with its own door, joined through a 1 m gap in the wall
+// between them that the classifier labelled room (a missed door): one 8-connected room region.
+cv::Mat twoRoomsJoinedThroughAMissedDoor() {
+  cv::Mat l(160, 210, CV_8U, cv::Scalar(N));
+  l(cv::Rect(0, 0, 100, 100)).setTo(R);
+  l(cv::Rect(110, 0, 100, 100)).setTo(R);
+  l(cv::Rect(100, 40, 10, 20)).setTo(R);  // the missed door
+  l(cv::Rect(0, 110, 210, 40)).setTo(C);
+  l(cv::Rect(40, 100, 20, 10)).setTo(D);
+  l(cv::Rect(150, 100, 20, 10)).setTo(D);
+  return l;
+}
+
+TEST(GraphRules, RoomsFollowTheSegmentation) {
+  const cv::Mat l = twoRoomsJoinedThroughAMissedDoor();
+  const RegionMap regions = extractRegions(l, kRes);
+  ASSERT_EQ(count(regions, R), 1);
+  TopologyOptions o;  // S1 splits at necks narrower than 1.3 m: the 1 m gap
+  const cv::Mat seg = segmentRooms(regions, kRes, o);
+  ASSERT_NE(seg.at<int>(50, 50), seg.at<int>(50, 160));
+
+  // G3 off: one room node wired to both doors.
+  GraphRuleOptions off;
+  off.rooms_by_segment = false;
+  EXPECT_EQ(count(graphRegions(regions, seg, kRes, o.corridor_split, off), R), 1);
+
+  // G3 on: one room node per segment, each through its own door to the corridor, and the two joined across the gap.
+  const RegionMap rm = graphRegions(regions, seg, kRes, o.corridor_split, o.graph_rules);
+  ASSERT_EQ(count(rm, R), 2);
+  const int left = rm.ids.at<int>(50, 50), right = rm.ids.at<int>(50, 160);
+  ASSERT_NE(left, right);
+  EXPECT_EQ(rm.region(left).label, R);
+  EXPECT_EQ(rm.region(right).label, R);
+  // Every cell of the input room is in one of the two, split at the gap (columns 100..109).
+  EXPECT_EQ(rm.region(left).cells + rm.region(right).cells, 100 * 100 * 2 + 10 * 20);
+  EXPECT_EQ(rm.ids.at<int>(50, 95), left);
+  EXPECT_EQ(rm.ids.at<int>(50, 115), right);
+  const TopologicalGraph g = buildGraph(rm, kRes);
+  const auto joined = [&](int a, int b) {
+    for (const auto& e : g.edges)
+      if ((e.a == a && e.b == b) || (e.a == b && e.b == a)) return true;
+    return false;
+  };
+  EXPECT_TRUE(joined(left, right));
+  const int door_left = rm.ids.at<int>(105, 50), door_right = rm.ids.at<int>(105, 160);
+  EXPECT_TRUE(joined(left, door_left));
+  EXPECT_TRUE(joined(right, door_right));
+  EXPECT_FALSE(joined(left, door_right));
+  EXPECT_FALSE(joined(right, door_left));
+  // The same chain from the labels alone.
+  EXPECT_EQ(cv::countNonZero(graphRegionsOfLabels(l, kRes, o).ids != rm.ids), 0);
 }
 
 TEST(EdgeRoute, AnchorsInsideAndRoutesAroundWalls) {

@@ -272,7 +272,7 @@ GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& lab
                                      const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
                                      const ReferenceAlignment& alignment) {
   GraphComparison c;
-  const RegionMap regions = graphRegions(labels, resolution, options.corridor_split, options.graph_rules);
+  const RegionMap regions = graphRegionsOfLabels(labels, resolution, options);
   c.graph = buildGraph(regions, resolution);
   const PlanGraph plan =
       planGraphFromReference(map_free, reference_free, reference_codes, reference_rooms, alignment, resolution);
@@ -282,6 +282,8 @@ GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& lab
   const TopologyResult ceiling =
       buildTopology(planLabelsOnMap(map_free, reference_codes, alignment), resolution, no_vote);
   c.plan_labels = scoreGraph(ceiling.graph, ceiling.regions, plan);
+  c.plan_labels_labels = ceiling.labels;
+  c.plan_labels_segmentation = ceiling.segmentation;
   return c;
 }
 

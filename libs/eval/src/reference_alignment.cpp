@@ -89,10 +89,18 @@ cv::Mat warpReferenceToMap(const cv::Mat& reference, const ReferenceAlignment& a
 ReferenceScore scoreAgainstReference(const cv::Mat& map_free, const cv::Mat& labels, const cv::Mat& segments,
                                      const cv::Mat& reference_free, const cv::Mat& reference_codes,
                                      const cv::Mat& reference_rooms, int min_room_cells, const std::string& source) {
-  CV_Assert(map_free.size() == labels.size() && map_free.size() == segments.size());
   CV_Assert(reference_free.size() == reference_codes.size() && reference_free.size() == reference_rooms.size());
+  return scoreAligned(map_free, labels, segments, reference_codes, reference_rooms,
+                      alignReference(map_free, reference_free, source), min_room_cells);
+}
+
+ReferenceScore scoreAligned(const cv::Mat& map_free, const cv::Mat& labels, const cv::Mat& segments,
+                            const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
+                            const ReferenceAlignment& alignment, int min_room_cells) {
+  CV_Assert(map_free.size() == labels.size() && map_free.size() == segments.size());
+  CV_Assert(reference_codes.size() == reference_rooms.size());
   ReferenceScore r;
-  r.alignment = alignReference(map_free, reference_free, source);
+  r.alignment = alignment;
   const cv::Size size = map_free.size();
   cv::Mat codes = warpReferenceToMap(reference_codes, r.alignment, size);
   codes.setTo(0, map_free == 0);  // only cells our map knows to be free are scored

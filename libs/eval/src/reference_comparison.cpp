@@ -54,6 +54,10 @@ TopologyComparison compareWithReference(const std::string& map, const std::strin
   // The graph as gridtopo-topology built it from labels.png (the same INI is needed: checked on topology.json).
   c.graph = compareGraphWithPlan(c.map_free, c.labels, m.resolution, opt, ref_free, c.reference_codes,
                                  c.reference_rooms, c.score.alignment);
+  c.segmentation_of_plan_labels =
+      scoreAligned(c.map_free, c.graph.plan_labels_labels, c.graph.plan_labels_segmentation, c.reference_codes,
+                   c.reference_rooms, c.score.alignment)
+          .segmentation;
   if (std::filesystem::is_regular_file(dir + "/topology.json")) {
     const auto written = topology::graphFromJson(dir + "/topology.json");
     const auto& g = c.graph.graph;
@@ -77,7 +81,8 @@ std::string comparisonJson(const TopologyComparison& c) {
      << a.map_to_reference(1, 2) << "]},\n  \"cell_accuracy\": " << s.labels.accuracy()
      << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson()
      << ",\n  \"graph\": " << c.graph.score.toJson() << ",\n  \"graph_of_plan_labels\": "
-     << c.graph.plan_labels.toJson() << "\n}\n";
+     << c.graph.plan_labels.toJson() << ",\n  \"segmentation_of_plan_labels\": "
+     << c.segmentation_of_plan_labels.toJson() << "\n}\n";
   return js.str();
 }
 
@@ -89,7 +94,9 @@ std::string comparisonSummary(const TopologyComparison& c) {
     << percent(s.labels.accuracy()) << " % (room / corridor / doorway recall " << percent(s.labels.recall(0))
     << " / " << percent(s.labels.recall(1)) << " / " << percent(s.labels.recall(2)) << " %); segmentation: "
     << s.segmentation.segments << " segments, " << s.segmentation.rooms << " rooms, recall "
-    << percent(s.segmentation.recall) << " %, precision " << percent(s.segmentation.precision) << " %; graph: "
+    << percent(s.segmentation.recall) << " %, precision " << percent(s.segmentation.precision)
+    << " % (with the plan's labels: " << percent(c.segmentation_of_plan_labels.recall) << " / "
+    << percent(c.segmentation_of_plan_labels.precision) << " %); graph: "
     << gs.attached << " of " << gs.plan_rooms << " plan rooms one room node attached through a doorway ("
     << percent(gs.attachedFraction()) << " %), " << gs.loops_closed << " of " << gs.plan_loops
     << " plan corridor loops a cycle of corridor nodes (with the plan's labels: "

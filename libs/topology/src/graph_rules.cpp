@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
@@ -46,6 +47,57 @@ RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std:
   return out;
 }
 }  // namespace
+
+RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation, double resolution) {
+  CV_Assert(segmentation.type() == CV_32S && segmentation.size() == rm.ids.size());
+  constexpr int kRoom = static_cast<int>(places::PlaceLabel::Room);
+  // A cell's key: its region, and for room cells also its segment. Pieces are the 8-connected sets of equal keys,
+  // found by flood fill row by row (so each region's pieces come in the order of their first cell).
+  const auto key = [&](int y, int x) {
+    const int id = rm.ids.at<int>(y, x);
+    const int seg = id > 0 && rm.region(id).label == kRoom ? segmentation.at<int>(y, x) : 0;
+    return std::make_pair(id, seg);
+  };
+  cv::Mat piece(rm.ids.size(), CV_32S, cv::Scalar(0));
+  std::vector<int> region_of{0};  // piece -> input region
+  std::vector<cv::Point> stack;
+  for (int y = 0; y < rm.ids.rows; ++y)
+    for (int x = 0; x < rm.ids.cols; ++x) {
+      if (rm.ids.at<int>(y, x) <= 0 || piece.at<int>(y, x)) continue;
+      const int p = static_cast<int>(region_of.size());
+      const auto k = key(y, x);
+      region_of.push_back(k.first);
+      piece.at<int>(y, x) = p;
+      stack.assign(1, cv::Point(x, y));
+      while (!stack.empty()) {
+        const cv::Point c = stack.back();
+        stack.pop_back();
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int ny = c.y + dy, nx = c.x + dx;
+            if (ny < 0 || nx < 0 || ny >= rm.ids.rows || nx >= rm.ids.cols || piece.at<int>(ny, nx)) continue;
+            if (rm.ids.at<int>(ny, nx) <= 0 || key(ny, nx) != k) continue;
+            piece.at<int>(ny, nx) = p;
+            stack.emplace_back(nx, ny);
+          }
+      }
+    }
+  // New ids: by input region, then by piece (stable: first cell order).
+  const int n = static_cast<int>(region_of.size()) - 1;
+  std::vector<int> order(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i + 1;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return region_of[static_cast<std::size_t>(a)] < region_of[static_cast<std::size_t>(b)];
+  });
+  std::vector<int> remap(static_cast<std::size_t>(n) + 1, 0), label{0};
+  for (int p : order) {
+    remap[static_cast<std::size_t>(p)] = static_cast<int>(label.size());
+    label.push_back(rm.region(region_of[static_cast<std::size_t>(p)]).label);
+  }
+  RegionMap pieces;
+  pieces.ids = piece;
+  return relabel(pieces, remap, label, resolution);
+}
 
 RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRuleOptions& o) {
   const int n = static_cast<int>(rm.regions.size());
@@ -97,9 +149,10 @@ RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRul
   return relabel(rm, remap, label, resolution);
 }
 
-RegionMap graphRegions(const cv::Mat& labels, double resolution, const CorridorSplitOptions& split,
-                       const GraphRuleOptions& rules) {
-  return applyGraphRules(splitCorridors(extractRegions(labels, resolution), resolution, split), resolution, rules);
+RegionMap graphRegions(const RegionMap& regions, const cv::Mat& segmentation, double resolution,
+                       const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
+  const RegionMap rooms = rules.rooms_by_segment ? splitRoomsBySegments(regions, segmentation, resolution) : regions;
+  return applyGraphRules(splitCorridors(rooms, resolution, split), resolution, rules);
 }
 
 }  // namespace gridtopo::topology

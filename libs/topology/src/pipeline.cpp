@@ -63,7 +63,9 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
           .add("graph_min_node_area", field(&O::graph_rules, &GraphRuleOptions::min_node_area), R::closed(0, 100),
                "m^2", "G1: smaller regions join a neighbour node (0 = off)")
           .add("graph_merge_doorways", field(&O::graph_rules, &GraphRuleOptions::merge_doorways), R::any(), "",
-               "G2: doorways between the same two places become one");
+               "G2: doorways between the same two places become one")
+          .add("graph_rooms_by_segment", field(&O::graph_rules, &GraphRuleOptions::rooms_by_segment), R::any(), "",
+               "G3: a room region the segmentation splits is one node per segment");
   return schema;
 }
 
@@ -144,17 +146,27 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   }
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
-  r.segmentation = o.segmentation == "doorways" ? doorwaySegmentation(r.regions)
-                                                : roomSegmentation(r.regions, o.seg_rules.merge_contact, resolution);
-  if (o.seg_rules.neck_width > 0) r.segmentation = splitAtNecks(r.segmentation, resolution, o.seg_rules);
+  r.segmentation = segmentRooms(r.regions, resolution, o);
   r.labels_corrected = r.labels;
   if (o.seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
-  r.regions = applyGraphRules(splitCorridors(r.regions, resolution, o.corridor_split), resolution, o.graph_rules);
+  r.regions = graphRegions(r.regions, r.segmentation, resolution, o.corridor_split, o.graph_rules);
   r.graph = buildGraph(r.regions, resolution, origin);
   return r;
+}
+
+cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o) {
+  cv::Mat s = o.segmentation == "doorways" ? doorwaySegmentation(regions)
+                                           : roomSegmentation(regions, o.seg_rules.merge_contact, resolution);
+  if (o.seg_rules.neck_width > 0) s = splitAtNecks(s, resolution, o.seg_rules);
+  return s;
+}
+
+RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const TopologyOptions& o) {
+  const RegionMap regions = extractRegions(labels, resolution);
+  return graphRegions(regions, segmentRooms(regions, resolution, o), resolution, o.corridor_split, o.graph_rules);
 }
 
 MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,

@@ -93,6 +93,8 @@ struct GraphComparison {
   topology::TopologicalGraph graph;   ///< the graph of the labels, rebuilt as gridtopo-topology builds it
   GraphScore score;         ///< that graph against the plan
   GraphScore plan_labels;   ///< the ceiling: the graph the same steps make of the plan's own labels on the map
+  /// The ceiling's labels and room segmentation (what the same steps make of the plan's own labels on the map).
+  cv::Mat plan_labels_labels, plan_labels_segmentation;
 };
 
 /// What gridtopo-topology-compare reports on the graph: the graph of `labels` (the final labels of a

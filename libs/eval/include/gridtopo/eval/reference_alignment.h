@@ -44,4 +44,10 @@ ReferenceScore scoreAgainstReference(const cv::Mat& map_free, const cv::Mat& lab
                                      const cv::Mat& reference_rooms, int min_room_cells = 100,
                                      const std::string& source = "<reference>");
 
+/// The same scores with a known alignment (e.g. the labels and segmentation the plan's own labels give on the map,
+/// scored with the alignment scoreAgainstReference found for the map).
+ReferenceScore scoreAligned(const cv::Mat& map_free, const cv::Mat& labels, const cv::Mat& segments,
+                            const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
+                            const ReferenceAlignment& alignment, int min_room_cells = 100);
+
 }  // namespace gridtopo::eval

@@ -28,6 +28,9 @@ struct TopologyComparison {
   cv::Mat reference_codes, reference_rooms;  ///< the plan's label codes and rooms, in the plan's frame
   ReferenceScore score;           ///< alignment, labels and segmentation against the plan
   GraphComparison graph;          ///< the graph of the labels against the plan, and the plan labels' ceiling
+  /// The room segmentation the same steps make of the plan's own labels on the map, against the plan: the ceiling
+  /// of the segmentation score on this map (what the map itself allows: rooms seen in part, walls not mapped).
+  SegmentationScore segmentation_of_plan_labels;
 };
 
 /// Reads the map (io::readMap: its kind picks the free threshold of `options`) and the topology directory

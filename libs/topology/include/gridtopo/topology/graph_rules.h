@@ -6,8 +6,13 @@
 //     tiny region with no neighbour is removed from the graph (its cells get region id 0).
 //  G2 doorway edge-nodes: doorway regions that join the same two room / corridor regions (a double door, or a door
 //     the classifier cut in two) become one doorway node.
-// The graph's regions are extractRegions (8-connected equal labels), then splitCorridors (corridor pieces), then
-// G1 and G2: graphRegions() is that chain, the one both gridtopo-topology and gridtopo-topology-compare call.
+//  G3 rooms follow the room segmentation: a room region that the segmentation cuts into several segments (rule S1
+//     splits rooms joined through a door the classifier missed; S0 keeps a room and the corridor it is open to
+//     together) becomes one region per segment, so every segmented room is its own node, joined to its
+//     neighbour across the cut. Applied first; G1 then absorbs the pieces too small to be a node.
+// The graph's regions are extractRegions (8-connected equal labels), G3 with the room segmentation, splitCorridors
+// (corridor pieces), then G1 and G2: graphRegions() is that chain, the one both gridtopo-topology and
+// gridtopo-topology-compare call.
 #include <opencv2/core.hpp>
 
 #include "gridtopo/topology/corridor_split.h"
@@ -18,15 +23,22 @@ namespace gridtopo::topology {
 struct GraphRuleOptions {
   double min_node_area = 1.0;  ///< m^2 (G1); 0 = off
   bool merge_doorways = true;  ///< G2
+  bool rooms_by_segment = true;  ///< G3
 };
+
+/// G3: every room region of `regions` that meets several segments of `segmentation` (CV_32S, same size, the room
+/// segmentation of these regions) becomes one region per 8-connected part of its cells within each segment. Other
+/// regions are kept. Regions are renumbered 1..N in input order (a split room's parts in the order of their first
+/// cell, row by row).
+RegionMap splitRoomsBySegments(const RegionMap& regions, const cv::Mat& segmentation, double resolution);
 
 /// G1 then G2 on `regions` (every region's cells, area, centroid and bounding box recomputed; ids renumbered
 /// 1..N in the order of the input's surviving regions).
 RegionMap applyGraphRules(const RegionMap& regions, double resolution, const GraphRuleOptions& options = {});
 
-/// The graph's regions of a label image (CV_8U place labels): extractRegions, splitCorridors(`split`),
-/// applyGraphRules(`rules`).
-RegionMap graphRegions(const cv::Mat& labels, double resolution, const CorridorSplitOptions& split,
-                       const GraphRuleOptions& rules);
+/// The graph's regions from the 8-connected `regions` of the final labels and their room `segmentation` (CV_32S;
+/// used when rules.rooms_by_segment): G3, splitCorridors(`split`), applyGraphRules(`rules`).
+RegionMap graphRegions(const RegionMap& regions, const cv::Mat& segmentation, double resolution,
+                       const CorridorSplitOptions& split, const GraphRuleOptions& rules);
 
 }  // namespace gridtopo::topology

@@ -42,7 +42,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
   CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
-  GraphRuleOptions graph_rules;          ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2)
+  GraphRuleOptions graph_rules;  ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2), graph_rooms_by_segment (G3)
 
   /// Reads [topology], [relaxation], [correction] (`section` is the name of the first one).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -96,12 +96,21 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// Steps 6-8 of the method, the one call every app and the GUI make after labelling: builds regions, graph and
 /// segmentation from per-cell labels (e.g. LabellingResult::labels) with the run's options (`o.correction`,
 /// `o.segmentation`, `o.seg_rules`, `o.corridor_split`, `o.blob_vote`). The segmentation is made from the
-/// 8-connected regions; the returned regions and graph then have corridors split into pieces at their junctions
-/// (corridor_split.h) and the graph rules G1, G2 applied (graph_rules.h): they are graphRegions(result.labels, ...). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
+/// 8-connected regions (segmentRooms); the returned regions and graph then have rooms split along that segmentation
+/// (G3), corridors split into pieces at their junctions (corridor_split.h) and the graph rules G1, G2 applied
+/// (graph_rules.h): without the segment vote they are graphRegionsOfLabels(result.labels, ...). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
 /// (step 7b), which needs the labelling the labels come from (its lattice and relaxed probabilities): throws
 /// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0});
+
+/// The room segmentation of the 8-connected `regions` with the run's rules (`o.segmentation`, `o.seg_rules`: S0, S1).
+cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o);
+
+/// The graph's regions of final labels (e.g. a run's labels.png): extractRegions, segmentRooms, graphRegions. What
+/// gridtopo-topology-compare scores; equal to buildTopology's regions unless the segment vote is on (buildTopology
+/// then segments the labels before the vote).
+RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const TopologyOptions& o);
 
 /// A whole topology run on one typed map (grey image, resolution, world position of its lower-left corner, kind):
 /// the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces), then the regions and

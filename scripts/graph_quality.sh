@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Graph quality against the labelled plans (doc/topology.md, "Graph quality against the plan" and "G3"): labels each
+# plan of datasets/places with the shipped model, and each given SLAM map of the Intel lab, with
+# gridtopo-topology; scores labels, room segmentation and graph with gridtopo-topology-compare against the plan;
+# prints one row per map. lab_d is skipped (its labelled image has another size than its plan).
+#   usage: scripts/graph_quality.sh [-b build-dir] [-c topology.ini] [-o out-dir] [INTEL_SLAM_map.yaml ...]
+#   e.g.   scripts/graph_quality.sh out/intel/slam/map.yaml
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=build INI=config-ini/topology.ini OUT=
+while getopts "b:c:o:" f; do
+  case $f in b) BUILD=$OPTARG ;; c) INI=$OPTARG ;; o) OUT=$OPTARG ;; *) exit 2 ;; esac
+done
+shift $((OPTIND - 1))
+BIN=$BUILD/bin P=datasets/places MODEL=datasets/models/places_model.yml
+if [ -z "$OUT" ]; then OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT; fi
+
+row() {  # name map reference-map reference-labels reference-segmentation
+  local d=$OUT/$1
+  mkdir -p "$d"
+  "$BIN/gridtopo-topology" "$2" -m "$MODEL" -c "$INI" -o "$d/topology" -q > "$d.log" 2>&1
+  "$BIN/gridtopo-topology-compare" "$2" "$d/topology" -c "$INI" --reference-map "$3" --reference-labels "$4" \
+    --reference-segmentation "$5" -j "$d/compare.json" > /dev/null
+  python3 - "$d/compare.json" "$1" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); g = d['graph']; c = d['graph_of_plan_labels']; s = d['segmentation']
+r = d['labels']['recall']
+print(f"| {sys.argv[2]} | {100 * d['cell_accuracy']:.1f} % | {100 * r[1]:.1f} / {100 * r[2]:.1f} % "
+      f"| {100 * s['recall']:.1f} / {100 * s['precision']:.1f} % | {g['one_room_node']} | {g['attached']} / {g['plan_rooms']} "
+      f"| {g['loops_closed']} / {g['plan_loops']} | {c['attached']} / {c['plan_rooms']}, {c['loops_closed']} / {c['plan_loops']} |")
+PY
+}
+
+echo "| map | cell acc. | corridor / doorway recall | rooms R / P | one room node | rooms attached | loops closed | ceiling: attached, loops |"
+echo "|---|---|---|---|---|---|---|---|"
+for m in "$@"; do
+  row "$(basename "$(dirname "$m")")" "$m" $P/maps/lab_intel.png $P/labelled/training_intel.png \
+    $P/groundtruth/lab_intel_gt_segmentation.png
+done
+while read -r name map labels gt; do
+  row "$name" $P/maps/$map $P/maps/$map $P/labelled/$labels $P/groundtruth/$gt
+done <<'PLANS'
+Fr101 Freiburg101_scan.png training_Fr101.png Freiburg101_scan_gt_segmentation.png
+Fr52 Freiburg52_scan.png training_Fr52.png Freiburg52_scan_gt_segmentation.png
+NLB NLB.png training_NLB_furniture.png NLB_gt_segmentation.png
+lab_c lab_c_scan.png training_lab_c_furnitures.png lab_c_scan_gt_segmentation.png
+lab_intel lab_intel.png training_intel.png lab_intel_gt_segmentation.png
+lab_ipa lab_ipa.png training_lab_ipa.png lab_ipa_gt_segmentation.png
+office_e office_e.png training_office_e.png office_e_gt_segmentation.png
+office_h office_h.png training_office_h.png office_h_gt_segmentation.png
+PLANS
