@@ -23,7 +23,7 @@ struct Options {
   std::vector<std::string> files;
   std::string ini, model, topology_ini, screenshot, export_view, inspector_out, view, bench_out;
   double resolution = 0;
-  long max_scans = 0, run_steps = -1, particles = 0;
+  long max_scans = 0, run_steps = -1, particles = 0, live_topology = -1;
   bool run_to_end = false, run_topology = false, quit = false, use_slam_map = false;
   int click_col = -1, click_row = -1;
   int width = 1280, height = 860;
@@ -113,6 +113,7 @@ class GuiApp : public wxApp {
     }
     if (!g_opt.model.empty()) ok = f->openFile(g_opt.model) && ok;
     else f->openDefaultModel();
+    if (g_opt.live_topology >= 0) ok = f->setLiveTopology(true, static_cast<unsigned>(g_opt.live_topology)) && ok;
     for (const auto& p : g_opt.files) ok = f->openFile(p, g_opt.resolution) && ok;
     if (!ok && scripted) {
       f->exit_code = 1;
@@ -154,6 +155,10 @@ class GuiApp : public wxApp {
         return true;
       });
       sc.push_back(waitIdle(f));
+      sc.push_back([f] {  // the live topology of the idle run's map
+        const auto* live = f->session().liveTopology();
+        return !live || live->waitIdle(std::chrono::milliseconds(0));
+      });
       sc.push_back([f, t_start] {
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *t_start).count();
         f->canvas()->fit();
@@ -163,6 +168,10 @@ class GuiApp : public wxApp {
                     << " s wall (" << s->wall_seconds << " s in the filter), " << f->canvas()->frames
                     << " frames drawn, peak RSS " << s->peak_rss_bytes / 1048576 << " MB, state "
                     << session::toString(s->state) << "\n";
+        if (const auto live = f->session().liveTopologyResult())
+          std::cerr << "gridtopo-gui: live " << session::liveTopologyCaption(*live) << ", " << live->seconds
+                    << " s; " << f->session().liveTopology()->computed() << " computed, "
+                    << f->session().liveTopology()->dropped() << " dropped\n";
         return true;
       });
     }
@@ -285,6 +294,10 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<long> particles("p", "particles", "number of particles (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<long> run_steps("", "run-steps", "start the SLAM and run n filter updates", false, -1, "n", cmd);
     TCLAP::SwitchArg run_end("", "run-to-end", "start the SLAM and run it to the end of the log", cmd);
+    TCLAP::ValueArg<long> live("", "live-topology",
+                               "turn on the live topology of the SLAM run: the labels and graph of the best map every "
+                               "n updates and when the run pauses or ends (0: only then)",
+                               false, -1, "n", cmd);
     TCLAP::SwitchArg slam_map("", "use-slam-map", "after the run, send the SLAM map to the topology view", cmd);
     TCLAP::SwitchArg run_topo("", "run-topology", "run labelling + topology on the current map", cmd);
     TCLAP::ValueArg<std::string> view("", "view", "slam | topology | labels", false, "", "name", cmd);
@@ -317,6 +330,9 @@ int main(int argc, char** argv) {
     g_opt.particles = particles.getValue();
     g_opt.run_steps = run_steps.getValue();
     g_opt.run_to_end = run_end.getValue();
+    if (live.isSet() && (live.getValue() < 0 || live.getValue() > 1000000))
+      throw InputError("--live-topology", "must be in [0, 1000000], got " + std::to_string(live.getValue()));
+    g_opt.live_topology = live.getValue();
     g_opt.use_slam_map = slam_map.getValue();
     g_opt.run_topology = run_topo.getValue();
     g_opt.view = view.getValue();

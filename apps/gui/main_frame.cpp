@@ -30,6 +30,7 @@ const char* const kBuildTimeDataDir = GRIDTOPO_BUILD_TIME_DATA_DIR;
 enum Id {
   kSaveSlam = wxID_HIGHEST + 1, kSaveTopology, kSaveLabels, kExportView, kClearRecent,
   kSlamStart, kSlamPlay, kSlamPause, kSlamStep, kSlamRun, kSlamStop, kSlamUseMap, kSlamLoadIni, kSlamSaveIni,
+  kSlamLive, kSlamLiveEvery,
   kTopoModelInfo, kTopoModel, kTopoRun, kStageClassified, kStageRelaxed, kStageCorrected,
   kLabelsStart, kLabelsOpen, kToolNone, kToolBrush, kToolFill, kCodeRoom, kCodeCorridor, kCodeDoorway, kCodeErase,
   kBrushBigger, kBrushSmaller, kUndo,
@@ -103,6 +104,10 @@ void MainFrame::buildMenus() {
   slam->Append(kSlamStep, "Single &step\tF7");
   slam->Append(kSlamRun, "&Run to end\tF8");
   slam->Append(kSlamStop, "S&top\tF9");
+  slam->AppendSeparator();
+  slam->AppendCheckItem(kSlamLive, "Live &topology",
+                        "recompute the labels and the graph of the best map while the SLAM runs (SLAM view)");
+  slam->Append(kSlamLiveEvery, "Live topology &every...", "every how many SLAM updates ([topology_builder] update_every)");
   slam->AppendSeparator();
   slam->Append(kSlamUseMap, "Send &map to topology / labels", "use the best particle's map as the session map");
   slam->Append(kSlamLoadIni, "&Load INI...");
@@ -232,6 +237,16 @@ void MainFrame::buildMenus() {
       showError("No SLAM map", e.what());
     }
   }, kSlamUseMap);
+  Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
+    setLiveTopology(e.IsChecked(), s_.liveTopologySchedule().update_every);
+  }, kSlamLive);
+  Bind(wxEVT_MENU, [this](wxCommandEvent&) {
+    const long n = wxGetNumberFromUser("Recompute the live topology every N SLAM updates (0: only when the run pauses "
+                                       "or ends).",
+                                       "N", "Live topology", static_cast<long>(s_.liveTopologySchedule().update_every),
+                                       0, 1000000, this);
+    if (n >= 0) setLiveTopology(true, static_cast<unsigned>(n));
+  }, kSlamLiveEvery);
   Bind(wxEVT_MENU, [this](wxCommandEvent&) {
     wxFileDialog d(this, "SLAM INI", "", "", "INI (*.ini)|*.ini|All files|*", wxFD_OPEN | wxFD_FILE_MUST_EXIST);
     if (d.ShowModal() == wxID_OK) openFile(d.GetPath().ToStdString());
@@ -495,11 +510,13 @@ void MainFrame::setView(ViewMode m) {
 
 void MainFrame::startSlam() {
   if (!applyOptionGrid()) return;
+  if (s_.liveTopologyOn() && !topology_grid_->applyEdits()) return;  // the live topology takes the topology options
   try {
     s_.startSlam(runner_options);
     failure_shown_ = false;
     plots_->clear();
     drawn_version_ = 0;
+    live_drawn_sequence_ = 0;
     setView(ViewMode::Slam);
   } catch (const std::exception& e) {
     showError("Cannot start the SLAM", e.what());
@@ -531,6 +548,29 @@ void MainFrame::startTopology() {
     });
   });
   SetStatusText("labelling places...", 4);
+}
+
+bool MainFrame::setLiveTopology(bool on, unsigned update_every) {
+  if (on && !topology_grid_->applyEdits()) {
+    menubar_->Check(kSlamLive, s_.liveTopologyOn());
+    return false;
+  }
+  mapping::TopologyBuilderOptions schedule;
+  schedule.update_every = update_every;
+  try {
+    s_.setLiveTopology(on, schedule);
+  } catch (const std::exception& e) {
+    menubar_->Check(kSlamLive, s_.liveTopologyOn());
+    showError("No live topology", e.what());
+    return false;
+  }
+  menubar_->Check(kSlamLive, on);
+  live_drawn_sequence_ = 0;
+  SetStatusText(on ? wxString::Format("live topology every %u updates and when the run pauses or ends", update_every)
+                   : wxString("live topology off"),
+                4);
+  canvas_->Refresh(false);
+  return true;
 }
 
 void MainFrame::showOptionsTab() {
@@ -595,6 +635,11 @@ void MainFrame::onTimer(wxTimerEvent&) {
     } else {
       SetStatusText(wxString::Format("labelling places... %d%%", topology_progress_.load()), 4);
     }
+  }
+  if (const auto live = s_.liveTopologyResult(); live && live->sequence != live_drawn_sequence_) {
+    live_drawn_sequence_ = live->sequence;
+    if (canvas_->mode() == ViewMode::Slam) canvas_->Refresh(false);
+    if (!topology_future_.valid()) SetStatusText(session::liveTopologyCaption(*live), 4);
   }
   if (const auto* r = s_.runner()) {
     const auto v = r->snapshotVersion();

@@ -36,6 +36,9 @@ class MainFrame : public wxFrame {
   /// Starts labelling + topology of the current map in a background thread.
   void startTopology();
   bool topologyRunning() const { return topology_future_.valid(); }
+  /// Turns the live topology of the SLAM run on (every `update_every` updates and when the run pauses or ends, with
+  /// the topology grid's options) or off; an error dialog and false when it cannot (no place model).
+  bool setLiveTopology(bool on, unsigned update_every);
   /// Grabs the whole window as it is on screen.
   bool screenshot(const std::string& path);
   std::string inspectorText() const;
@@ -85,6 +88,7 @@ class MainFrame : public wxFrame {
   wxMenuBar* menubar_ = nullptr;
   wxTimer timer_;
   std::uint64_t drawn_version_ = 0;
+  std::uint64_t live_drawn_sequence_ = 0;  ///< the live topology result last drawn
   int plot_tick_ = 0;
   bool failure_shown_ = false;
   std::string hover_;

@@ -1,6 +1,7 @@
 // Smoke test of the real gridtopo-gui binary under Xvfb: a short slice of Intel run through the test hooks
-// (--run-steps, --screenshot, --quit), the topology view on a floor plan with a scripted mouse click on a cell
-// (wxUIActionSimulator through XTest), and a bad file. Screenshots are checked for map pixels, particles, the
+// (--run-steps, --screenshot, --quit), the same with the live topology over the SLAM map (--live-topology), the
+// topology view on a floor plan with a scripted mouse click on a cell (wxUIActionSimulator through XTest), and a bad
+// file. Screenshots are checked for map pixels, particles, the
 // trajectory and the label overlay (not a blank or black window).
 #include <gtest/gtest.h>
 
@@ -81,6 +82,33 @@ TEST(GuiSmoke, SlamViewShowsMapParticlesAndTrajectory) {
   ASSERT_FALSE(view.empty());
   EXPECT_GT(countColour(view, {0, 0, 230}, 0), 30);
   EXPECT_LT(view.cols, shot.cols);
+}
+
+TEST(GuiSmoke, LiveTopologyDrawsLabelsAndGraphOnTheGrowingSlamMap) {
+  guitest::TempDir tmp;
+  // Every 100 updates and at the pause: the topology of 100 updates, then of 200 (the pause adds no third request).
+  const int rc = runGui("--max-scans 1500 --particles 8 --run-steps 200 --live-topology 100 --size 1100x800"
+                        " --export-view " + (tmp / "view.png") + " --screenshot " + (tmp / "shot.png") +
+                            " --quit " GRIDTOPO_DATA_DIR "/slam/intel.clf.gz",
+                        tmp / "log.txt");
+  const std::string log = slurp(tmp / "log.txt");
+  ASSERT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("200 updates, run"), std::string::npos) << log;
+  EXPECT_NE(log.find("live topology of scan "), std::string::npos) << log;
+  EXPECT_NE(log.find(" (200 updates): "), std::string::npos) << log;
+  EXPECT_NE(log.find("2 computed, 0 dropped"), std::string::npos) << log;
+  // The SLAM view (no topology view was opened) shows room and corridor colours over the map, and the graph's nodes.
+  const cv::Mat view = cv::imread(tmp / "view.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(view.empty());
+  const int room_px = countIf(view, [](const cv::Vec3b& v) { return v[0] > v[1] + 40 && v[0] > v[2] + 60; });
+  const int corr_px = countIf(view, [](const cv::Vec3b& v) { return v[1] > v[0] + 40 && v[1] > v[2] + 40; });
+  const int free_px = countColour(view, {255, 255, 255}, 6);
+  std::cerr << "live topology view: room " << room_px << " corridor " << corr_px << " free " << free_px << "\n";
+  EXPECT_GT(room_px, 3000);
+  EXPECT_GT(corr_px, 2000);
+  EXPECT_GT(countColour(view, {220, 120, 40}, 0), 20);  // room nodes (labelColour(0)), drawn opaque
+  EXPECT_GT(countColour(view, {0, 0, 230}, 0), 30);     // the best particle's path is still drawn on top
+  EXPECT_FALSE(cv::imread(tmp / "shot.png", cv::IMREAD_COLOR).empty());
 }
 
 TEST(GuiSmoke, TopologyViewAndAClickedCellShowItsLabel) {

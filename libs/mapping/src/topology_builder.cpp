@@ -15,16 +15,25 @@
 namespace gridtopo::mapping {
 
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
-                               const topology::TopologyOptions& options, const std::string& source) {
+                               const topology::TopologyOptions& options, const std::string& source,
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
   // The same calls as gridtopo-topology on a .gridmap(.gz): a SLAM grid's free threshold and opening.
-  const MapImage map = io::mapImageOfGrid(grid, MapKind::ProbabilisticGrid, source);
   MapTopology t;
   t.source = source;
-  t.origin = map.origin;
-  topology::MapTopology run = topology::topologyOfMap(map, model, options);
+  t.map = io::mapImageOfGrid(grid, MapKind::ProbabilisticGrid, source);
+  topology::MapTopology run = topology::topologyOfMap(t.map, model, options, progress);
   t.occ = std::move(run.occ);
   t.labelling = std::move(run.labelling);
   t.topo = std::move(run.topo);
+  return t;
+}
+
+MapTopology topologyOfBuiltMap(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size,
+                               const places::PlacesModel& model, const topology::TopologyOptions& options,
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
+  MapTopology t =
+      topologyOfSlamGrid(grid, model, options, "<slam map, " + std::to_string(map_size) + " scans>", progress);
+  t.map_size = map_size;
   return t;
 }
 
@@ -109,9 +118,7 @@ void CMetricMapBuilderTopology::updateTopology() {
 }
 
 void CMetricMapBuilderTopology::updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned size) {
-  const std::string source = "<slam map, " + std::to_string(size) + " scans>";
-  auto t = std::make_shared<MapTopology>(topologyOfSlamGrid(grid, *model_, topologyOptions, source));
-  t->map_size = size;
+  auto t = std::make_shared<const MapTopology>(topologyOfBuiltMap(grid, size, *model_, topologyOptions));
   {
     std::lock_guard<std::mutex> lock(topology_mutex_);
     topology_ = t;

@@ -20,6 +20,7 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/slam_run_ini.h"
+#include "gridtopo/session/topology_drawing.h"
 
 namespace gridtopo::session {
 
@@ -137,6 +138,7 @@ void Session::openLog(const std::string& path, std::size_t max_scans) {
   if (max_scans && scans.size() > max_scans) scans.resize(max_scans);
   if (scans.empty()) throw InputError(path, "the log holds no laser scans");
   runner_.reset();
+  live_.reset();
   log_warnings_ = std::move(info.warnings);
   scans_ = std::make_shared<const std::vector<ScanRecord>>(std::move(scans));
   log_path_ = path;
@@ -242,7 +244,9 @@ void Session::setSlamOptions(const OptionTable& table) {
 void Session::startSlam(const RunnerOptions& options) {
   if (!scans_) throw InputError("<log>", "open a log first");
   runner_.reset();
+  live_.reset();
   runner_ = std::make_unique<SlamRunner>(scans_, slam_options_, options);
+  if (live_on_) attachLiveTopology();
   slam_raster_version_ = ~0ull;
   relations_cache_key_ = ~0ull;
   selection_ = {};
@@ -250,6 +254,27 @@ void Session::startSlam(const RunnerOptions& options) {
 
 void Session::stopSlam() {
   if (runner_) runner_->stop();
+}
+
+void Session::setLiveTopology(bool on, const mapping::TopologyBuilderOptions& schedule) {
+  if (on && !model_) throw std::runtime_error("live topology needs a place model (Topology > Open place model)");
+  if (runner_) runner_->setBestMapListener(0, {});
+  live_.reset();
+  live_on_ = on;
+  live_schedule_ = schedule;
+  if (live_on_ && runner_) attachLiveTopology();
+}
+
+void Session::attachLiveTopology() {
+  live_ = std::make_unique<LiveTopology>(model_, topology_options_);
+  runner_->setBestMapListener(live_schedule_.update_every, live_->listener());
+  // Turned on while the run is paused: the map it holds now.
+  const auto s = runner_->snapshot();
+  if (s && s->state != RunState::Running && s->steps > 0) live_->request(s->best_map, s->steps, s->scans_fed);
+}
+
+std::shared_ptr<const LiveTopologyResult> Session::liveTopologyResult() const {
+  return live_ ? live_->latest() : nullptr;
 }
 
 std::shared_ptr<const SlamSnapshot> Session::slamSnapshot() const {
@@ -483,6 +508,23 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
         slam_raster_version_ = s->version;
       }
       if (layers.map) slam_raster_.draw(screen, v);
+      // The live topology over the growing map: the labelled map of the scan it is of, then its graph.
+      if (const auto live = liveTopologyResult()) {
+        if (live->data) {
+          const int key = 2 * static_cast<int>(layers.stage);
+          if (layers.labels) {
+            if (live->sequence != live_raster_sequence_ || key != live_raster_key_) {
+              live_raster_.set(topologyImage(*live->data, layers.stage, true), live->data->map);
+              live_raster_sequence_ = live->sequence;
+              live_raster_key_ = key;
+            }
+            live_raster_.draw(screen, v);
+          }
+          drawTopologyGraph(screen, v, *live->data, layers.graph, layers.region_ids);
+        }
+        if (layers.labels || layers.graph)
+          drawCaption(screen, liveTopologyCaption(*live));
+      }
     } else if (layers.map && !map_.empty()) {
       if (map_raster_generation_ != map_generation_) {
         map_raster_.set(greyToBgr(map_.grey), map_);
@@ -554,28 +596,7 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
     if (!m.empty() && layers.map) {
       const int key = (layers.labels ? 1 : 0) + 2 * static_cast<int>(layers.stage);
       if (topo_raster_generation_ != topo_generation_ + map_generation_ || key != topo_raster_key_) {
-        cv::Mat bgr;
-        const cv::Mat* labels = topology_ && layers.labels ? &topology_->labels(layers.stage) : nullptr;
-        if (labels && !labels->empty()) {
-          cv::Mat conf;
-          if (topology_->has_labelling) {
-            const auto& lab = topology_->labelling;
-            const cv::Mat& probs = layers.stage == LabelStage::Classified ? lab.probs_initial : lab.probs;
-            conf = cv::Mat(labels->size(), CV_32F, cv::Scalar(1));
-            for (int r = 0; r < conf.rows; ++r)
-              for (int c = 0; c < conf.cols; ++c) {
-                const unsigned char l = labels->at<unsigned char>(r, c);
-                if (l > 2) continue;
-                const int b = lab.lattice.sampleOfPixel(r, c);
-                if (b < 0) continue;
-                conf.at<float>(r, c) =
-                    probs.at<cv::Vec3f>(lab.lattice.blocks[static_cast<std::size_t>(b)])[l];
-              }
-          }
-          bgr = labelOverlay(m.grey, *labels, conf);
-        } else {
-          bgr = greyToBgr(m.grey);
-        }
+        const cv::Mat bgr = topology_ ? topologyImage(*topology_, layers.stage, layers.labels) : greyToBgr(m.grey);
         topo_raster_.set(bgr, m);
         topo_raster_generation_ = topo_generation_ + map_generation_;
         topo_raster_key_ = key;
@@ -583,49 +604,7 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
       topo_raster_.draw(screen, v);
     }
     if (topology_) {
-      const auto& g = topology_->topo.graph;
-      if (layers.graph) {
-        for (const auto& e : g.edges) {
-          const auto *a = g.node(e.a), *b = g.node(e.b);
-          if (!a || !b) continue;
-          if (e.path_px.size() >= 2) {  // as in overlay.png: along the routed free path
-            std::vector<cv::Point> line;
-            for (const cv::Point& q : e.path_px) {
-              const cv::Point2d w = pixelWorld(*topology_, cv::Point2d(q));
-              const cv::Point2d s = v.toScreen(w.x, w.y);
-              line.emplace_back(static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y)));
-            }
-            cv::polylines(screen, line, false, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
-            continue;
-          }
-          const cv::Point2d wa = nodeAnchorWorld(*topology_, *a), wb = nodeAnchorWorld(*topology_, *b);
-          const cv::Point2d pa = v.toScreen(wa.x, wa.y), pb = v.toScreen(wb.x, wb.y);
-          if (!topology_->has_labelling) {  // a loaded graph has no contact points: straight lines
-            cv::line(screen, pa, pb, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
-            continue;
-          }
-          // As in overlay.png: node -> contact point -> node, leaving out the half at a node whose centroid lies
-          // outside its region (a corridor loop), where a straight line would cross walls.
-          const cv::Point2d wc = pixelWorld(*topology_, e.contact_px);
-          const cv::Point2d pc = v.toScreen(wc.x, wc.y);
-          if (a->centroid_inside) cv::line(screen, pa, pc, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
-          if (b->centroid_inside) cv::line(screen, pb, pc, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
-          cv::circle(screen, pc, 2, cv::Scalar(20, 20, 20), cv::FILLED, cv::LINE_AA);
-        }
-        for (const auto& n : g.nodes) {
-          const cv::Point2d w = nodeAnchorWorld(*topology_, n);
-          const cv::Point2d p = v.toScreen(w.x, w.y);
-          cv::circle(screen, p, 6, labelColour(n.label), cv::FILLED, cv::LINE_AA);
-          cv::circle(screen, p, 6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-        }
-      }
-      if (layers.region_ids)
-        for (const auto& n : g.nodes) {
-          const cv::Point2d w = nodeAnchorWorld(*topology_, n);
-          const cv::Point2d p = v.toScreen(w.x, w.y);
-          cv::putText(screen, std::to_string(n.id), p + cv::Point2d(7, -5), cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                      cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-        }
+      drawTopologyGraph(screen, v, *topology_, layers.graph, layers.region_ids);
       if (layers.inspection && selection_.cell && selection_.cell->has_sample) {
         const auto& c = *selection_.cell;
         const cv::Point2d o = topology_->map.cellCentre(c.sample_cell.y, c.sample_cell.x);

@@ -85,6 +85,24 @@ void SlamRunner::saveOutputs(const std::string& dir, const std::vector<std::stri
   slam::writeSlamOutputs(dir, run_->outputs(trajectory_header, options_ini));
 }
 
+void SlamRunner::setBestMapListener(std::size_t every, BestMapListener listener) {
+  std::lock_guard<std::mutex> lk(listener_mu_);
+  listener_every_ = every;
+  listener_ = std::move(listener);
+  listener_steps_ = 0;
+}
+
+void SlamRunner::notifyListener(bool idle) {
+  std::lock_guard<std::mutex> lk(listener_mu_);
+  if (!listener_) return;
+  const slam::RbpfSlam& filter = run_->filter();
+  const std::size_t steps = filter.stepsProcessed();
+  if (steps == 0 || steps == listener_steps_ || filter.particles().empty()) return;
+  if (!idle && (listener_every_ == 0 || steps % listener_every_ != 0)) return;
+  listener_steps_ = steps;
+  listener_(filter.particles()[filter.bestParticleIndex()].map, steps, run_->scansFed());
+}
+
 std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {
   std::lock_guard<std::mutex> lk(mu_);
   return snapshot_;
@@ -154,6 +172,7 @@ void SlamRunner::run() {
       if (quit_) return;
       if (state_ != RunState::Running) {
         lk.unlock();
+        notifyListener(true);
         publish(true);
         continue;
       }
@@ -180,6 +199,7 @@ void SlamRunner::run() {
         }
       }
     }
+    notifyListener(state_changed);
     const auto now = clock::now();
     if (state_changed) {
       publish(true);

@@ -20,6 +20,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "gridtopo/core/map_image.h"
 #include "gridtopo/mapping/topology_builder_options.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/model.h"
@@ -32,7 +33,7 @@ struct MapTopology {
   places::OccupancyImage occ;          ///< the free space that was labelled (thresholded and opened as a SLAM grid)
   places::LabellingResult labelling;   ///< lattice, label distributions, labels before region correction
   topology::TopologyResult topo;       ///< labels after correction, regions, graph, segmentation
-  cv::Point2d origin;                  ///< world coordinates (m) of the map's lower-left corner
+  MapImage map;                        ///< the map that was labelled (grey image, resolution, origin, SLAM grid kind)
   unsigned map_size = 0;               ///< the metric builder's getCurrentlyBuiltMapSize() when it was computed
   std::string source;                  ///< how errors and logs name the map ("<slam map, N scans>")
 
@@ -45,8 +46,17 @@ struct MapTopology {
 /// The semantic and topological map of an occupancy grid built by SLAM: the one topology pipeline with the grid's
 /// free threshold and opening (TopologyOptions::freeThresholdFor / freeOpeningRadiusFor of
 /// MapKind::ProbabilisticGrid). InputError (naming `source`) for a map without free cells.
+/// `progress(stage, done, total)` as topology::topologyOfMap's.
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
-                               const topology::TopologyOptions& options, const std::string& source);
+                               const topology::TopologyOptions& options, const std::string& source,
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
+
+/// The builder's update step: the topology of a metric builder's map after `map_size` processed scans, named
+/// "<slam map, N scans>", with MapTopology::map_size set. CMetricMapBuilderTopology (gridtopo-map) and the GUI's
+/// live topology (session::LiveTopology) both make it with this call.
+MapTopology topologyOfBuiltMap(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size,
+                               const places::PlacesModel& model, const topology::TopologyOptions& options,
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
 
 class CMetricMapBuilderTopology : public mrpt::slam::CMetricMapBuilder {
  public:

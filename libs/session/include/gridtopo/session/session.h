@@ -15,7 +15,9 @@
 #include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/places/model.h"
+#include "gridtopo/mapping/topology_builder_options.h"
 #include "gridtopo/session/label_canvas.h"
+#include "gridtopo/session/live_topology.h"
 #include "gridtopo/session/map_layer.h"
 #include "gridtopo/session/option_table.h"
 #include "gridtopo/session/render.h"
@@ -47,10 +49,10 @@ struct Layers {
   bool odometry = true;         ///< odometry-only path, aligned at the start
   bool scan = true;             ///< the current scan in the world
   bool trajectories = true;     ///< trajectory files opened by the user
-  bool labels = true;
+  bool labels = true;            ///< place labels (topology view; SLAM view: the live topology's)
   LabelStage stage = LabelStage::Corrected;
   bool region_ids = true;
-  bool graph = true;
+  bool graph = true;             ///< the topological graph (topology view; SLAM view: the live topology's)
   bool inspection = true;       ///< simulated scan of the inspected cell, highlighted particle path
   bool scale_bar = true;
 };
@@ -134,6 +136,20 @@ class Session {
   /// the same conversion as the saved map (slam::toOccupancyGrid + io::gridToImage).
   void useSlamMap();
 
+  // ---- live topology: the labels and the graph of the SLAM's best map while it grows (issue 14)
+  /// Turns it on or off. On: the current run (and every run started later) hands its best map to a LiveTopology
+  /// every `schedule.update_every` processed scans (0: only when the run pauses or ends), which computes it on its
+  /// own thread with the session's model and topology options as they are now (mapping::topologyOfBuiltMap, as
+  /// gridtopo-map); a paused run's current map is requested at once. Throws std::runtime_error when turning it on
+  /// without a place model (nothing changes then).
+  void setLiveTopology(bool on, const mapping::TopologyBuilderOptions& schedule = {});
+  bool liveTopologyOn() const { return live_on_; }
+  const mapping::TopologyBuilderOptions& liveTopologySchedule() const { return live_schedule_; }
+  /// The live topology of the current run (null when off or without a run).
+  const LiveTopology* liveTopology() const { return live_.get(); }
+  /// Its last result (null when none yet).
+  std::shared_ptr<const LiveTopologyResult> liveTopologyResult() const;
+
   // ---- topology
   topology::TopologyOptions& topologyOptions() { return topology_options_; }
   /// The topology options ([topology], [relaxation], [correction]) as a property-grid table, from their key tables.
@@ -188,6 +204,10 @@ class Session {
   std::string slam_ini_path_;
   topology::TopologyOptions topology_options_;
   std::unique_ptr<SlamRunner> runner_;
+  void attachLiveTopology();  // a new LiveTopology on runner_ (live_on_ and runner_ set)
+  bool live_on_ = false;
+  mapping::TopologyBuilderOptions live_schedule_;
+  std::unique_ptr<LiveTopology> live_;
   std::unique_ptr<TopologyData> topology_;
   LabelCanvas canvas_;
   Selection selection_;
@@ -199,6 +219,9 @@ class Session {
   MapRaster slam_raster_;
   std::chrono::steady_clock::time_point slam_raster_time_{};
   MapLayer slam_layer_;
+  std::uint64_t live_raster_sequence_ = 0;
+  int live_raster_key_ = -1;
+  MapRaster live_raster_;
   int topo_raster_key_ = -1;
   std::uint64_t topo_generation_ = 0, map_generation_ = 0;
   MapRaster topo_raster_, map_raster_, label_raster_;

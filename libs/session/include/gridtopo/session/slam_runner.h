@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -99,7 +100,19 @@ class SlamRunner {
   void saveOutputs(const std::string& dir, const std::vector<std::string>& trajectory_header,
                    const std::string& options_ini = "") const;
 
+  /// Receives the best particle's map (its tiles shared with the filter, copy-on-write: taking it is cheap), the
+  /// filter's processed scans it holds (slam::RbpfSlam::stepsProcessed, the snapshot's `steps`) and the scans fed
+  /// so far (the snapshot's `scans_fed`). Called on the worker thread: it must return quickly.
+  using BestMapListener =
+      std::function<void(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed)>;
+  /// The worker calls `listener` each time the filter has processed a multiple of `every` scans (0: never on
+  /// schedule), and when the run pauses, ends or stops, before the snapshot that shows it is published (so once
+  /// waitIdle() returns, the listener has had the map of the idle run); never twice for one scan count. An empty
+  /// listener detaches; when this returns, the previous listener is not running and is not called again.
+  void setBestMapListener(std::size_t every, BestMapListener listener);
+
  private:
+  void notifyListener(bool idle);  // worker only
   void run();
   void publish(bool with_trajectory);
   bool idle() const;  // requires mu_
@@ -125,6 +138,10 @@ class SlamRunner {
   std::vector<TimedPose> last_trajectory_poses_;
   std::size_t last_trajectory_scans_ = 0;
   std::string error_;
+  std::mutex listener_mu_;  // held while the listener runs
+  BestMapListener listener_;
+  std::size_t listener_every_ = 0;
+  std::size_t listener_steps_ = 0;  // steps at the last call (0: none)
   std::thread worker_;
 };
 
