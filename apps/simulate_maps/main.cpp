@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
     cmd.parse(argc, argv);
 
     simtrain::TrainingMapOptions o;
-    simtrain::loadSlamMapOptions(slam_ini.getValue(), o);
     o.variant = simtrain::mapVariantFromString(variant.getValue());
+    simtrain::loadSlamMapOptions(slam_ini.getValue(), o);
     const bool slam = o.variant == simtrain::MapVariant::Slam;
     const std::string out_dir = !out.getValue().empty() ? out.getValue()
                                 : slam                  ? "datasets/places/derived/slam"
@@ -63,7 +63,8 @@ int main(int argc, char** argv) {
     for (std::string n; std::getline(ss, n, ',');)
       if (!n.empty()) only.push_back(n);
     std::ostringstream command;
-    command << "gridtopo-simulate-maps" << (slam ? " --variant slam" : "") << " -d " << dir.getValue() << " -o " << out_dir << " -c "
+    command << "gridtopo-simulate-maps" << (slam ? " --variant slam" : "") << " -d " << dir.getValue() << " -o "
+            << out_dir << " -c "
             << (slam_ini.getValue().empty() ? "''" : slam_ini.getValue()) << " -s " << seed.getValue()
             << " --room-visit-probability " << visit.getValue() << " --clearance " << clearance.getValue()
             << (maps.getValue().empty() ? "" : " --maps " + maps.getValue());
@@ -79,12 +80,7 @@ int main(int argc, char** argv) {
           if (fed == total) scans->finish(), scans.reset();
         });
     bar.finish();
-    for (const auto& p : runs)
-      std::cout << p.name << ": " << p.scans << " scans, " << p.path_length << " m, rooms entered "
-                << p.rooms_entered << " of " << p.rooms << " (" << p.rooms_unreachable << " unreachable), known "
-                << 100 * p.known_fraction << " % of the plan's free cells, free " << 100 * p.free_fraction << " %"
-                << (slam ? ", SLAM final error " + std::to_string(p.drift.final_position_error) + " m, label agreement " +
-                               std::to_string(100 * p.drift.label_agreement) + " %" : "") << "\n";
+    for (const auto& p : runs) std::cout << simtrain::summaryLine(p, o.variant) << "\n";
     return 0;
   });
 }

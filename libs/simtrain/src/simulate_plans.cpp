@@ -36,6 +36,17 @@ MapVariant mapVariantFromString(const std::string& s, const std::string& field) 
   throw InputError(field, "must be 'exact' or 'slam', got '" + s + "'");
 }
 
+std::string summaryLine(const SimulatedPlan& p, MapVariant variant) {
+  std::ostringstream s;
+  s << p.name << ": " << p.scans << " scans, " << p.path_length << " m, rooms entered " << p.rooms_entered << " of "
+    << p.rooms << " (" << p.rooms_unreachable << " unreachable), known " << 100 * p.known_fraction
+    << " % of the plan's free cells, free " << 100 * p.free_fraction << " %";
+  if (variant == MapVariant::Slam)
+    s << ", SLAM final error " << p.drift.final_position_error << " m, label agreement "
+      << 100 * p.drift.label_agreement << " %";
+  return s.str();
+}
+
 const char* toString(MapVariant v) { return v == MapVariant::Slam ? "slam" : "exact"; }
 
 std::vector<SimulatedPlan> simulatePlans(

@@ -37,6 +37,10 @@ std::vector<SimulatedPlan> simulatePlans(
     const std::function<void(std::size_t, std::size_t, const std::string&)>& progress = {},
     const std::function<void(const std::string&, std::size_t, std::size_t)>& slam_progress = {});
 
+/// One line of gridtopo-simulate-maps' report: scans, path, rooms entered, known and free fractions (and for the
+/// SLAM variant its final error and label agreement).
+std::string summaryLine(const SimulatedPlan& p, MapVariant variant);
+
 /// "exact" / "slam"; InputError(`field`) otherwise.
 MapVariant mapVariantFromString(const std::string& s, const std::string& field = "--variant");
 const char* toString(MapVariant v);
