@@ -1,9 +1,11 @@
-// gridtopo-simulate-maps: SLAM-like labelled training maps made exactly (issue 15, item 1). For every labelled plan
-// of datasets/places, a simulated robot run (a tour of the corridors and rooms, a 180° laser with noise and
-// no-return readings, drifting odometry) and the map of its scans at the true poses, pixel-aligned with the plan.
+// gridtopo-simulate-maps: SLAM-like labelled training maps (issue 15, item 1). For every labelled plan of
+// datasets/places, a simulated robot run (a tour of the corridors and rooms, a 180° laser with noise and no-return
+// readings, drifting odometry) and the map of its scans, pixel-aligned with the plan: at the true poses (--variant
+// exact) or built by the SLAM started at the true start pose (--variant slam).
 #include <tclap/CmdLine.h>
 
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "gridtopo/core/app_shell.h"
@@ -19,10 +21,16 @@ int main(int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "Simulate a robot mapping run through every labelled plan of datasets/places and write the map of its scans "
         "at the true poses (OUT/NAME_sim_map.png, pixel-aligned with the plan: its labels are the plan's) and "
-        "OUT/manifest.txt. Train on them with [training] simulated_maps = OUT.",
+        "OUT/manifest.txt. --variant slam: the map the SLAM builds from the same scans and odometry instead, started "
+        "at the true start pose. Train on them with [training] simulated_maps = OUT.",
         ' ', "0.1");
     TCLAP::ValueArg<std::string> dir("d", "places-dir", "datasets/places directory", false, "datasets/places", "dir", cmd);
-    TCLAP::ValueArg<std::string> out("o", "output", "output directory", false, "datasets/places/derived", "dir", cmd);
+    TCLAP::ValueArg<std::string> out("o", "output", "output directory (default datasets/places/derived, for --variant "
+                                     "slam datasets/places/derived/slam)", false, "", "dir", cmd);
+    TCLAP::ValueArg<std::string> variant("", "variant", "exact (scans at the true poses) or slam (the SLAM's map)",
+                                         false, "exact", "exact|slam", cmd);
+    TCLAP::ValueArg<int> threads("t", "threads", "SLAM threads (--variant slam; same maps for any count); "
+                                 "default: the INI's [slam] threads", false, -1, "n", cmd);
     TCLAP::ValueArg<std::string> slam_ini("c", "slam-ini", "gridtopo-slam INI whose [slam] map and beam options build "
                                           "the maps (config-ini/slam.ini); empty = built-in defaults", false,
                                           "config-ini/slam.ini", "file", cmd);
@@ -36,7 +44,13 @@ int main(int argc, char** argv) {
     cmd.parse(argc, argv);
 
     simtrain::TrainingMapOptions o;
+    o.variant = simtrain::mapVariantFromString(variant.getValue());
     simtrain::loadSlamMapOptions(slam_ini.getValue(), o);
+    const bool slam = o.variant == simtrain::MapVariant::Slam;
+    const std::string out_dir = !out.getValue().empty() ? out.getValue()
+                                : slam                  ? "datasets/places/derived/slam"
+                                                        : "datasets/places/derived";
+    if (threads.getValue() >= 0) o.slam.threads = threads.getValue();
     if (seed.getValue() < 0) throw InputError("--seed", "must be >= 0");
     if (!(visit.getValue() >= 0 && visit.getValue() <= 1)) throw InputError("--room-visit-probability", "must be in [0, 1]");
     if (!(clearance.getValue() >= 0 && clearance.getValue() <= 1)) throw InputError("--clearance", "must be in [0, 1] m");
@@ -49,21 +63,24 @@ int main(int argc, char** argv) {
     for (std::string n; std::getline(ss, n, ',');)
       if (!n.empty()) only.push_back(n);
     std::ostringstream command;
-    command << "gridtopo-simulate-maps -d " << dir.getValue() << " -o " << out.getValue() << " -c "
+    command << "gridtopo-simulate-maps" << (slam ? " --variant slam" : "") << " -d " << dir.getValue() << " -o "
+            << out_dir << " -c "
             << (slam_ini.getValue().empty() ? "''" : slam_ini.getValue()) << " -s " << seed.getValue()
             << " --room-visit-probability " << visit.getValue() << " --clearance " << clearance.getValue()
             << (maps.getValue().empty() ? "" : " --maps " + maps.getValue());
     ProgressBar bar(only.empty() ? places::standardLabelledMaps(dir.getValue()).size() : only.size(), "simulated maps",
                     "maps");
-    const auto runs = simtrain::simulatePlans(dir.getValue(), out.getValue(), o, only, command.str(),
-                                              [&](std::size_t done, std::size_t, const std::string& name) {
-                                                bar.update(done, name);
-                                              });
+    std::unique_ptr<ProgressBar> scans;  // the SLAM's scans of the current map
+    const auto runs = simtrain::simulatePlans(
+        dir.getValue(), out_dir, o, only, command.str(),
+        [&](std::size_t done, std::size_t, const std::string& name) { bar.update(done, name); },
+        [&](const std::string& name, std::size_t fed, std::size_t total) {
+          if (!scans) scans = std::make_unique<ProgressBar>(total, "SLAM " + name, "scans");
+          scans->update(fed);
+          if (fed == total) scans->finish(), scans.reset();
+        });
     bar.finish();
-    for (const auto& p : runs)
-      std::cout << p.name << ": " << p.scans << " scans, " << p.path_length << " m, rooms entered "
-                << p.rooms_entered << " of " << p.rooms << " (" << p.rooms_unreachable << " unreachable), known "
-                << 100 * p.known_fraction << " % of the plan's free cells, free " << 100 * p.free_fraction << " %\n";
+    for (const auto& p : runs) std::cout << simtrain::summaryLine(p, o.variant) << "\n";
     return 0;
   });
 }

@@ -34,6 +34,22 @@ TEST(SimulateMapsApp, RemakesTheStoredMapByteForByte) {
   EXPECT_NE(slurp(out / "manifest.txt").find("lab_ipa 688 "), std::string::npos) << slurp(out / "manifest.txt");
 }
 
+TEST(SimulateMapsApp, RemakesTheStoredSlamVariantByteForByte) {
+  // The SLAM variant of the smallest plan (688 scans, 338 processed by the 30-particle default SLAM; about 10 s):
+  // the same map as datasets/places/derived/slam (made with -t 1; the SLAM gives the same map for any thread count), and its drift in the manifest.
+  const auto out = gridtopo::test::scratch("derived_slam");
+  const auto r = runApp("gridtopo-simulate-maps", "--variant slam -t 1 -d " + kData + "/places -o " + out.string() +
+                                                      " -c " + kSlamIni + " -s 1 --maps lab_ipa");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto made = slurp(out / "lab_ipa_sim_map.png");
+  ASSERT_FALSE(made.empty());
+  EXPECT_EQ(made, slurp(fs::path(kData) / "places/derived/slam/lab_ipa_sim_map.png"));
+  EXPECT_NE(made, slurp(fs::path(kData) / "places/derived/lab_ipa_sim_map.png"));  // not the exact variant's map
+  // name scans path rooms entered unreachable goals known free | processed final_error heading max_error ...
+  EXPECT_NE(slurp(out / "manifest.txt").find("lab_ipa 688 64.4 6 5 0 14 0.7622 0.6883 338 0.013 "), std::string::npos)
+      << slurp(out / "manifest.txt");
+}
+
 TEST(SimulateMapsApp, BadInputExitsOneAndWritesNothing) {
   const auto out = gridtopo::test::scratch("bad");
   auto r = runApp("gridtopo-simulate-maps", "-d " + kData + "/places -o " + (out / "x").string() + " -c " + kSlamIni +
@@ -45,5 +61,10 @@ TEST(SimulateMapsApp, BadInputExitsOneAndWritesNothing) {
                                            (out / "missing.ini").string() + " --maps lab_ipa");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("missing.ini"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "x"));
+  r = runApp("gridtopo-simulate-maps", "--variant drifted -d " + kData + "/places -o " + (out / "x").string() +
+                                           " -c " + kSlamIni + " --maps lab_ipa");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--variant"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out / "x"));
 }

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFile.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <opencv2/imgcodecs.hpp>
@@ -24,14 +25,35 @@ void loadSlamMapOptions(const std::string& slam_ini, TrainingMapOptions& o) {
   } catch (const InputError& e) {
     throw InputError(slam_ini, 0, e.file() + " " + e.field(), e.message());
   }
+  o.slam = s;
   o.map = s.map;
   o.beams = s.beams;
 }
 
-std::vector<SimulatedPlan> simulatePlans(const std::string& places_dir, const std::string& out_dir,
-                                         const TrainingMapOptions& o, const std::vector<std::string>& only,
-                                         const std::string& command_line,
-                                         const std::function<void(std::size_t, std::size_t, const std::string&)>& progress) {
+MapVariant mapVariantFromString(const std::string& s, const std::string& field) {
+  if (s == "exact") return MapVariant::Exact;
+  if (s == "slam") return MapVariant::Slam;
+  throw InputError(field, "must be 'exact' or 'slam', got '" + s + "'");
+}
+
+std::string summaryLine(const SimulatedPlan& p, MapVariant variant) {
+  std::ostringstream s;
+  s << p.name << ": " << p.scans << " scans, " << p.path_length << " m, rooms entered " << p.rooms_entered << " of "
+    << p.rooms << " (" << p.rooms_unreachable << " unreachable), known " << 100 * p.known_fraction
+    << " % of the plan's free cells, free " << 100 * p.free_fraction << " %";
+  if (variant == MapVariant::Slam)
+    s << ", SLAM final error " << p.drift.final_position_error << " m, label agreement "
+      << 100 * p.drift.label_agreement << " %";
+  return s.str();
+}
+
+const char* toString(MapVariant v) { return v == MapVariant::Slam ? "slam" : "exact"; }
+
+std::vector<SimulatedPlan> simulatePlans(
+    const std::string& places_dir, const std::string& out_dir, const TrainingMapOptions& o,
+    const std::vector<std::string>& only, const std::string& command_line,
+    const std::function<void(std::size_t, std::size_t, const std::string&)>& progress,
+    const std::function<void(const std::string&, std::size_t, std::size_t)>& slam_progress) {
   std::vector<places::LabelledMapFiles> files;
   for (const auto& f : places::standardLabelledMaps(places_dir))
     if (only.empty() || std::find(only.begin(), only.end(), f.name) != only.end()) files.push_back(f);
@@ -47,7 +69,9 @@ std::vector<SimulatedPlan> simulatePlans(const std::string& places_dir, const st
     const cv::Mat codes = cv::imread(f.labels, cv::IMREAD_GRAYSCALE);
     if (codes.empty()) throw InputError(f.labels, "cannot read labelled map image");
     if (codes.size() != grey.size()) throw InputError(f.labels, "labels and map differ in size");
-    const TrainingMap tm = simulateTrainingMap(grey, codes, res, o, f.map);
+    const TrainingMap tm = simulateTrainingMap(grey, codes, res, o, f.map, [&](std::size_t fed, std::size_t total) {
+      if (slam_progress) slam_progress(f.name, fed, total);
+    });
     SimulatedPlan p;
     p.name = f.name;
     p.scans = static_cast<int>(tm.log.records.size());
@@ -67,6 +91,8 @@ std::vector<SimulatedPlan> simulatePlans(const std::string& places_dir, const st
       }
     p.known_fraction = plan_free ? static_cast<double>(known) / plan_free : 0;
     p.free_fraction = plan_free ? static_cast<double>(free) / plan_free : 0;
+    p.slam_processed_scans = tm.slam_processed_scans;
+    p.drift = tm.drift;
     const cv::Mat img = tm.grey;
     outputs.write(places::simulatedMapPath(out_dir, f.name), [&img](const std::string& tmp) {
       if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write " + tmp);
@@ -74,15 +100,33 @@ std::vector<SimulatedPlan> simulatePlans(const std::string& places_dir, const st
     out.push_back(p);
     if (progress) progress(out.size(), files.size(), f.name);
   }
+  const bool slam = o.variant == MapVariant::Slam;
   std::ostringstream m;
-  m << "# Simulated SLAM-like maps of the labelled plans (issue 15): NAME_sim_map.png is pixel-aligned with the plan\n"
-    << "# (labels: labelled/training_*.png of the same plan). Made by:\n# " << command_line << "\n"
-    << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction\n";
+  if (slam)
+    m << "# Simulated SLAM-like maps of the labelled plans (issue 15), SLAM variant: NAME_sim_map.png is the map the\n"
+      << "# SLAM built from the simulated run, started at the true start pose and placed in the plan's pixel lattice\n"
+      << "# (labels: labelled/training_*.png of the same plan, which land where the SLAM put the cells). Made by:\n# "
+      << command_line << "\n"
+      << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction"
+      << " processed_scans final_error_m final_heading_error_deg max_error_m occupied_cells occupied_within_1"
+      << " occupied_within_2 labelled_free_cells label_agreement\n";
+  else
+    m << "# Simulated SLAM-like maps of the labelled plans (issue 15): NAME_sim_map.png is pixel-aligned with the plan\n"
+      << "# (labels: labelled/training_*.png of the same plan). Made by:\n# " << command_line << "\n"
+      << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction\n";
   m << std::fixed;
-  for (const auto& p : out)
+  for (const auto& p : out) {
     m << p.name << " " << p.scans << " " << std::setprecision(1) << p.path_length << " " << p.rooms << " "
       << p.rooms_entered << " " << p.rooms_unreachable << " " << p.corridor_goals << " " << std::setprecision(4)
-      << p.known_fraction << " " << p.free_fraction << "\n";
+      << p.known_fraction << " " << p.free_fraction;
+    if (slam)
+      m << " " << p.slam_processed_scans << " " << std::setprecision(3) << p.drift.final_position_error << " "
+        << std::setprecision(2) << p.drift.final_heading_error * 180.0 / M_PI << " " << std::setprecision(3)
+        << p.drift.max_position_error << " " << p.drift.occupied_cells << " " << std::setprecision(4)
+        << p.drift.occupied_within_1 << " " << p.drift.occupied_within_2 << " " << p.drift.labelled_free_cells << " "
+        << p.drift.label_agreement;
+    m << "\n";
+  }
   const std::string text = m.str();
   outputs.write(out_dir + "/manifest.txt", [&text](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
   outputs.commit();

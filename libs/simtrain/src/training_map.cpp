@@ -27,15 +27,9 @@ sim::SimOptions TrainingMapOptions::defaultLaser() {
   return o;
 }
 
-cv::Mat mapAtTruePoses(const sim::SimLog& log, int rows, int cols, double res, const slam::MapUpdateOptions& map_o,
-                       const slam::BeamOptions& beams) {
-  slam::GridMap map(res);
-  for (std::size_t i = 0; i < log.records.size(); ++i) {
-    const auto ps = slam::prepareScan(log.records[i].scan, beams, res);
-    const auto& t = log.truth[i];
-    map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, map_o);
-  }
+cv::Mat mapInPlanFrame(const slam::GridMap& map, int rows, int cols) {
   // Through the SLAM's own export (MRPT grid, then the grey of map.png), placed cell by cell in the plan's frame.
+  const double res = map.resolution();
   const auto grid = slam::toOccupancyGrid(map);
   const cv::Mat img = io::gridToImage(grid);
   const unsigned char unknown = img.at<unsigned char>(0, 0);  // the export's one-cell margin is never observed
@@ -50,8 +44,20 @@ cv::Mat mapAtTruePoses(const sim::SimLog& log, int rows, int cols, double res, c
   return out;
 }
 
+cv::Mat mapAtTruePoses(const sim::SimLog& log, int rows, int cols, double res, const slam::MapUpdateOptions& map_o,
+                       const slam::BeamOptions& beams) {
+  slam::GridMap map(res);
+  for (std::size_t i = 0; i < log.records.size(); ++i) {
+    const auto ps = slam::prepareScan(log.records[i].scan, beams, res);
+    const auto& t = log.truth[i];
+    map.insertScan({t.x, t.y, t.phi}, ps.sensor, ps.map_beams, map_o);
+  }
+  return mapInPlanFrame(map, rows, cols);
+}
+
 TrainingMap simulateTrainingMap(const cv::Mat& plan_grey, const cv::Mat& codes, double res,
-                                const TrainingMapOptions& o, const std::string& source) {
+                                const TrainingMapOptions& o, const std::string& source,
+                                const std::function<void(std::size_t, std::size_t)>& slam_progress) {
   const places::OccupancyImage occ = places::occupancyFromGrey(plan_grey, res, source);
   cv::Mat free = occ.cells == places::kFree;
   TrainingMap tm;
@@ -62,7 +68,19 @@ TrainingMap simulateTrainingMap(const cv::Mat& plan_grey, const cv::Mat& codes, 
   const sim::GridPlan world(occ.rows(), occ.cols(), res, std::move(blocked));
   tm.log = sim::simulate([&world](double x, double y, double a) { return world.rayCast(x, y, a); }, tm.tour.waypoints,
                          o.laser);
-  tm.grey = mapAtTruePoses(tm.log, occ.rows(), occ.cols(), res, o.map, o.beams);
+  if (o.variant == MapVariant::Exact) {
+    tm.grey = mapAtTruePoses(tm.log, occ.rows(), occ.cols(), res, o.map, o.beams);
+    return tm;
+  }
+  // The SLAM variant: the same scans and odometry, the SLAM started at the known start pose, its map in the
+  // plan's lattice (the plan's resolution: the SLAM's cells are the plan's pixels).
+  slam::SlamOptions so = o.slam;
+  so.resolution = res;
+  SlamTrainingMap sm = runSlamInPlanFrame(tm.log, tm.log.truth.front(), occ.rows(), occ.cols(), so, slam_progress);
+  tm.grey = std::move(sm.grey);
+  tm.slam_trajectory = std::move(sm.trajectory);
+  tm.slam_processed_scans = sm.processed_scans;
+  tm.drift = measureSlamDrift(tm.grey, free, codes, res, tm.slam_trajectory, tm.log.truth);
   return tm;
 }
 
