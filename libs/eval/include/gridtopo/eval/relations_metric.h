@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/eval/odometry_track.h"
 #include "gridtopo/eval/relations.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -31,12 +32,16 @@ struct RelationsMetricOptions {
   /// Which odometry of the raw log corrects the gaps.
   OdometrySource odometry = OdometrySource::Auto;
 
-  /// Reads the keys of `section` (max_time_gap, interpolate_odometry, interpolate_estimate,
-  /// odometry = auto|odom|laser); missing
-  /// keys keep their value; wrong values throw gridtopo::InputError naming the key.
+  /// Through relationsMetricOptionSchema: reads the keys of `section` (max_time_gap, interpolate_odometry,
+  /// interpolate_estimate, odometry = auto|odom|laser); missing keys keep their value; wrong values throw
+  /// gridtopo::InputError(file, 0, "[section] key", ...).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const;
   void dumpToTextStream(std::ostream& out) const;
 };
+
+/// The key table of RelationsMetricOptions ([relations_metric] of config-ini/eval.ini).
+const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema();
 
 /// Mean ± sample standard deviation (n − 1), min, max and count of a set of values.
 struct ErrorStats {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
+
 namespace gridtopo::places {
 
 /// h(f) = f[feature] <= threshold ? left : right.
@@ -39,10 +41,16 @@ struct BoostOptions : public mrpt::config::CLoadableOptions {
   unsigned seed = 1;                 ///< subsampling seed
   double weight_trim_rate = 0.95;    ///< OpenCV weight trimming (speed); 0 = use every sample in every round
 
+  /// Through boostOptionSchema (in a training INI, its keys stand in [training]: trainingOptionSchema).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
-  void validate(const std::string& where = "BoostOptions") const;
+  /// Throws gridtopo::InputError(file, 0, "[section] key", ...) for out-of-range values.
+  void validate(const std::string& file = "BoostOptions", const std::string& section = "training") const;
 };
+
+/// The key table of BoostOptions.
+const OptionSchema<BoostOptions>& boostOptionSchema();
 
 /// Trains positive (1) vs negative (0) on rows of `features` (CV_32F). Rows with target < 0 are ignored.
 /// Classes are balanced by sample weights (each class carries half of the total weight).

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/places/occupancy.h"
 
 namespace gridtopo::places {
@@ -38,11 +39,16 @@ struct ScanSimulationOptions : public mrpt::config::CLoadableOptions {
   BeamStop unknown_cells = BeamStop::kObstacle;  ///< a beam that meets an unknown cell (`unknown_cells`)
   BeamStop map_border = BeamStop::kObstacle;     ///< a beam that leaves the image (`map_border`; not kPass)
 
+  /// Through scanSimulationOptionSchema (section [scan_simulation] of a training INI).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
-  /// Throws gridtopo::InputError (naming `where`) for out-of-range values.
-  void validate(const std::string& where = "ScanSimulationOptions") const;
+  /// Throws gridtopo::InputError(file, 0, "[section] key", ...) for out-of-range values.
+  void validate(const std::string& file = "ScanSimulationOptions", const std::string& section = "scan_simulation") const;
 };
+
+/// The key table of ScanSimulationOptions ([scan_simulation]).
+const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema();
 
 /// The classification lattice: blocks of stride x stride cells, one sample cell (free) per block that has any
 /// free cell (the free cell nearest the block centre).

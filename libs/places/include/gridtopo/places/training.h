@@ -64,9 +64,14 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   /// ... then the free space is opened with this radius (m; places::openFreeSpace).
   double simulated_free_opening_radius = 0.05;
 
+  /// Through trainingOptionSchema (section [training] of a training INI).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;
 };
+
+/// The key table of [training]: BoostOptions' keys (boostOptionSchema), then TrainingOptions' own.
+const OptionSchema<TrainingOptions>& trainingOptionSchema();
 
 /// NAME_sim_map.png in `dir`: the simulated map of the standard labelled map NAME.
 std::string simulatedMapPath(const std::string& dir, const std::string& name);
@@ -82,9 +87,13 @@ struct TrainingConfig {
   ScanSimulationOptions scan;
   FeatureOptions features;
 };
-/// Reads a training INI; an empty path gives the defaults. Errors (missing file, bad value) are InputErrors that
-/// name the INI file and "[section] key".
+/// Reads a training INI through the three key tables; an empty path gives the defaults. Errors (missing file, bad
+/// value) are InputErrors that name the INI file, the line and "[section] key".
 TrainingConfig loadTrainingConfig(const std::string& ini_path);
+
+/// `gridtopo-train --help-options`: every key of [scan_simulation], [features] and [training] with its default,
+/// range, unit and help.
+std::string trainingOptionsHelp();
 
 struct OrderScore {
   std::array<int, kNumLabels> order{};
