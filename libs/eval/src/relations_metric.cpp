@@ -29,18 +29,6 @@ const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema() {
   return schema;
 }
 
-void RelationsMetricOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
-                                                const std::string& section) {
-  relationsMetricOptionSchema().load(*this, cfg, section);
-}
-
-void RelationsMetricOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const {
-  relationsMetricOptionSchema().save(*this, target, section);
-}
-
-void RelationsMetricOptions::dumpToTextStream(std::ostream& out) const {
-  relationsMetricOptionSchema().dump(*this, out);
-}
 
 ErrorStats ErrorStats::of(const std::vector<double>& v) {
   ErrorStats s;

@@ -32,19 +32,6 @@ const OptionSchema<BoostOptions>& boostOptionSchema() {
   return schema;
 }
 
-void BoostOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  boostOptionSchema().load(*this, s, sec);
-}
-
-void BoostOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  boostOptionSchema().save(*this, t, sec);
-}
-
-void BoostOptions::dumpToTextStream(std::ostream& out) const { boostOptionSchema().dump(*this, out); }
-
-void BoostOptions::validate(const std::string& file, const std::string& section) const {
-  boostOptionSchema().validate(*this, file, section);
-}
 
 BoostedClassifier trainBoostedClassifier(const cv::Mat& features, const std::vector<int>& target,
                                          const BoostOptions& options) {

@@ -52,19 +52,6 @@ const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema() {
   return schema;
 }
 
-void ScanSimulationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  scanSimulationOptionSchema().load(*this, s, sec);
-}
-
-void ScanSimulationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  scanSimulationOptionSchema().save(*this, t, sec);
-}
-
-void ScanSimulationOptions::dumpToTextStream(std::ostream& out) const { scanSimulationOptionSchema().dump(*this, out); }
-
-void ScanSimulationOptions::validate(const std::string& file, const std::string& section) const {
-  scanSimulationOptionSchema().validate(*this, file, section);
-}
 
 Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing) {
   Lattice lat;

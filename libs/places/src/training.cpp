@@ -146,16 +146,6 @@ const OptionSchema<TrainingOptions>& trainingOptionSchema() {
   return schema;
 }
 
-void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  trainingOptionSchema().load(*this, s, sec);
-}
-
-void TrainingOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const {
-  trainingOptionSchema().save(*this, t, sec);
-}
-
-void TrainingOptions::dumpToTextStream(std::ostream& out) const { trainingOptionSchema().dump(*this, out); }
-
 std::string orderName(const std::array<int, kNumLabels>& o) {
   return labelName(o[0]) + "," + labelName(o[1]) + "," + labelName(o[2]);
 }

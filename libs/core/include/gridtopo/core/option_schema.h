@@ -13,6 +13,7 @@
 // A struct's table sits next to the struct, e.g. `const OptionSchema<SlamOptions>& slamOptionSchema()`.
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/config/CLoadableOptions.h>
 
 #include <algorithm>
 #include <functional>
@@ -392,6 +393,27 @@ class OptionSchema {
   std::string title_;
   std::vector<Key> keys_;
   std::vector<std::pair<std::string, std::function<std::optional<std::string>(const S&)>>> rules_;
+};
+
+/// MRPT's CLoadableOptions of a struct with a key table, every method through the table:
+///   struct ScanSimulationOptions : TableOptions<ScanSimulationOptions, scanSimulationOptionSchema> {
+///     static constexpr const char* kSection = "scan_simulation";  // validate()'s default section
+///     ... members with their defaults ...
+///   };
+/// (the table's function declared before the struct, for the struct's own name).
+template <class S, const OptionSchema<S>& (*table)()>
+struct TableOptions : mrpt::config::CLoadableOptions {
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override {
+    table().load(static_cast<S&>(*this), source, section);
+  }
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override {
+    table().save(static_cast<const S&>(*this), target, section);
+  }
+  void dumpToTextStream(std::ostream& out) const override { table().dump(static_cast<const S&>(*this), out); }
+  /// Every key in its range and the rules between keys: InputError(file, 0, "[section] key", ...).
+  void validate(const std::string& file = "<options>", const std::string& section = S::kSection) const {
+    table().validate(static_cast<const S&>(*this), file, section);
+  }
 };
 
 }  // namespace gridtopo

@@ -31,24 +31,20 @@ enum class BeamStop {
 std::string beamStopName(BeamStop b);
 BeamStop parseBeamStop(const std::string& text, const std::string& where, const std::string& key, bool allow_pass);
 
-struct ScanSimulationOptions : public mrpt::config::CLoadableOptions {
+struct ScanSimulationOptions;
+/// The key table of ScanSimulationOptions ([scan_simulation]).
+const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema();
+
+/// Loaded, saved, dumped and validated through scanSimulationOptionSchema (section [scan_simulation] of a training INI).
+struct ScanSimulationOptions : TableOptions<ScanSimulationOptions, scanSimulationOptionSchema> {
+  static constexpr const char* kSection = "scan_simulation";
   int num_beams = 360;          ///< beams per scan (even, >= 8); 360 = 1 degree apart
   double max_range = 30.0;      ///< metres; longer beams are capped here (<= 65 m)
   double lattice_spacing = 0.1; ///< metres between classified cells (block side); <= resolution = every cell
   int threads = 2;              ///< worker threads (results do not depend on it)
   BeamStop unknown_cells = BeamStop::kObstacle;  ///< a beam that meets an unknown cell (`unknown_cells`)
   BeamStop map_border = BeamStop::kObstacle;     ///< a beam that leaves the image (`map_border`; not kPass)
-
-  /// Through scanSimulationOptionSchema (section [scan_simulation] of a training INI).
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
-  void dumpToTextStream(std::ostream& out) const override;
-  /// Throws gridtopo::InputError(file, 0, "[section] key", ...) for out-of-range values.
-  void validate(const std::string& file = "ScanSimulationOptions", const std::string& section = "scan_simulation") const;
 };
-
-/// The key table of ScanSimulationOptions ([scan_simulation]).
-const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema();
 
 /// The classification lattice: blocks of stride x stride cells, one sample cell (free) per block that has any
 /// free cell (the free cell nearest the block centre).

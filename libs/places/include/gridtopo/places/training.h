@@ -42,7 +42,13 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
                           const FeatureOptions& features,
                           const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-struct TrainingOptions : public mrpt::config::CLoadableOptions {
+struct TrainingOptions;
+/// The key table of [training]: BoostOptions' keys (boostOptionSchema), then TrainingOptions' own.
+const OptionSchema<TrainingOptions>& trainingOptionSchema();
+
+/// Loaded, saved, dumped and validated through trainingOptionSchema (section [training] of a training INI).
+struct TrainingOptions : TableOptions<TrainingOptions, trainingOptionSchema> {
+  static constexpr const char* kSection = "training";
   BoostOptions boost;
   std::string order = "auto";  ///< "auto" (validation) or e.g. "corridor,room,doorway"
   /// Prior correction: 0 = classifiers stay class-balanced, 1 = shifted fully to the maps' class frequencies.
@@ -63,15 +69,7 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   int simulated_free_threshold = 204;
   /// ... then the free space is opened with this radius (m; places::openFreeSpace).
   double simulated_free_opening_radius = 0.05;
-
-  /// Through trainingOptionSchema (section [training] of a training INI).
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
-  void dumpToTextStream(std::ostream& out) const override;
 };
-
-/// The key table of [training]: BoostOptions' keys (boostOptionSchema), then TrainingOptions' own.
-const OptionSchema<TrainingOptions>& trainingOptionSchema();
 
 /// NAME_sim_map.png in `dir`: the simulated map of the standard labelled map NAME.
 std::string simulatedMapPath(const std::string& dir, const std::string& name);
