@@ -3,15 +3,12 @@
 
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/output_set.h"
-#include "gridtopo/io/log_reader.h"
-#include "gridtopo/slam/slam_run_ini.h"
-#include "gridtopo/slam/trajectory_render.h"
+#include "gridtopo/core/run_args.h"
+#include "gridtopo/slam/render_run.h"
 
 using namespace gridtopo;
 
@@ -39,59 +36,19 @@ int main(int argc, char** argv) {
                                        "m", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
-    if (resolution.getValue() <= 0 || size.getValue() <= 0) throw UsageError("--resolution and --size must be > 0");
-
-    const slam::SlamOptions so = config.isSet() ? slam::loadSlamOptionsIni(config.getValue()) : slam::SlamOptions{};
-    const auto trajectory = io::readTrajectory(traj.getValue());
-    const auto scans = io::readScanLog(input.getValue());
-    slam::TrajectoryRenderOptions ro;
-    ro.resolution = resolution.getValue();
-    ro.beams = so.beams;
-    ro.map = so.map;
-    nlohmann::ordered_json report{{"input", input.getValue()}, {"trajectory", traj.getValue()},
-                                  {"resolution", ro.resolution}};
-    cv::Mat img;
-    slam::MapWindow window;
-    try {
-      if (loop.isSet()) {
-        const auto r = slam::renderLoopClosure(scans, trajectory, ro, size.getValue(), 0.5, min_travel.getValue());
-        if (!r) throw InputError(traj.getValue(), "no loop closure: the trajectory never comes back within 0.5 m of a "
-                                                  "pose it left " + std::to_string(min_travel.getValue()) + " m before");
-        const auto& c = r->closure;
-        const auto& a = r->agreement;
-        report["loop_closure"] = {{"earlier", c.earlier + 1}, {"later", c.later + 1}, {"distance_m", c.distance},
-                                  {"travelled_m", c.travelled}};
-        report["walls_after_vs_before"] = {{"cells", a.cells}, {"median_m", a.median}, {"p90_m", a.p90},
-                                           {"within_two_cells", a.within_2cells}};
-        std::cout << "first loop closure: pose " << c.later + 1 << " comes back " << c.distance << " m from pose "
-                  << c.earlier + 1 << " after " << c.travelled << " m of travel; walls after it vs before: median "
-                  << a.median * 100 << " cm, 90th percentile " << a.p90 * 100 << " cm, " << a.within_2cells * 100
-                  << " % within two cells (" << a.cells << " cells)\n";
-        window = r->window;
-        img = slam::renderWindow(r->map, window);
-      } else {
-        if (center.isSet()) {
-          std::istringstream in(center.getValue());
-          double x = 0, y = 0;
-          if (!(in >> x >> y)) throw UsageError("--center: expected \"X Y\", got \"" + center.getValue() + "\"");
-          ro.window = slam::MapWindow::around(x, y, size.getValue(), size.getValue());
-        }
-        const slam::GridMap map = slam::mapFromTrajectory(scans, trajectory, ro);
-        window = ro.window ? *ro.window : slam::boundsOf(map);
-        img = slam::renderWindow(map, window);
-      }
-    } catch (const slam::TrajectoryMismatch& e) {
-      throw InputError(traj.getValue(), 0, "timestamp", e.what());
-    }
-    report["window_m"] = {window.x0, window.y0, window.x1, window.y1};
-    report["cells"] = {img.cols, img.rows};
+    slam::RenderRunSpec spec;
+    spec.input = input.getValue(), spec.trajectory = traj.getValue(), spec.config = config.getValue();
+    spec.resolution = resolution.getValue(), spec.center = given(center), spec.loop_closure = loop.isSet();
+    spec.size = size.getValue(), spec.min_travel = min_travel.getValue();
+    const slam::RenderRun run = slam::renderRun(spec);
+    std::cout << run.loop_text;
     OutputSet out;
     out.write(output.getValue(), [&](const std::string& p) {
-      if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
+      if (!cv::imwrite(p, run.image)) throw std::runtime_error("cannot write " + p);
     });
-    if (json.isSet()) out.write(json.getValue(), [&](const std::string& p) { std::ofstream(p) << report.dump(2) << "\n"; });
+    if (json.isSet()) out.write(json.getValue(), [&](const std::string& p) { std::ofstream(p) << run.report_json; });
     out.commit();
-    std::cout << "rendered " << img.cols << " x " << img.rows << " cells of " << ro.resolution << " m -> "
+    std::cout << "rendered " << run.image.cols << " x " << run.image.rows << " cells of " << spec.resolution << " m -> "
               << output.getValue() << "\n";
     return 0;
   });

@@ -1,19 +1,11 @@
 // gridtopo-slam: RBPF grid SLAM with the informed proposal on a CARMEN log or an MRPT rawlog.
 #include <tclap/CmdLine.h>
 
-#include <chrono>
-#include <cstdio>
 #include <iostream>
-#include <memory>
-#include <optional>
 
 #include "gridtopo/core/app_shell.h"
-#include "gridtopo/core/error.h"
-#include "gridtopo/core/process_memory.h"
-#include "gridtopo/core/progress.h"
-#include "gridtopo/io/log_reader.h"
-#include "gridtopo/slam/slam_run.h"
-#include "gridtopo/slam/slam_run_ini.h"
+#include "gridtopo/core/run_args.h"
+#include "gridtopo/slam/slam_log_run.h"
 
 using namespace gridtopo;
 
@@ -45,53 +37,11 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
-    // TCLAP hands an unknown flag to the optional positional argument.
-    if (run_ini.getValue().rfind('-', 0) == 0) throw UsageError(run_ini.getValue() + ": unknown argument");
-    const bool has_run_ini = !run_ini.getValue().empty();
-    if (has_run_ini && config.isSet()) throw UsageError("give the options either in RUN.ini or with -c, not both");
-    if (!has_run_ini && (!input.isSet() || !output.isSet()))
-      throw UsageError("name the log (-i) and the output directory (-o), or give a RUN.ini");
-    slam::SlamRunSpec spec = has_run_ini ? slam::loadSlamRunIni(run_ini.getValue(), section.getValue())
-                                         : slam::SlamRunSpec{};
-    if (config.isSet()) spec.options = slam::loadSlamOptionsIni(config.getValue(), section.getValue());
-    if (input.isSet()) {
-      spec.input = input.getValue();
-      spec.input_from_ini = false;
-    }
-    if (output.isSet()) {
-      spec.output = output.getValue();
-      spec.output_from_ini = false;
-    }
-    if (max_scans.isSet()) spec.max_scans = static_cast<std::size_t>(std::max(0L, max_scans.getValue()));
-    const auto given = [](auto& arg) { return arg.isSet() ? std::optional(arg.getValue()) : std::nullopt; };
-    slam::overrideOptions(spec.options, {given(particles), given(seed), given(threads), given(proposal)});
-    slam::checkSlamRunSpec(spec);
-    if (!quiet.getValue()) spec.options.dumpToTextStream(std::cerr);
-
-    const auto t0 = std::chrono::steady_clock::now();
-    io::ScanLogInfo info;
-    auto records = std::make_shared<std::vector<ScanRecord>>(io::readScanLog(spec.input, {}, info));
-    // What the reader decided against the log's word is always said; which variant it read, unless quiet.
-    for (const auto& w : info.warnings) std::cerr << "gridtopo-slam: warning: " << spec.input << ": " << w << "\n";
-    if (!quiet.getValue())
-      for (const auto& n : info.notes) std::cerr << "gridtopo-slam: note: " << spec.input << ": " << n << "\n";
-    if (spec.max_scans > 0 && spec.max_scans < records->size()) records->resize(spec.max_scans);
-    if (records->empty()) throw InputError(spec.input, "the log holds no laser scans");
-    const double t_read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    slam::SlamRun run(std::move(records), spec.options);
-    ProgressBar bar(run.scanLimit(), "slam", "scans", quiet.getValue() ? 0 : -1);
-    run.runToEnd([&](std::size_t fed, std::size_t) { bar.update(fed); });
-    bar.finish();
-    const std::size_t scans = run.scansFed(), steps = run.filter().stepsProcessed();
-    const double t_slam = run.filterSeconds();
-    run.finishAndWrite(spec.output, {"gridtopo-slam " + spec.input, "one pose per laser scan, best particle"},
-                       slam::slamRunIni(spec));
-    const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr,
-                 "gridtopo-slam: %zu scans, %zu processed, read %.2f s, slam %.2f s, total %.2f s, peak RSS %zu MB, "
-                 "output in %s\n",
-                 scans, steps, t_read, t_slam, t_total, processMemory().peak_kb / 1024, spec.output.c_str());
+    const slam::SlamRunSpec spec = slam::slamRunOfCommandLine(
+        positionalArgument(run_ini), given(config), section.getValue(),
+        {given(input), given(output), given(max_scans)}, {given(particles), given(seed), given(threads), given(proposal)});
+    const slam::SlamLogRunSummary summary = slam::runSlamOnLog(spec, quiet.getValue(), std::cerr);
+    std::cerr << slam::slamLogRunSummaryLine(summary, spec.output);
     return 0;
   });
 }

@@ -1,16 +1,13 @@
 // gridtopo-train: learns the place classifier (AdaBoost decision list + relaxation compatibilities) from
 // labelled maps and writes one model file.
-#include <mrpt/config/CConfigFile.h>
 #include <tclap/CmdLine.h>
 
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "gridtopo/core/app_shell.h"
-#include "gridtopo/core/error.h"
-#include "gridtopo/core/progress.h"
-#include "gridtopo/places/training.h"
+#include "gridtopo/places/features.h"
+#include "gridtopo/places/train_run.h"
 
 using namespace gridtopo;
 namespace fs = std::filesystem;
@@ -32,6 +29,7 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> out("o", "output", "model file to write (.yml / .json)", false,
                                      "datasets/models/places_model.yml", "file", cmd);
     TCLAP::SwitchArg list("", "list-features", "print the features (name: formula) and exit", cmd);
+    HelpOptionsArg help_options(cmd, places::trainingOptionsHelp);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
     if (list.getValue()) {
@@ -39,54 +37,11 @@ int main(int argc, char** argv) {
       return 0;
     }
 
-    auto [train, scan, feat] = places::loadTrainingConfig(ini.getValue());
-    if (threads.getValue() < 1) throw InputError("--threads", "must be >= 1");
-    scan.threads = threads.getValue();
-
-    std::vector<std::pair<std::string, std::pair<std::string, std::string>>> inputs;
-    std::vector<places::LabelledMapFiles> standard;
-    if (pairs.getValue().empty()) {
-      standard = places::standardLabelledMaps(dir.getValue());
-      for (const auto& f : standard) inputs.push_back({f.name, {f.labels, f.map}});
-    } else {
-      if (!train.simulated_maps.empty())
-        throw InputError(ini.getValue(), 0, "[training] simulated_maps", "applies to the standard maps only, not to --pair");
-      for (const auto& p : pairs.getValue()) {
-        const auto colon = p.find(':');
-        if (colon == std::string::npos) throw InputError("--pair", 0, p, "expected LABELS.png:MAP.png");
-        inputs.push_back({fs::path(p.substr(0, colon)).stem().string(), {p.substr(0, colon), p.substr(colon + 1)}});
-      }
-    }
-    std::vector<places::MapSamples> samples;
-    std::ostringstream notes;
-    notes << "trained by gridtopo-train on:";
-    ProgressBar bar(inputs.size(), "features", "maps");
-    for (const auto& [name, files] : inputs) {
-      const auto lm = places::loadLabelledMap(name, files.first, files.second, res.getValue());
-      samples.push_back(places::computeSamples(lm.occ, &lm.codes, scan, feat));
-      std::size_t labelled = 0;
-      for (int l : samples.back().labels) labelled += l >= 0;
-      if (labelled == 0) throw InputError(files.first, "no labelled free cell (codes 77/115/179 on free cells)");
-      notes << " " << fs::path(files.first).filename().string();
-      bar.update(samples.size(), name);
-    }
-    // Issue 15: the simulated SLAM-like map of each standard plan, with the plan's labels.
-    for (const auto& f : standard)
-      if (const auto sim = places::loadSimulatedLabelledMap(f, train, res.getValue())) {
-        samples.push_back(places::computeSamples(sim->occ, &sim->codes, scan, feat));
-        notes << " " << fs::path(places::simulatedMapPath(train.simulated_maps, f.name)).filename().string();
-      }
-    bar.finish();
-    std::vector<const places::MapSamples*> ptrs;
-    for (const auto& s : samples) ptrs.push_back(&s);
-    std::vector<places::OrderScore> val;
-    places::PlacesModel model = places::trainModel(ptrs, scan, feat, train, &val,
-                                                   [](const std::string& m) { std::cerr << m << "\n"; });
-    notes << "; decision list " << places::orderName(model.order);
-    for (const auto& v : val)
-      notes << "; validation " << places::orderName(v.order) << " accuracy " << v.accuracy << " balanced "
-            << v.balanced_accuracy;
-    model.notes = notes.str();
+    places::TrainRunSpec spec;
+    spec.places_dir = dir.getValue(), spec.pairs = pairs.getValue(), spec.ini = ini.getValue();
+    spec.resolution = res.getValue(), spec.threads = threads.getValue();
+    const places::PlacesModel model =
+        places::trainPlacesModel(spec, [](const std::string& m) { std::cerr << m << "\n"; });
     if (fs::path(out.getValue()).has_parent_path()) fs::create_directories(fs::path(out.getValue()).parent_path());
     model.save(out.getValue());
     std::cerr << "wrote " << out.getValue() << " (decision list " << places::orderName(model.order) << ", "

@@ -229,7 +229,7 @@ TEST(RelationsMetric, OptionsFromIni) {
     b.loadFromConfigFile(bad, "relations_metric");
     FAIL();
   } catch (const gridtopo::InputError& e) {
-    EXPECT_EQ(e.field(), "odometry");
+    EXPECT_EQ(e.field(), "[relations_metric] odometry");
   }
   mrpt::config::CConfigFileMemory neg("[relations_metric]\nmax_time_gap = -1\n");
   RelationsMetricOptions c;

@@ -37,7 +37,7 @@ TEST(MapRunIni, ReadsEverySectionAndWritesItBackLoadable) {
   EXPECT_EQ(spec.input, kLog);
   EXPECT_EQ(spec.output, "out/x");
   EXPECT_EQ(spec.model, kModel);
-  EXPECT_TRUE(spec.input_from_ini && spec.output_from_ini && spec.model_from_ini);
+  EXPECT_TRUE(spec.fromIni("input") && spec.fromIni("output") && spec.fromIni("model"));
   EXPECT_EQ(spec.max_scans, 700u);
   EXPECT_EQ(spec.slam.particles, 12);
   EXPECT_EQ(spec.topology.threads, 3);
@@ -60,7 +60,9 @@ TEST(MapRunIni, ReadsEverySectionAndWritesItBackLoadable) {
 TEST(MapRunIni, MissingSectionsKeepTheDefaultsAndFlagsOverride) {
   const auto spec0 = mapping::loadMapRunIni(tmp("min.ini", "[map_run]\ninput = " + kLog + "\n").string());
   EXPECT_EQ(spec0.model, topology::kDefaultPlacesModel);
-  EXPECT_FALSE(spec0.model_from_ini);
+  EXPECT_FALSE(spec0.fromIni("model"));
+  EXPECT_EQ(spec0.lines.of("model"), 1u);  // not in the file: the line of [map_run]
+  EXPECT_EQ(spec0.lines.of("input"), 2u);
   EXPECT_EQ(spec0.slam.particles, slam::SlamOptions().particles);
   EXPECT_EQ(spec0.builder.update_every, 0u);
   try {

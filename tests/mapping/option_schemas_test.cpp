@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -16,8 +17,13 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
 #include "gridtopo/core/option_schema.h"
+#include "gridtopo/eval/relations_metric.h"
+#include "gridtopo/eval/relations_run.h"
 #include "gridtopo/mapping/map_run_ini.h"
 #include "gridtopo/mapping/topology_builder_options.h"
+#include "gridtopo/places/features.h"
+#include "gridtopo/places/scan_simulation.h"
+#include "gridtopo/places/training.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/slam_run_ini.h"
 #include "gridtopo/topology/topology_run_ini.h"
@@ -41,7 +47,22 @@ struct Subject {
   std::function<std::vector<OptionSection>()> defaults;
   /// Loads `cfg` into a default struct and describes it; throws what the struct's loading throws.
   std::function<std::vector<OptionSection>(const mrpt::config::CConfigFileMemory&)> load;
+  /// Values tried first for keys that otherValues cannot serve (free text, rules between keys).
+  std::map<std::string, std::vector<std::string>> other_text = {};
 };
+
+/// A subject of one struct with one table in one section.
+template <class S>
+Subject oneTable(const std::string& name, const std::string& section, const OptionSchema<S>& (*schema)(),
+                 std::map<std::string, std::vector<std::string>> other_text = {}) {
+  return {name, [=] { return std::vector<OptionSection>{{section, schema().describe(S{})}}; },
+          [=](const mrpt::config::CConfigFileMemory& cfg) {
+            S o;
+            schema().load(o, cfg, section);
+            return std::vector<OptionSection>{{section, schema().describe(o)}};
+          },
+          std::move(other_text)};
+}
 
 std::vector<Subject> subjects() {
   return {
@@ -68,6 +89,15 @@ std::vector<Subject> subjects() {
          return std::vector<OptionSection>{
              {mapping::kTopologyBuilderSection, mapping::topologyBuilderOptionSchema().describe(o)}};
        }},
+      oneTable("ScanSimulationOptions", "scan_simulation", places::scanSimulationOptionSchema,
+               {{"num_beams", {"364"}}}),  // a multiple of 4
+      // simulated_maps must name a directory that exists; capped_ranges is a list of ranges.
+      oneTable("TrainingOptions", "training", places::trainingOptionSchema,
+               {{"simulated_maps", {std::string(GRIDTOPO_SOURCE_DIR) + "/datasets/places/derived"}},
+                {"order", {"corridor,room,doorway"}}}),
+      oneTable("FeatureOptions", "features", places::featureOptionSchema,
+               {{"capped_ranges", {"7.5, 12.25, 0.1000000000000000055511151231257827"}}}),
+      oneTable("RelationsMetricOptions", "relations_metric", eval::relationsMetricOptionSchema),
   };
 }
 
@@ -150,6 +180,22 @@ TEST(OptionSchemas, DocumentedIniFilesHoldExactlyTheTablesKeys) {
   EXPECT_EQ(keySet(map_ini.keys("map_run")), keySet(mapping::mapRunSchema().keys()));
   EXPECT_EQ(keySet(map_ini.keys(mapping::kTopologyBuilderSection)),
             keySet(mapping::topologyBuilderOptionSchema().keys()));
+  // The training INI and the relations metric's: every key of their tables, with its default.
+  const IniFile train_ini = IniFile::read(kIni + "topology_train.ini");
+  EXPECT_EQ(train_ini.sections(), (std::vector<std::string>{"scan_simulation", "features", "training"}));
+  EXPECT_EQ(keySet(train_ini.keys("scan_simulation")), keySet(places::scanSimulationOptionSchema().keys()));
+  EXPECT_EQ(keySet(train_ini.keys("features")), keySet(places::featureOptionSchema().keys()));
+  EXPECT_EQ(keySet(train_ini.keys("training")), keySet(places::trainingOptionSchema().keys()));
+  const auto train = places::loadTrainingConfig(kIni + "topology_train.ini");
+  EXPECT_EQ(places::scanSimulationOptionSchema().ini(train.scan, "s"), places::scanSimulationOptionSchema().ini({}, "s"));
+  EXPECT_EQ(places::featureOptionSchema().ini(train.features, "f"), places::featureOptionSchema().ini({}, "f"));
+  EXPECT_EQ(places::trainingOptionSchema().ini(train.training, "t"), places::trainingOptionSchema().ini({}, "t"));
+  const IniFile eval_ini = IniFile::read(kIni + "eval.ini");
+  EXPECT_EQ(eval_ini.sections(), std::vector<std::string>{"relations_metric"});
+  EXPECT_EQ(keySet(eval_ini.keys("relations_metric")), keySet(eval::relationsMetricOptionSchema().keys()));
+  EXPECT_EQ(eval::relationsMetricOptionSchema().ini(eval::loadRelationsMetricIni(kIni + "eval.ini"), "r"),
+            eval::relationsMetricOptionSchema().ini({}, "r"));
+
   // ... and they load.
   EXPECT_NO_THROW(slam::loadSlamRunIni(kIni + "run-slam.ini"));
   EXPECT_NO_THROW(topology::loadTopologyRunIni(kIni + "run-topology.ini"));
@@ -165,7 +211,10 @@ TEST(OptionSchemas, SaveThenLoadGivesBackEveryNonDefaultValueExactly) {
       for (const auto& k : section.keys) {
         ++keys;
         bool set = false;
-        for (const auto& v : otherValues(k)) {
+        std::vector<std::string> candidates = otherValues(k);
+        if (const auto it = s.other_text.find(k.key); it != s.other_text.end())
+          candidates.insert(candidates.begin(), it->second.begin(), it->second.end());
+        for (const auto& v : candidates) {
           mrpt::config::CConfigFileMemory trial;
           trial.setContent(cfg.getContent());
           trial.write(section.section, k.key, v);
@@ -222,11 +271,12 @@ TEST(OptionSchemas, EveryValueOutOfItsRangeIsRefusedWithSectionAndKey) {
             ++checked;
           }
         }
-  // SlamOptions has 54 keys with a range, TopologyOptions 30: both ends of the closed ones count twice.
-  EXPECT_GE(checked, 100u);
+  // SlamOptions has 54 keys with a range, TopologyOptions 30, the training INI's three tables 17, [relations_metric]
+  // 1: both ends of the closed ones count twice.
+  EXPECT_GE(checked, 130u);
 }
 
-// --help-options of the three apps whose run is an INI: exit 0 (also without the arguments a run needs), and the
+// --help-options of the apps whose run is an INI or that read an options INI: exit 0 (also without the arguments a run needs), and the
 // text of the tables: every key of every section on a line "  key = default".
 TEST(OptionSchemas, AppsListEveryKeyWithHelpOptions) {
   struct App {
@@ -245,6 +295,12 @@ TEST(OptionSchemas, AppsListEveryKeyWithHelpOptions) {
        {{"slam_run", slam::slamRunSchema().describe({})}, {"slam", slam::slamOptionSchema().describe({})}}},
       {"gridtopo-topology", topology::topologyRunOptionsHelp(), topology_sections},
       {"gridtopo-map", mapping::mapRunOptionsHelp(), map_sections},
+      {"gridtopo-train", places::trainingOptionsHelp(),
+       {{"scan_simulation", places::scanSimulationOptionSchema().describe({})},
+        {"features", places::featureOptionSchema().describe({})},
+        {"training", places::trainingOptionSchema().describe({})}}},
+      {"gridtopo-eval", eval::relationsMetricOptionsHelp(),
+       {{"relations_metric", eval::relationsMetricOptionSchema().describe({})}}},
   };
   for (const App& app : apps) {
     const auto r = testing_app::runApp(app.name, "--help-options");

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/slam/slam_run_ini.h"
 
 using namespace gridtopo;
@@ -28,8 +29,13 @@ TEST(SlamRunIni, TheShippedRunIniLoads) {
   EXPECT_EQ(s.input, "datasets/slam/intel.clf.gz");
   EXPECT_EQ(s.output, "out/intel");
   EXPECT_EQ(s.max_scans, 0u);
-  EXPECT_TRUE(s.input_from_ini);
-  EXPECT_TRUE(s.output_from_ini);
+  EXPECT_TRUE(s.fromIni("input"));
+  EXPECT_TRUE(s.fromIni("output"));
+  // The lines of the run section and its keys, for the checks after loading.
+  const IniFile layout = IniFile::read(kSource + "/config-ini/run-slam.ini");
+  EXPECT_EQ(s.lines.section, layout.line("slam_run"));
+  EXPECT_EQ(s.lines.of("input"), layout.line("slam_run", "input"));
+  EXPECT_GT(s.lines.of("output"), s.lines.of("input"));
   EXPECT_EQ(s.options.particles, 30);
   EXPECT_EQ(s.options.threads, 2);
 }
@@ -38,7 +44,8 @@ TEST(SlamRunIni, TheShippedRunIniLoads) {
 TEST(SlamRunIni, EveryKeyOfTheDocumentedIniIsKnown) {
   const slam::SlamRunSpec s = slam::loadSlamRunIni(kSource + "/config-ini/slam.ini");
   EXPECT_TRUE(s.input.empty());
-  EXPECT_FALSE(s.input_from_ini);
+  EXPECT_FALSE(s.fromIni("input"));
+  EXPECT_EQ(s.lines.of("input"), 0u);
 }
 
 TEST(SlamRunIni, TheRunsIniLoadsBackToTheSameRun) {

@@ -20,7 +20,7 @@ TEST(TopologyRunIni, TheShippedRunIniLoads) {
   EXPECT_EQ(s.map, "datasets/places/maps/lab_intel.png");
   EXPECT_EQ(s.model, "datasets/models/places_model.yml");
   EXPECT_EQ(s.output, "out/lab_intel");
-  EXPECT_TRUE(s.map_from_ini);
+  EXPECT_TRUE(s.fromIni("map"));
   EXPECT_EQ(s.options.threads, 2);
   EXPECT_EQ(s.options.relaxation.max_iterations, 30);
   EXPECT_EQ(s.options.correction.min_room_area, 4.0);
@@ -81,10 +81,10 @@ TEST(TopologyRunIni, AMissingMapOrOutputIsNamed) {
 TEST(TopologyRunIni, FlagsOverrideSingleValuesAndAreChecked) {
   topology::TopologyRunSpec spec;
   spec.model = "a.yml";
-  spec.model_from_ini = true;
+  spec.lines.keys["model"] = 3;
   topology::overrideRun(spec, {std::string("b.yml"), std::string("/out"), 0.1, 3});
   EXPECT_EQ(spec.model, "b.yml");
-  EXPECT_FALSE(spec.model_from_ini);
+  EXPECT_FALSE(spec.fromIni("model"));
   EXPECT_EQ(spec.output, "/out");
   EXPECT_EQ(spec.options.resolution, 0.1);
   EXPECT_EQ(spec.options.threads, 3);

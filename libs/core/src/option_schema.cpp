@@ -23,6 +23,11 @@ std::string OptionRange::text() const {
   return "";
 }
 
+std::size_t KeyLines::of(const std::string& key) const {
+  const auto it = keys.find(key);
+  return it != keys.end() ? it->second : section;
+}
+
 const char* toString(OptionType type) {
   switch (type) {
     case OptionType::Bool: return "bool";

@@ -12,30 +12,23 @@
 
 namespace gridtopo::eval {
 
-void RelationsMetricOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
-                                                const std::string& section) {
-  const std::string file = "[" + section + "]";
-  const double gap = readIni(cfg, section, "max_time_gap", max_time_gap);
-  if (!(gap >= 0.0) || !std::isfinite(gap)) throw InputError(file, 0, "max_time_gap", "must be a finite number >= 0");
-  max_time_gap = gap;
-  readIniValue(cfg, section, "interpolate_odometry", interpolate_odometry);
-  readIniValue(cfg, section, "interpolate_estimate", interpolate_estimate);
-  const std::string src = readIni(cfg, section, "odometry", std::string(toString(odometry)));
-  try {
-    odometry = odometrySourceFromString(src);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(file, 0, "odometry", e.what());
-  }
+const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema() {
+  using O = RelationsMetricOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::eval::RelationsMetricOptions")
+          .add("max_time_gap", &O::max_time_gap, OptionRange::atLeast(0), "s",
+               "nearer estimated poses are used as they are; further ones are carried by odometry")
+          .add("interpolate_odometry", &O::interpolate_odometry, OptionRange::any(), "",
+               "odometry at a time: the nearest reading (false, the reference tool) or interpolated (true)")
+          .add("interpolate_estimate", &O::interpolate_estimate, OptionRange::any(), "",
+               "blend the estimates before and after a gap (not the benchmark's definition)")
+          .addWords<OdometrySource>("odometry", field(&O::odometry),
+                                    {{"auto", OdometrySource::Auto}, {"odom", OdometrySource::OdomLines},
+                                     {"laser", OdometrySource::LaserLines}},
+                                    "the odometry that fills the gaps: ODOM lines, laser lines, auto (odom if any)");
+  return schema;
 }
 
-void RelationsMetricOptions::dumpToTextStream(std::ostream& out) const {
-  out << "max_time_gap         = " << max_time_gap << "   ; s: nearer estimated poses are used as they are\n"
-      << "interpolate_odometry = " << (interpolate_odometry ? "true" : "false")
-      << "   ; odometry at a time: nearest reading (false) or interpolated (true)\n"
-      << "interpolate_estimate = " << (interpolate_estimate ? "true" : "false")
-      << "   ; blend the estimates before and after a gap (not the benchmark's definition)\n"
-      << "odometry             = " << toString(odometry) << "   ; auto | odom (ODOM lines) | laser (laser lines)\n";
-}
 
 ErrorStats ErrorStats::of(const std::vector<double>& v) {
   ErrorStats s;

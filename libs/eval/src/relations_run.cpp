@@ -7,6 +7,7 @@
 
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/eval/odometry_track.h"
 #include "gridtopo/eval/report.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -16,13 +17,16 @@ namespace gridtopo::eval {
 RelationsMetricOptions loadRelationsMetricIni(const std::string& path) {
   RelationsMetricOptions opt;
   if (!std::filesystem::exists(path)) throw InputError(path, "cannot open INI file");
-  mrpt::config::CConfigFile ini(path);
   try {
-    opt.loadFromConfigFile(ini, "relations_metric");
+    opt.loadFromConfigFile(mrpt::config::CConfigFile(path), "relations_metric");
   } catch (const InputError& e) {
-    throw InputError(path, 0, "relations_metric." + e.field(), e.message());
+    throw IniFile::read(path).withLine(e);  // the table names "[relations_metric] key" without the line
   }
   return opt;
+}
+
+std::string relationsMetricOptionsHelp() {
+  return optionsHelp("relations_metric", relationsMetricOptionSchema().describe({}));
 }
 
 void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& f) {
@@ -44,6 +48,13 @@ void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& f) {
   spec.corrected.match = parsed("--gfs-match", correctedTimeMatchFromString, f.gfs_match);
   if (f.gfs_pose == "laser") spec.corrected.pose = CorrectedPose::Laser;
   else if (f.gfs_pose != "robot") throw UsageError("--gfs-pose must be robot or laser");
+}
+
+void configureRelationsRun(RelationsRunSpec& spec, const std::optional<std::string>& config,
+                           const RelationsFlags& flags) {
+  checkRelationsRunSpec(spec);
+  if (config) spec.metric = loadRelationsMetricIni(*config);
+  applyRelationsFlags(spec, flags);
 }
 
 void checkRelationsRunSpec(const RelationsRunSpec& s) {
@@ -143,6 +154,12 @@ std::string relationsRunWarnings(const RelationsRun& run) {
     o << "warning: a relation timestamp is " << run.result.max_gap
       << " s from the nearest estimated pose: are the trajectory's timestamps the log's ipc timestamps?\n";
   return o.str();
+}
+
+void writeRelationsOutputs(const RelationsRun& run, const std::string& json_path, const std::string& errors_path) {
+  OutputSet out;
+  stageRelationsOutputs(out, run, json_path, errors_path);
+  out.commit();
 }
 
 }  // namespace gridtopo::eval

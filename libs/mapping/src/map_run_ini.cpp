@@ -7,7 +7,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
-#include "gridtopo/core/ini_value.h"
+#include "gridtopo/core/run_args.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/slam_run_ini.h"
 #include "gridtopo/topology/topology_run_ini.h"
@@ -55,17 +55,7 @@ MapRunSpec loadMapRunIni(const std::string& path) {
 
   MapRunSpec spec;
   spec.ini = path;
-  auto text = [&](const char* key, std::string& target, bool& from_ini) {
-    if (const auto v = ini.value(run, key); v && !v->empty()) {
-      target = *v;
-      from_ini = true;
-    }
-  };
-  text("input", spec.input, spec.input_from_ini);
-  text("output", spec.output, spec.output_from_ini);
-  text("model", spec.model, spec.model_from_ini);
-  unsigned long max_scans = 0;
-  if (ini.parseValue(run, "max_scans", max_scans)) spec.max_scans = max_scans;
+  mapRunSchema().loadRun(spec, spec.lines, ini, run);
   try {
     if (ini.hasSection("slam")) spec.slam = slam::loadSlamOptionsIni(path, "slam");
     spec.topology = topology::loadTopologyOptions(path);
@@ -77,41 +67,38 @@ MapRunSpec loadMapRunIni(const std::string& path) {
 }
 
 void overrideRun(MapRunSpec& spec, const MapRunFlags& f) {
-  if (f.input) {
-    spec.input = *f.input;
-    spec.input_from_ini = false;
-  }
-  if (f.output) {
-    spec.output = *f.output;
-    spec.output_from_ini = false;
-  }
-  if (f.model) {
-    spec.model = *f.model;
-    spec.model_from_ini = false;
-  }
+  spec.lines.overrideWith(f.input, spec.input, "input");
+  spec.lines.overrideWith(f.output, spec.output, "output");
+  spec.lines.overrideWith(f.model, spec.model, "model");
   if (f.max_scans) {
     if (*f.max_scans < 0) throw InputError("<command line>", 0, "--max-scans", "must be >= 0");
     spec.max_scans = static_cast<std::size_t>(*f.max_scans);
   }
 }
 
+MapRunSpec mapRunOfCommandLine(const std::string& run_ini, const MapRunFlags& run, const slam::SlamOptionFlags& slam) {
+  requireRunIniOrInputOutput(run_ini, run.input.has_value(), run.output.has_value());
+  MapRunSpec spec = run_ini.empty() ? MapRunSpec{} : loadMapRunIni(run_ini);
+  overrideRun(spec, run);
+  slam::overrideOptions(spec.slam, slam);
+  return spec;
+}
+
 void checkMapRunSpec(const MapRunSpec& spec) {
   const std::string run = kMapRunSection;
   const std::string where = spec.ini.empty() ? "<command line>" : spec.ini;
-  auto lineOf = [&](const std::string& key) {
-    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
-  };
+  auto lineOf = [&](const std::string& key) { return spec.lines.of(key); };
   if (spec.input.empty())
     throw InputError(where, lineOf("input"), "[" + run + "] input", "missing: name the log to read (or give -i)");
   if (spec.output.empty())
     throw InputError(where, lineOf("output"), "[" + run + "] output", "missing: name the output directory (or give -o)");
-  auto requireFile = [&](const std::string& file, bool from_ini, const std::string& key) {
+  auto requireFile = [&](const std::string& file, const std::string& key) {
     if (fs::exists(file)) return;
-    if (from_ini) throw InputError(spec.ini, lineOf(key), "[" + run + "] " + key, "no such file '" + file + "'");
+    if (spec.fromIni(key)) throw InputError(spec.ini, lineOf(key), "[" + run + "] " + key, "no such file '" + file + "'");
     throw InputError(file, "no such file");
   };
-  requireFile(spec.input, spec.input_from_ini, "input");
-  requireFile(spec.model, spec.model_from_ini, "model");
+  requireFile(spec.input, "input");
+  requireFile(spec.model, "model");
 }
 
 std::string mapRunIni(const MapRunSpec& spec) {

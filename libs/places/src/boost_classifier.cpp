@@ -1,5 +1,4 @@
 #include "gridtopo/places/boost_classifier.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -15,31 +14,24 @@ double BoostedClassifier::probability(const float* f) const {
   return 1.0 / (1.0 + std::exp(-2.0 * score(f)));
 }
 
-void BoostOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  readIniValue(s, sec, "weak_count", weak_count);
-  readIniValue(s, sec, "boost_type", boost_type);
-  readIniValue(s, sec, "max_samples_per_class", max_samples_per_class);
-  readIniValue(s, sec, "seed", seed);
-  readIniValue(s, sec, "weight_trim_rate", weight_trim_rate);
-  validate("[" + sec + "]");
+const OptionSchema<BoostOptions>& boostOptionSchema() {
+  using O = BoostOptions;
+  const auto word = [](const char* w) { return std::pair<std::string, std::string>(w, w); };
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::places::BoostOptions")
+          .add("weak_count", &O::weak_count, OptionRange::closed(1, 10000), "stumps",
+               "weak classifiers per binary classifier")
+          .addWords<std::string>("boost_type", field(&O::boost_type),
+                                 {word("real"), word("discrete"), word("gentle"), word("logit")},
+                                 "OpenCV's boosting variant (cv::ml::Boost::Types)")
+          .add("max_samples_per_class", &O::max_samples_per_class, OptionRange::atLeast(10), "samples",
+               "class balancing: at most this many training samples per place class")
+          .add("seed", &O::seed, OptionRange::any(), "", "seed of the subsampling")
+          .add("weight_trim_rate", &O::weight_trim_rate, OptionRange::closed(0, 1), "",
+               "OpenCV's weight trimming (speed); 0 = every sample in every round");
+  return schema;
 }
 
-void BoostOptions::dumpToTextStream(std::ostream& out) const {
-  out << "weak_count            = " << weak_count << "\n"
-      << "boost_type            = " << boost_type << "\n"
-      << "max_samples_per_class = " << max_samples_per_class << "\n"
-      << "seed                  = " << seed << "\n"
-      << "weight_trim_rate      = " << weight_trim_rate << "\n";
-}
-
-void BoostOptions::validate(const std::string& where) const {
-  if (weak_count < 1 || weak_count > 10000) throw InputError(where, 0, "weak_count", "must be in [1, 10000]");
-  if (boost_type != "real" && boost_type != "discrete" && boost_type != "gentle" && boost_type != "logit")
-    throw InputError(where, 0, "boost_type", "must be real, discrete, gentle or logit");
-  if (!(weight_trim_rate >= 0 && weight_trim_rate <= 1))
-    throw InputError(where, 0, "weight_trim_rate", "must be in [0, 1]");
-  if (max_samples_per_class < 10) throw InputError(where, 0, "max_samples_per_class", "must be >= 10");
-}
 
 BoostedClassifier trainBoostedClassifier(const cv::Mat& features, const std::vector<int>& target,
                                          const BoostOptions& options) {

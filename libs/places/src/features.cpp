@@ -14,6 +14,20 @@
 
 namespace gridtopo::places {
 
+const OptionSchema<FeatureOptions>& featureOptionSchema() {
+  using O = FeatureOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::places::FeatureOptions")
+          .add("beam_cap", &O::beam_cap, OptionRange::above(0), "m", "cap of the \"capped\" beam-difference features")
+          .add("gap_small", &O::gap_small, OptionRange::atLeast(0), "m", "a beam difference d_k above this is a small gap")
+          .add("gap_large", &O::gap_large, OptionRange::atLeast(0), "m", "a beam difference d_k above this is a large gap")
+          .addRealList("capped_ranges", &O::capped_ranges, OptionRange::leftOpen(0, 65), "m",
+                       "a copy of every base feature per range R, on the scan with beams capped at R; empty = off")
+          .add("context_radius", &O::context_radius, OptionRange::closed(0, 10), "m",
+               "> 0: a copy of every feature averaged over the lattice samples within this distance; 0 = off");
+  return schema;
+}
+
 const std::vector<std::string>& featureDescriptions() {
   static const std::vector<std::string> d = {
       "mean_diff: (1/M) sum_k d_k",

@@ -1,5 +1,4 @@
 #include "gridtopo/places/scan_simulation.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -29,38 +28,30 @@ BeamStop parseBeamStop(const std::string& text, const std::string& where, const 
                    "must be obstacle or max_range" + std::string(allow_pass ? " or pass" : "") + ", got '" + text + "'");
 }
 
-void ScanSimulationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  readIniValue(s, sec, "num_beams", num_beams);
-  readIniValue(s, sec, "max_range", max_range);
-  readIniValue(s, sec, "lattice_spacing", lattice_spacing);
-  readIniValue(s, sec, "threads", threads);
-  std::string unknown = beamStopName(unknown_cells), border = beamStopName(map_border);
-  readIniValue(s, sec, "unknown_cells", unknown);
-  readIniValue(s, sec, "map_border", border);
-  unknown_cells = parseBeamStop(unknown, "[" + sec + "]", "unknown_cells", true);
-  map_border = parseBeamStop(border, "[" + sec + "]", "map_border", false);
-  validate("[" + sec + "]");
+const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema() {
+  using O = ScanSimulationOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::places::ScanSimulationOptions")
+          .add("num_beams", &O::num_beams, OptionRange::closed(8, 3600), "beams",
+               "beams per simulated scan, a multiple of 4 (360 = 1 degree apart)")
+          .add("max_range", &O::max_range, OptionRange::leftOpen(0, 65), "m", "longer beams are capped here")
+          .add("lattice_spacing", &O::lattice_spacing, OptionRange::closed(0, 2), "m",
+               "between classified cells (block side); <= the resolution = every cell")
+          .add("threads", &O::threads, OptionRange::closed(1, 256), "", "worker threads (results do not depend on it)")
+          .addWords<BeamStop>("unknown_cells", field(&O::unknown_cells),
+                              {{"obstacle", BeamStop::kObstacle}, {"max_range", BeamStop::kMaxRange},
+                               {"pass", BeamStop::kPass}},
+                              "a beam that meets an unknown cell ends there, reads max_range or passes through")
+          .addWords<BeamStop>("map_border", field(&O::map_border),
+                              {{"obstacle", BeamStop::kObstacle}, {"max_range", BeamStop::kMaxRange}},
+                              "a beam that leaves the image ends there or reads max_range")
+          .rule("num_beams", [](const O& o) -> std::optional<std::string> {
+            if (o.num_beams % 4 == 0) return std::nullopt;
+            return "must be a multiple of 4, got " + std::to_string(o.num_beams);
+          });
+  return schema;
 }
 
-void ScanSimulationOptions::dumpToTextStream(std::ostream& out) const {
-  out << "num_beams       = " << num_beams << "   // beams per simulated scan (even)\n"
-      << "max_range       = " << max_range << "   // m, beams capped here\n"
-      << "lattice_spacing = " << lattice_spacing << "   // m between classified cells\n"
-      << "threads         = " << threads << "\n"
-      << "unknown_cells   = " << beamStopName(unknown_cells) << "   // obstacle | max_range | pass\n"
-      << "map_border      = " << beamStopName(map_border) << "   // obstacle | max_range\n";
-}
-
-void ScanSimulationOptions::validate(const std::string& where) const {
-  if (num_beams < 8 || num_beams % 4 != 0 || num_beams > 3600)
-    throw InputError(where, 0, "num_beams", "must be a multiple of 4 in [8, 3600]");
-  if (!std::isfinite(max_range) || max_range <= 0 || max_range > 65.0)
-    throw InputError(where, 0, "max_range", "must be in (0, 65] metres");
-  if (!std::isfinite(lattice_spacing) || lattice_spacing < 0 || lattice_spacing > 2.0)
-    throw InputError(where, 0, "lattice_spacing", "must be in [0, 2] metres");
-  if (threads < 1 || threads > 256) throw InputError(where, 0, "threads", "must be in [1, 256]");
-  if (map_border == BeamStop::kPass) throw InputError(where, 0, "map_border", "must be obstacle or max_range");
-}
 
 Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing) {
   Lattice lat;

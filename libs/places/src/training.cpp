@@ -1,5 +1,4 @@
 #include "gridtopo/places/training.h"
-#include "gridtopo/core/ini_value.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFile.h>
@@ -13,6 +12,7 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
 
 namespace gridtopo::places {
 
@@ -105,66 +105,45 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
   if (!std::filesystem::is_regular_file(ini_path)) throw InputError(ini_path, "INI file not found");
   const mrpt::config::CConfigFile f(ini_path);
   try {
-    c.training.loadFromConfigFile(f, "training");
-    c.scan.loadFromConfigFile(f, "scan_simulation");
+    trainingOptionSchema().load(c.training, f, "training");
+    scanSimulationOptionSchema().load(c.scan, f, "scan_simulation");
+    featureOptionSchema().load(c.features, f, "features");
   } catch (const InputError& e) {
-    throw InputError(ini_path, 0, e.file() + " " + e.field(), e.message());
+    throw IniFile::read(ini_path).withLine(e);  // the tables name "[section] key" without the line
   }
-  FeatureOptions& feat = c.features;
-  readIniValue(f, "features", "beam_cap", feat.beam_cap);
-  readIniValue(f, "features", "gap_small", feat.gap_small);
-  readIniValue(f, "features", "gap_large", feat.gap_large);
-  readIniValue(f, "features", "context_radius", feat.context_radius);
-  {
-    const std::string unset = "\x01";
-    const std::string list = readIni(f, "features", "capped_ranges", unset);
-    std::stringstream ss(list == unset ? "" : list);
-    if (list != unset) feat.capped_ranges.clear();
-    for (std::string tok; std::getline(ss, tok, ',');) {
-      if (tok.find_first_not_of(" \t") == std::string::npos) continue;
-      char* end = nullptr;
-      const double v = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || !std::isfinite(v) || v <= 0 || v > 65 ||
-          (*end && std::string(end).find_first_not_of(" \t") != std::string::npos))
-        throw InputError(ini_path, 0, "[features] capped_ranges", "must be a comma-separated list of ranges in (0, 65] metres, got '" + tok + "'");
-      feat.capped_ranges.push_back(v);
-    }
-  }
-  if (!(feat.context_radius >= 0 && feat.context_radius <= 10))
-    throw InputError(ini_path, 0, "[features] context_radius", "must be in [0, 10] metres");
   return c;
 }
 
-void TrainingOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec) {
-  boost.loadFromConfigFile(s, sec);
-  readIniValue(s, sec, "order", order);
-  readIniValue(s, sec, "prior_weight", prior_weight);
-  readIniValue(s, sec, "order_folds", order_folds);
-  readIniValue(s, sec, "order_samples_per_class", order_samples_per_class);
-  readIniValue(s, sec, "simulated_maps", simulated_maps);
-  readIniValue(s, sec, "simulated_free_threshold", simulated_free_threshold);
-  readIniValue(s, sec, "simulated_free_opening_radius", simulated_free_opening_radius);
-  if (simulated_free_threshold < 1 || simulated_free_threshold > 255)
-    throw InputError("[" + sec + "]", 0, "simulated_free_threshold", "must be in [1, 255]");
-  if (!(simulated_free_opening_radius >= 0 && simulated_free_opening_radius <= 1))
-    throw InputError("[" + sec + "]", 0, "simulated_free_opening_radius", "must be in [0, 1] metres");
-  if (!simulated_maps.empty() && !std::filesystem::is_directory(simulated_maps))
-    throw InputError("[" + sec + "]", 0, "simulated_maps", "directory '" + simulated_maps + "' not found");
-  if (order_folds < 1 || order_folds > 20) throw InputError("[" + sec + "]", 0, "order_folds", "must be in [1, 20]");
-  if (order_samples_per_class < 10)
-    throw InputError("[" + sec + "]", 0, "order_samples_per_class", "must be >= 10");
-  if (!(prior_weight >= 0 && prior_weight <= 2)) throw InputError("[" + sec + "]", 0, "prior_weight", "must be in [0, 2]");
+std::string trainingOptionsHelp() {
+  return optionsHelp("scan_simulation", scanSimulationOptionSchema().describe({})) + "\n" +
+         optionsHelp("features", featureOptionSchema().describe({})) + "\n" +
+         optionsHelp("training", trainingOptionSchema().describe({}));
 }
 
-void TrainingOptions::dumpToTextStream(std::ostream& out) const {
-  boost.dumpToTextStream(out);
-  out << "order                 = " << order << "\n"
-      << "prior_weight          = " << prior_weight << "\n"
-      << "order_folds           = " << order_folds << "\n"
-      << "order_samples_per_class = " << order_samples_per_class << "\n"
-      << "simulated_maps        = " << simulated_maps << "\n"
-      << "simulated_free_threshold = " << simulated_free_threshold << "\n"
-      << "simulated_free_opening_radius = " << simulated_free_opening_radius << "\n";
+const OptionSchema<TrainingOptions>& trainingOptionSchema() {
+  using O = TrainingOptions;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::places::TrainingOptions")
+          .addAll(boostOptionSchema(), &O::boost)
+          .add("order", &O::order, OptionRange::any(), "",
+               "the decision list: auto (chosen by validation) or the order, e.g. corridor,room,doorway")
+          .add("prior_weight", &O::prior_weight, OptionRange::closed(0, 2), "",
+               "prior correction: 0 = class-balanced classifiers, 1 = shifted to the maps' class frequencies")
+          .add("order_folds", &O::order_folds, OptionRange::closed(1, 20), "groups",
+               "order choice: the maps split into this many validation groups (index modulo k)")
+          .add("order_samples_per_class", &O::order_samples_per_class, OptionRange::atLeast(10), "samples",
+               "order choice: at most this many samples per class for the validation classifiers")
+          .add("simulated_maps", &O::simulated_maps, OptionRange::any(), "",
+               "a directory of simulated SLAM-like maps NAME_sim_map.png of the labelled plans; empty = off")
+          .add("simulated_free_threshold", &O::simulated_free_threshold, OptionRange::closed(1, 255), "grey",
+               "the simulated maps: grey >= this is free")
+          .add("simulated_free_opening_radius", &O::simulated_free_opening_radius, OptionRange::closed(0, 1), "m",
+               "the simulated maps: the free space is opened with this radius")
+          .rule("simulated_maps", [](const O& o) -> std::optional<std::string> {
+            if (o.simulated_maps.empty() || std::filesystem::is_directory(o.simulated_maps)) return std::nullopt;
+            return "directory '" + o.simulated_maps + "' not found";
+          });
+  return schema;
 }
 
 std::string orderName(const std::array<int, kNumLabels>& o) {

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFile.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -9,7 +10,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
-#include "gridtopo/core/ini_value.h"
+#include "gridtopo/core/run_args.h"
 #include "gridtopo/slam/options_ini.h"
 
 namespace fs = std::filesystem;
@@ -58,17 +59,7 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
   ini.requireKnownKeys(options_section, slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
   SlamRunSpec spec;
   spec.ini = path;
-  const std::string run = kSlamRunSection;
-  if (const auto v = ini.value(run, "input"); v && !v->empty()) {
-    spec.input = *v;
-    spec.input_from_ini = true;
-  }
-  if (const auto v = ini.value(run, "output"); v && !v->empty()) {
-    spec.output = *v;
-    spec.output_from_ini = true;
-  }
-  unsigned long max_scans = 0;
-  if (ini.parseValue(run, "max_scans", max_scans)) spec.max_scans = max_scans;
+  slamRunSchema().loadRun(spec, spec.lines, ini, kSlamRunSection);
   spec.options = loadOptions(path, ini, options_section);
   return spec;
 }
@@ -78,6 +69,12 @@ SlamOptions loadSlamOptionsIni(const std::string& path, const std::string& secti
   const IniFile ini = IniFile::read(path);
   if (!ini.hasSection(section)) throw InputError(path, 0, "[" + section + "]", "section not found");
   return loadOptions(path, ini, section);
+}
+
+void overrideRun(SlamRunSpec& spec, const SlamRunFlags& f) {
+  spec.lines.overrideWith(f.input, spec.input, "input");
+  spec.lines.overrideWith(f.output, spec.output, "output");
+  if (f.max_scans) spec.max_scans = static_cast<std::size_t>(std::max(0L, *f.max_scans));
 }
 
 void overrideOptions(SlamOptions& o, const SlamOptionFlags& f) {
@@ -100,9 +97,7 @@ void overrideOptions(SlamOptions& o, const SlamOptionFlags& f) {
 
 void checkSlamRunSpec(const SlamRunSpec& spec) {
   const std::string run = kSlamRunSection;
-  auto lineOf = [&](const std::string& key) {
-    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
-  };
+  auto lineOf = [&](const std::string& key) { return spec.lines.of(key); };
   if (spec.input.empty())
     throw InputError(spec.ini.empty() ? "<command line>" : spec.ini, lineOf("input"), "[" + run + "] input",
                      "missing: name the log to read (or give -i)");
@@ -110,10 +105,22 @@ void checkSlamRunSpec(const SlamRunSpec& spec) {
     throw InputError(spec.ini.empty() ? "<command line>" : spec.ini, lineOf("output"), "[" + run + "] output",
                      "missing: name the output directory (or give -o)");
   if (!fs::exists(spec.input)) {
-    if (spec.input_from_ini)
+    if (spec.fromIni("input"))
       throw InputError(spec.ini, lineOf("input"), "[" + run + "] input", "no such file '" + spec.input + "'");
     throw InputError(spec.input, "no such file");
   }
+}
+
+SlamRunSpec slamRunOfCommandLine(const std::string& run_ini, const std::optional<std::string>& config,
+                                 const std::string& section, const SlamRunFlags& run, const SlamOptionFlags& options) {
+  if (!run_ini.empty() && config) throw UsageError("give the options either in RUN.ini or with -c, not both");
+  requireRunIniOrInputOutput(run_ini, run.input.has_value(), run.output.has_value());
+  SlamRunSpec spec = run_ini.empty() ? SlamRunSpec{} : loadSlamRunIni(run_ini, section);
+  if (config) spec.options = loadSlamOptionsIni(*config, section);
+  overrideRun(spec, run);
+  overrideOptions(spec.options, options);
+  checkSlamRunSpec(spec);
+  return spec;
 }
 
 std::string slamRunIni(const SlamRunSpec& spec) {

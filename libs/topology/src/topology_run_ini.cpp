@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
 
@@ -52,15 +53,7 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
     ini.requireKnownKeys(s, topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
   TopologyRunSpec spec;
   spec.ini = path;
-  if (const auto v = ini.value(run, "map"); v && !v->empty()) {
-    spec.map = *v;
-    spec.map_from_ini = true;
-  }
-  if (const auto v = ini.value(run, "model"); v && !v->empty()) {
-    spec.model = *v;
-    spec.model_from_ini = true;
-  }
-  if (const auto v = ini.value(run, "output")) spec.output = *v;
+  topologyRunSchema().loadRun(spec, spec.lines, ini, run);
   try {
     spec.options = loadTopologyOptions(path);
   } catch (const InputError& e) {
@@ -70,11 +63,8 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
 }
 
 void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
-  if (f.model) {
-    spec.model = *f.model;
-    spec.model_from_ini = false;
-  }
-  if (f.output) spec.output = *f.output;
+  spec.lines.overrideWith(f.model, spec.model, "model");
+  spec.lines.overrideWith(f.output, spec.output, "output");
   if (f.resolution) {
     if (!(*f.resolution > 0)) throw InputError("--resolution", "must be > 0");
     spec.options.resolution = *f.resolution;
@@ -87,9 +77,7 @@ void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
 
 void checkTopologyRunSpec(const TopologyRunSpec& spec) {
   const std::string run = kTopologyRunSection;
-  auto lineOf = [&](const std::string& key) {
-    return spec.ini.empty() ? std::size_t{0} : IniFile::read(spec.ini).lineOrSection(run, key);
-  };
+  auto lineOf = [&](const std::string& key) { return spec.lines.of(key); };
   const std::string where = spec.ini.empty() ? "<command line>" : spec.ini;
   if (spec.map.empty())
     throw InputError(where, lineOf("map"), "[" + run + "] map",
@@ -97,12 +85,27 @@ void checkTopologyRunSpec(const TopologyRunSpec& spec) {
   if (spec.output.empty())
     throw InputError(where, lineOf("output"), "[" + run + "] output", "missing: name the output directory (or give -o)");
   // A file named on the command line is left to its reader, which names it.
-  auto requireFile = [&](const std::string& file, bool from_ini, const std::string& key) {
-    if (from_ini && !fs::exists(file))
+  auto requireFile = [&](const std::string& file, const std::string& key) {
+    if (spec.fromIni(key) && !fs::exists(file))
       throw InputError(spec.ini, lineOf(key), "[" + run + "] " + key, "no such file '" + file + "'");
   };
-  requireFile(spec.map, spec.map_from_ini, "map");
-  requireFile(spec.model, spec.model_from_ini, "model");
+  requireFile(spec.map, "map");
+  requireFile(spec.model, "model");
+}
+
+TopologyRunSpec topologyRunOfCommandLine(const std::string& first, const std::optional<std::string>& options_ini,
+                                         const TopologyRunFlags& flags) {
+  const bool has_run_ini = first.size() > 4 && first.compare(first.size() - 4, 4, ".ini") == 0;
+  if (has_run_ini && options_ini) throw UsageError("give the options either in RUN.ini or with -c, not both");
+  if (!has_run_ini && !flags.output) throw UsageError("name the output directory (-o), or give a RUN.ini");
+  TopologyRunSpec spec = has_run_ini ? loadTopologyRunIni(first) : TopologyRunSpec{};
+  if (!has_run_ini) {
+    spec.map = first;
+    spec.options = loadTopologyOptions(options_ini.value_or(""));
+  }
+  overrideRun(spec, flags);
+  checkTopologyRunSpec(spec);
+  return spec;
 }
 
 std::string topologyRunIni(const TopologyRunSpec& spec) {

@@ -6,14 +6,18 @@
 //   save()      MRPT saveToConfigFile: every key, in table order, loadable to the same values (17 digits);
 //   dump()      MRPT dumpToTextStream: one aligned "key = value" line per key;
 //   validate()  every key in its range, then the rules between keys: InputError(file, 0, "[section] key", msg);
+//   loadRun()   a RUN.ini's run section ([slam_run], ...) from its IniFile: an empty value leaves the key as it is,
+//               the line of every key is recorded (KeyLines), errors name file, line, "[section] key";
 //   keys()      the strict RUN.ini checks (IniFile::requireKnownKeys);
 //   describe()  what a help text (optionsHelp) and the GUI's property grid show of each key.
 // A struct's table sits next to the struct, e.g. `const OptionSchema<SlamOptions>& slamOptionSchema()`.
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/config/CLoadableOptions.h>
 
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -23,6 +27,7 @@
 #include <vector>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_file.h"
 #include "gridtopo/core/ini_value.h"
 
 namespace gridtopo {
@@ -77,6 +82,27 @@ std::string iniFileName(const mrpt::config::CConfigFileBase& config);
 
 /// An options help text: "[section]", then one line per key: key = default, type, range and unit, help.
 std::string optionsHelp(const std::string& section, const std::vector<OptionDescription>& keys);
+
+/// Where the keys of a run section stand in its RUN.ini (OptionSchema::loadRun), for the checks that come after the
+/// loading (a missing value, a file that does not exist): the line of the section and of every key it holds.
+struct KeyLines {
+  std::size_t section = 0;                  ///< the line of "[section]"; 0 when the file has none
+  std::map<std::string, std::size_t> keys;  ///< the line of each key the section holds (with an empty value too)
+
+  /// The key's line, else the section's (where the key belongs), else 0.
+  std::size_t of(const std::string& key) const;
+  /// The key stands in the file (its value, unless empty, is the file's).
+  bool has(const std::string& key) const { return keys.count(key) > 0; }
+  /// A flag replaced the key's value: it is no longer the file's.
+  void forget(const std::string& key) { keys.erase(key); }
+  /// A flag's value, when given, replaces `value`, the key's value from the file (forget).
+  template <class T>
+  void overrideWith(const std::optional<T>& flag, T& value, const std::string& key) {
+    if (!flag) return;
+    value = *flag;
+    forget(key);
+  }
+};
 
 /// How a key reaches its member: `s.*member`, or a nested member `(s.*outer).*inner`.
 template <class S, class T>
@@ -185,6 +211,67 @@ class OptionSchema {
     return addWords<T>(key, field(member), std::move(words), help);
   }
 
+  /// A key whose INI text is a comma-separated list of numbers, each in `range` ("10, 15"; empty = no number).
+  OptionSchema& addRealList(const std::string& key, OptionField<S, std::vector<double>> member, OptionRange range,
+                            const std::string& unit, const std::string& help) {
+    Key k;
+    k.info.key = key;
+    k.info.type = OptionType::Text;
+    k.info.range = range.text();
+    k.info.unit = unit;
+    k.info.help = "comma-separated: " + help;
+    k.text = [member](const S& s) { return listText(member(const_cast<S&>(s)), false); };
+    k.shown = [member](const S& s) { return listText(member(const_cast<S&>(s)), true); };
+    k.parse = [member, range](S& s, const std::string& text) -> std::optional<std::string> {
+      std::vector<double> values;
+      std::stringstream in(text);
+      for (std::string item; std::getline(in, item, ',');) {
+        const auto first = item.find_first_not_of(" \t");
+        if (first == std::string::npos) continue;
+        item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
+        double v = 0;
+        if (parseIniValue(item, v) || !range.contains(v))
+          return "must be a comma-separated list of numbers " + mustBe(range) + ", got '" + item + "'";
+        values.push_back(v);
+      }
+      member(s) = std::move(values);
+      return std::nullopt;
+    };
+    k.check = [member, range](const S& s) -> std::optional<std::string> {
+      for (double v : member(const_cast<S&>(s)))
+        if (!range.contains(v)) return "must hold numbers " + mustBe(range) + ", got " + shortestText(v);
+      return std::nullopt;
+    };
+    keys_.push_back(std::move(k));
+    return *this;
+  }
+  OptionSchema& addRealList(const std::string& key, std::vector<double> S::*member, OptionRange range,
+                            const std::string& unit, const std::string& help) {
+    return addRealList(key, field(member), range, unit, help);
+  }
+
+  /// Every key and rule of the table of a member struct, in its order (a section that holds the keys of a nested
+  /// options struct and its own, e.g. [training]: BoostOptions' keys, then TrainingOptions').
+  template <class M>
+  OptionSchema& addAll(const OptionSchema<M>& inner, OptionField<S, M> member) {
+    auto of = [member](const S& s) -> M& { return member(const_cast<S&>(s)); };
+    for (const auto& k : inner.keys_) {
+      Key w;
+      w.info = k.info;
+      w.text = [of, f = k.text](const S& s) { return f(of(s)); };
+      w.shown = [of, f = k.shown](const S& s) { return f(of(s)); };
+      w.parse = [of, f = k.parse](S& s, const std::string& text) { return f(of(s), text); };
+      if (k.check) w.check = [of, f = k.check](const S& s) { return f(of(s)); };
+      keys_.push_back(std::move(w));
+    }
+    for (const auto& [key, check] : inner.rules_) rules_.push_back({key, [of, f = check](const S& s) { return f(of(s)); }});
+    return *this;
+  }
+  template <class M>
+  OptionSchema& addAll(const OptionSchema<M>& inner, M S::*member) {
+    return addAll<M>(inner, field(member));
+  }
+
   /// A rule between keys, checked after every key's range: the message when `s` breaks it, reported on `key`.
   OptionSchema& rule(const std::string& key, std::function<std::optional<std::string>(const S&)> check) {
     rules_.push_back({key, std::move(check)});
@@ -201,6 +288,27 @@ class OptionSchema {
       if (const auto error = k.parse(s, text)) throw InputError(file, 0, "[" + section + "] " + k.info.key, *error);
     }
     validate(s, file, section);
+  }
+
+  /// Reads the run section `section` of a RUN.ini: every key the file holds with a value (an empty value leaves the
+  /// key as it is), the lines of the section and its keys into `lines`, then validate(). Throws
+  /// InputError(file, line, "[section] key", ...) for a value that does not parse or lies out of range.
+  void loadRun(S& s, KeyLines& lines, const IniFile& ini, const std::string& section) const {
+    lines.section = ini.line(section);
+    for (const Key& k : keys_) {
+      if (!ini.hasKey(section, k.info.key)) continue;
+      const std::size_t line = ini.line(section, k.info.key);
+      lines.keys[k.info.key] = line;
+      const std::string text = ini.value(section, k.info.key).value_or("");
+      if (text.empty()) continue;
+      if (const auto error = k.parse(s, text))
+        throw InputError(ini.name(), line, "[" + section + "] " + k.info.key, *error);
+    }
+    try {
+      validate(s, ini.name(), section);
+    } catch (const InputError& e) {
+      throw ini.withLine(e);
+    }
   }
 
   void save(const S& s, mrpt::config::CConfigFileBase& target, const std::string& section) const {
@@ -255,6 +363,9 @@ class OptionSchema {
   const std::string& title() const { return title_; }
 
  private:
+  template <class>
+  friend class OptionSchema;
+
   struct Key {
     OptionDescription info;
     std::function<std::string(const S&)> text;
@@ -267,6 +378,11 @@ class OptionSchema {
     const std::string t = r.text();
     return t.empty() || t[0] == '[' || t[0] == '(' ? "in " + t : t;
   }
+  static std::string listText(const std::vector<double>& values, bool shortest) {
+    std::string s;
+    for (double v : values) s += (s.empty() ? "" : ", ") + (shortest ? shortestText(v) : iniText(v));
+    return s;
+  }
   static std::string wordList(const std::vector<std::string>& words) {
     std::string s;
     for (std::size_t i = 0; i < words.size(); ++i)
@@ -277,6 +393,27 @@ class OptionSchema {
   std::string title_;
   std::vector<Key> keys_;
   std::vector<std::pair<std::string, std::function<std::optional<std::string>(const S&)>>> rules_;
+};
+
+/// MRPT's CLoadableOptions of a struct with a key table, every method through the table:
+///   struct ScanSimulationOptions : TableOptions<ScanSimulationOptions, scanSimulationOptionSchema> {
+///     static constexpr const char* kSection = "scan_simulation";  // validate()'s default section
+///     ... members with their defaults ...
+///   };
+/// (the table's function declared before the struct, for the struct's own name).
+template <class S, const OptionSchema<S>& (*table)()>
+struct TableOptions : mrpt::config::CLoadableOptions {
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override {
+    table().load(static_cast<S&>(*this), source, section);
+  }
+  void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override {
+    table().save(static_cast<const S&>(*this), target, section);
+  }
+  void dumpToTextStream(std::ostream& out) const override { table().dump(static_cast<const S&>(*this), out); }
+  /// Every key in its range and the rules between keys: InputError(file, 0, "[section] key", ...).
+  void validate(const std::string& file = "<options>", const std::string& section = S::kSection) const {
+    table().validate(static_cast<const S&>(*this), file, section);
+  }
 };
 
 }  // namespace gridtopo

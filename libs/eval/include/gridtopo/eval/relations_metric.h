@@ -12,13 +12,22 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/eval/odometry_track.h"
 #include "gridtopo/eval/relations.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::eval {
 
-struct RelationsMetricOptions {
+struct RelationsMetricOptions;
+/// The key table of RelationsMetricOptions ([relations_metric] of config-ini/eval.ini).
+const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema();
+
+/// Loaded, saved, dumped and validated through relationsMetricOptionSchema: max_time_gap, interpolate_odometry,
+/// interpolate_estimate, odometry = auto|odom|laser; missing keys keep their value; wrong values throw
+/// gridtopo::InputError(file, 0, "[section] key", ...).
+struct RelationsMetricOptions : TableOptions<RelationsMetricOptions, relationsMetricOptionSchema> {
+  static constexpr const char* kSection = "relations_metric";
   /// An estimated pose further than this (seconds) from a relation timestamp is corrected by odometry.
   double max_time_gap = 0.1;
   /// Odometry at a time: the reading nearest in time (false, the reference tool's choice) or linearly
@@ -30,12 +39,6 @@ struct RelationsMetricOptions {
   bool interpolate_estimate = false;
   /// Which odometry of the raw log corrects the gaps.
   OdometrySource odometry = OdometrySource::Auto;
-
-  /// Reads the keys of `section` (max_time_gap, interpolate_odometry, interpolate_estimate,
-  /// odometry = auto|odom|laser); missing
-  /// keys keep their value; wrong values throw gridtopo::InputError naming the key.
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
-  void dumpToTextStream(std::ostream& out) const;
 };
 
 /// Mean ± sample standard deviation (n − 1), min, max and count of a set of values.

@@ -29,6 +29,8 @@ struct RelationsRunSpec {
 
 /// The [relations_metric] section of an INI file (config-ini/eval.ini); InputError naming the file and the key.
 RelationsMetricOptions loadRelationsMetricIni(const std::string& path);
+/// `gridtopo-eval --help-options`: every key of [relations_metric] with its default, range, unit and help.
+std::string relationsMetricOptionsHelp();
 
 /// gridtopo-eval's flags as given (empty / unset = not given).
 struct RelationsFlags {
@@ -44,6 +46,11 @@ void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& flags);
 
 /// UsageError unless exactly one estimate is named, and the corrected log and the baseline have the raw log.
 void checkRelationsRunSpec(const RelationsRunSpec& spec);
+
+/// The run a command line names (gridtopo-eval): `spec`'s files checked (checkRelationsRunSpec), its metric options
+/// from the INI `config` (loadRelationsMetricIni; the defaults without it), then the flags (applyRelationsFlags).
+void configureRelationsRun(RelationsRunSpec& spec, const std::optional<std::string>& config,
+                           const RelationsFlags& flags);
 
 struct RelationsRun {
   std::size_t relation_count = 0;
@@ -65,6 +72,9 @@ std::string relationsRunText(const RelationsRun& run);
 /// empty path writes nothing.
 void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
                            const std::string& errors_path);
+
+/// Writes the JSON and the errors file of stageRelationsOutputs, both or neither.
+void writeRelationsOutputs(const RelationsRun& run, const std::string& json_path, const std::string& errors_path);
 
 /// The warnings of a run (relation endpoints left uncorrected, a relation far from every estimated pose), each a
 /// line with its newline; "" when there are none.

@@ -13,6 +13,7 @@
 
 #include "gridtopo/mapping/topology_builder_options.h"
 #include "gridtopo/slam/slam_options.h"
+#include "gridtopo/slam/slam_run_ini.h"
 #include "gridtopo/topology/pipeline.h"
 
 namespace gridtopo::mapping {
@@ -28,13 +29,16 @@ struct MapRunSpec {
   topology::TopologyOptions topology;
   TopologyBuilderOptions builder;
   std::string ini;  ///< the RUN.ini this was read from; empty when none
-  bool input_from_ini = false, output_from_ini = false, model_from_ini = false;  ///< no flag replaced the value
+  KeyLines lines;   ///< where [map_run] and its keys stand in the RUN.ini (a flag's value has no line)
+
+  /// `key`'s value is the RUN.ini's (no flag replaced it).
+  bool fromIni(const std::string& key) const { return lines.has(key); }
 
   MapRunSpec();
 };
 
-/// The key table of [map_run] (input, output, model, max_scans): the strict check of its keys, its INI text, its
-/// help. Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+/// The key table of [map_run] (input, output, model, max_scans): its loading (OptionSchema::loadRun: an empty value
+/// leaves the key unset, the lines are remembered), the strict check of its keys, its INI text, its help.
 const OptionSchema<MapRunSpec>& mapRunSchema();
 
 /// `gridtopo-map --help-options`: every key of every section of its RUN.ini, with default, range, unit and help.
@@ -51,6 +55,10 @@ struct MapRunFlags {
   std::optional<long> max_scans;
 };
 void overrideRun(MapRunSpec& spec, const MapRunFlags& flags);
+
+/// The run a command line names (gridtopo-map): the RUN.ini `run_ini` (if not empty), then the flags. UsageError
+/// for neither a RUN.ini nor both -i and -o. (checkMapRunSpec comes with the run: runMapping.)
+MapRunSpec mapRunOfCommandLine(const std::string& run_ini, const MapRunFlags& run, const slam::SlamOptionFlags& slam);
 
 /// Checks that the run names its input, output and model, and that the input and the model exist: an InputError
 /// naming the RUN.ini, the line and "[map_run] key" for a value of the RUN.ini, the file itself for a flag's.

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
+
 namespace gridtopo::places {
 
 /// h(f) = f[feature] <= threshold ? left : right.
@@ -32,16 +34,18 @@ struct BoostedClassifier {
   double probability(const float* f) const;
 };
 
-struct BoostOptions : public mrpt::config::CLoadableOptions {
+struct BoostOptions;
+/// The key table of BoostOptions.
+const OptionSchema<BoostOptions>& boostOptionSchema();
+
+/// Through boostOptionSchema (in a training INI, its keys stand in [training]: trainingOptionSchema).
+struct BoostOptions : TableOptions<BoostOptions, boostOptionSchema> {
+  static constexpr const char* kSection = "training";
   int weak_count = 100;              ///< number of stumps per binary classifier
   std::string boost_type = "real";   ///< real | discrete | gentle | logit (OpenCV Boost::Types)
   int max_samples_per_class = 15000; ///< class balancing: at most this many training samples per place class
   unsigned seed = 1;                 ///< subsampling seed
   double weight_trim_rate = 0.95;    ///< OpenCV weight trimming (speed); 0 = use every sample in every round
-
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-  void dumpToTextStream(std::ostream& out) const override;
-  void validate(const std::string& where = "BoostOptions") const;
 };
 
 /// Trains positive (1) vs negative (0) on rows of `features` (CV_32F). Rows with target < 0 are ignored.

@@ -28,6 +28,9 @@ struct FeatureOptions {
   std::vector<double> capped_ranges{10.0};
 };
 
+/// The key table of FeatureOptions ([features] of a training INI).
+const OptionSchema<FeatureOptions>& featureOptionSchema();
+
 /// One line per feature: "name: formula". The order is the column order of extractFeatures().
 const std::vector<std::string>& featureDescriptions();
 /// Just the names (text before the colon).

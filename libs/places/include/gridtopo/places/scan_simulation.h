@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/places/occupancy.h"
 
 namespace gridtopo::places {
@@ -30,18 +31,19 @@ enum class BeamStop {
 std::string beamStopName(BeamStop b);
 BeamStop parseBeamStop(const std::string& text, const std::string& where, const std::string& key, bool allow_pass);
 
-struct ScanSimulationOptions : public mrpt::config::CLoadableOptions {
+struct ScanSimulationOptions;
+/// The key table of ScanSimulationOptions ([scan_simulation]).
+const OptionSchema<ScanSimulationOptions>& scanSimulationOptionSchema();
+
+/// Loaded, saved, dumped and validated through scanSimulationOptionSchema (section [scan_simulation] of a training INI).
+struct ScanSimulationOptions : TableOptions<ScanSimulationOptions, scanSimulationOptionSchema> {
+  static constexpr const char* kSection = "scan_simulation";
   int num_beams = 360;          ///< beams per scan (even, >= 8); 360 = 1 degree apart
   double max_range = 30.0;      ///< metres; longer beams are capped here (<= 65 m)
   double lattice_spacing = 0.1; ///< metres between classified cells (block side); <= resolution = every cell
   int threads = 2;              ///< worker threads (results do not depend on it)
   BeamStop unknown_cells = BeamStop::kObstacle;  ///< a beam that meets an unknown cell (`unknown_cells`)
   BeamStop map_border = BeamStop::kObstacle;     ///< a beam that leaves the image (`map_border`; not kPass)
-
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-  void dumpToTextStream(std::ostream& out) const override;
-  /// Throws gridtopo::InputError (naming `where`) for out-of-range values.
-  void validate(const std::string& where = "ScanSimulationOptions") const;
 };
 
 /// The classification lattice: blocks of stride x stride cells, one sample cell (free) per block that has any

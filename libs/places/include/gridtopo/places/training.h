@@ -42,7 +42,13 @@ MapSamples computeSamples(const OccupancyImage& occ, const cv::Mat* codes, const
                           const FeatureOptions& features,
                           const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-struct TrainingOptions : public mrpt::config::CLoadableOptions {
+struct TrainingOptions;
+/// The key table of [training]: BoostOptions' keys (boostOptionSchema), then TrainingOptions' own.
+const OptionSchema<TrainingOptions>& trainingOptionSchema();
+
+/// Loaded, saved, dumped and validated through trainingOptionSchema (section [training] of a training INI).
+struct TrainingOptions : TableOptions<TrainingOptions, trainingOptionSchema> {
+  static constexpr const char* kSection = "training";
   BoostOptions boost;
   std::string order = "auto";  ///< "auto" (validation) or e.g. "corridor,room,doorway"
   /// Prior correction: 0 = classifiers stay class-balanced, 1 = shifted fully to the maps' class frequencies.
@@ -63,9 +69,6 @@ struct TrainingOptions : public mrpt::config::CLoadableOptions {
   int simulated_free_threshold = 204;
   /// ... then the free space is opened with this radius (m; places::openFreeSpace).
   double simulated_free_opening_radius = 0.05;
-
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-  void dumpToTextStream(std::ostream& out) const override;
 };
 
 /// NAME_sim_map.png in `dir`: the simulated map of the standard labelled map NAME.
@@ -82,9 +85,13 @@ struct TrainingConfig {
   ScanSimulationOptions scan;
   FeatureOptions features;
 };
-/// Reads a training INI; an empty path gives the defaults. Errors (missing file, bad value) are InputErrors that
-/// name the INI file and "[section] key".
+/// Reads a training INI through the three key tables; an empty path gives the defaults. Errors (missing file, bad
+/// value) are InputErrors that name the INI file, the line and "[section] key".
 TrainingConfig loadTrainingConfig(const std::string& ini_path);
+
+/// `gridtopo-train --help-options`: every key of [scan_simulation], [features] and [training] with its default,
+/// range, unit and help.
+std::string trainingOptionsHelp();
 
 struct OrderScore {
   std::array<int, kNumLabels> order{};

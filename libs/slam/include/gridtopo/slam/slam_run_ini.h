@@ -23,12 +23,14 @@ struct SlamRunSpec {
   std::size_t max_scans = 0;  ///< feed only the first max_scans scans; 0 = every scan
   SlamOptions options;
   std::string ini;            ///< the RUN.ini this was read from; empty when none
-  bool input_from_ini = false;   ///< `input` is the RUN.ini's (no flag replaced it)
-  bool output_from_ini = false;  ///< `output` is the RUN.ini's
+  KeyLines lines;             ///< where [slam_run] and its keys stand in the RUN.ini (a flag's value has no line)
+
+  /// `key`'s value is the RUN.ini's (no flag replaced it).
+  bool fromIni(const std::string& key) const { return lines.has(key); }
 };
 
-/// The key table of [slam_run] (input, output, max_scans): the strict check of its keys, its INI text, its help.
-/// Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+/// The key table of [slam_run] (input, output, max_scans): its loading (OptionSchema::loadRun: an empty value leaves
+/// the key unset, the lines are remembered), the strict check of its keys, its INI text, its help.
 const OptionSchema<SlamRunSpec>& slamRunSchema();
 
 /// The keys of the filter's options section ([slam]): slamOptionSchema's. For the strict checks of RUN.ini
@@ -46,6 +48,14 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
 /// missing or a value is bad. Other sections are not read.
 SlamOptions loadSlamOptionsIni(const std::string& path, const std::string& section = "slam");
 
+/// The command line's values of the run (gridtopo-slam -i, -o, --max-scans); unset = keep.
+struct SlamRunFlags {
+  std::optional<std::string> input, output;
+  std::optional<long> max_scans;  ///< 0 or less: every scan
+};
+/// Sets the given flags' values; a value a flag gives is no longer the RUN.ini's (fromIni).
+void overrideRun(SlamRunSpec& spec, const SlamRunFlags& flags);
+
 /// The command line's values of single options (gridtopo-slam -p, -s, -t, --proposal); unset = keep.
 struct SlamOptionFlags {
   std::optional<int> particles;
@@ -61,6 +71,12 @@ void overrideOptions(SlamOptions& options, const SlamOptionFlags& flags);
 /// Checks that the run names its input, which must exist, and its output. A missing or wrong value from a RUN.ini
 /// is an InputError naming the RUN.ini, the line and "[slam_run] key"; a missing input given by -i names that file.
 void checkSlamRunSpec(const SlamRunSpec& spec);
+
+/// The run a command line names (gridtopo-slam): the RUN.ini `run_ini` (if not empty) with its options section
+/// `section`, or the options INI `config` (-c), then the flags; checked (checkSlamRunSpec). UsageError for a RUN.ini
+/// together with -c, or for neither a RUN.ini nor both -i and -o.
+SlamRunSpec slamRunOfCommandLine(const std::string& run_ini, const std::optional<std::string>& config,
+                                 const std::string& section, const SlamRunFlags& run, const SlamOptionFlags& options);
 
 /// The exact loadable INI of the run: [slam_run] (input and output absolute, max_scans), then [slam] with every
 /// option (slamOptionsIni).

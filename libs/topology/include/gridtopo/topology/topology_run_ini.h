@@ -23,14 +23,17 @@ struct TopologyRunSpec {
   std::string output;  ///< the output directory
   TopologyOptions options;
   std::string ini;     ///< the RUN.ini this was read from; empty when none
-  bool map_from_ini = false, model_from_ini = false;  ///< the value is the RUN.ini's (no flag replaced it)
+  KeyLines lines;      ///< where [topology_run] and its keys stand in the RUN.ini (a flag's value has no line)
+
+  /// `key`'s value is the RUN.ini's (no flag replaced it).
+  bool fromIni(const std::string& key) const { return lines.has(key); }
 };
 
 /// The option sections of a topology run, in the order topologyOptionsIni writes them.
 inline constexpr const char* kTopologyOptionSections[] = {"topology", "relaxation", "correction"};
 
-/// The key table of [topology_run] (map, model, output): the strict check of its keys, its INI text, its help.
-/// Loading keeps its own rules (an empty value leaves the key unset; the values' lines are remembered).
+/// The key table of [topology_run] (map, model, output): its loading (OptionSchema::loadRun: an empty value leaves
+/// the key unset, the lines are remembered), the strict check of its keys, its INI text, its help.
 const OptionSchema<TopologyRunSpec>& topologyRunSchema();
 
 /// The keys of one option section ("topology", "relaxation" or "correction"): their key tables'. For the strict
@@ -58,6 +61,12 @@ void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& flags);
 /// Checks that the run names a map and an output, and that the files its RUN.ini names exist: an InputError
 /// naming the RUN.ini, the line and "[topology_run] key". (Files named by flags are checked by their readers.)
 void checkTopologyRunSpec(const TopologyRunSpec& spec);
+
+/// The run a command line names (gridtopo-topology): `first` is a RUN.ini (it ends in .ini) or the map, whose
+/// options then come from the options INI `options_ini` (-c; the defaults without it); then the flags; checked
+/// (checkTopologyRunSpec). UsageError for a RUN.ini together with -c, or a map without -o.
+TopologyRunSpec topologyRunOfCommandLine(const std::string& first, const std::optional<std::string>& options_ini,
+                                         const TopologyRunFlags& flags);
 
 /// The exact loadable INI of the run: [topology_run] (paths absolute), then topologyOptionsIni.
 std::string topologyRunIni(const TopologyRunSpec& spec);

@@ -1,0 +1,59 @@
+// gridtopo-slam's run of a log (slam/slam_log_run.h) on the simulated pillar room written as a rawlog.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "common/same_outputs.h"
+#include "common/scratch.h"
+#include "gridtopo/core/error.h"
+#include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/sim/simulator.h"
+#include "gridtopo/slam/slam_log_run.h"
+
+using namespace gridtopo;
+namespace fs = std::filesystem;
+
+namespace {
+slam::SlamRunSpec pillarRoomRun(const fs::path& dir, std::size_t max_scans) {
+  const std::string log = (dir / "room.rawlog").string();
+  if (!fs::exists(log)) io::writeRawlog(log, sim::simulatePillarRoom(120).records);
+  slam::SlamRunSpec spec;
+  spec.input = log;
+  spec.output = (dir / ("out" + std::to_string(max_scans))).string();
+  spec.max_scans = max_scans;
+  spec.options.particles = 4;
+  spec.options.threads = 1;
+  spec.options.seed = 5;
+  return spec;
+}
+std::size_t trajectoryPoses(const slam::SlamRunSpec& spec) {
+  return io::readTrajectory((fs::path(spec.output) / "trajectory.txt").string()).size();
+}
+}  // namespace
+
+TEST(SlamLogRun, RunsTheLogAndWritesTheOutputSetWithTheRunsIni) {
+  const fs::path dir = test::scratch("log_run");
+  const slam::SlamRunSpec spec = pillarRoomRun(dir, 0);
+  std::ostringstream log;
+  const slam::SlamLogRunSummary s = slam::runSlamOnLog(spec, true, log);
+  EXPECT_EQ(s.scans, 120u);
+  EXPECT_GT(s.steps, 10u);  // the robot moves 0.2 s between scans: most scans are processed
+  EXPECT_LE(s.steps, 120u);
+  EXPECT_GE(s.seconds_total, s.seconds_read + s.seconds_slam - 1e-9);
+  EXPECT_EQ(log.str(), "");  // quiet, and the rawlog gives the reader nothing to warn about
+  EXPECT_EQ(trajectoryPoses(spec), 120u);
+  EXPECT_EQ(testing_outputs::slurp(fs::path(spec.output) / "options.ini"), slam::slamRunIni(spec));
+  EXPECT_EQ(slam::slamLogRunSummaryLine(s, spec.output).rfind("gridtopo-slam: 120 scans, " + std::to_string(s.steps) +
+                                                              " processed, read ", 0),
+            0u);
+
+  // max_scans keeps the first scans; without quiet the options are dumped first.
+  const slam::SlamRunSpec first50 = pillarRoomRun(dir, 50);
+  std::ostringstream loud;
+  EXPECT_EQ(slam::runSlamOnLog(first50, false, loud).scans, 50u);
+  EXPECT_EQ(trajectoryPoses(first50), 50u);
+  EXPECT_EQ(loud.str().rfind("----------- [", 0), 0u) << loud.str();
+  EXPECT_NE(loud.str().find("particles"), std::string::npos) << loud.str();
+}
