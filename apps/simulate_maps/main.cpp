@@ -6,10 +6,8 @@
 
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "gridtopo/core/app_shell.h"
-#include "gridtopo/core/error.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/places/training.h"
 #include "gridtopo/simtrain/simulate_plans.h"
@@ -43,36 +41,14 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
-    simtrain::TrainingMapOptions o;
-    o.variant = simtrain::mapVariantFromString(variant.getValue());
-    simtrain::loadSlamMapOptions(slam_ini.getValue(), o);
-    const bool slam = o.variant == simtrain::MapVariant::Slam;
-    const std::string out_dir = !out.getValue().empty() ? out.getValue()
-                                : slam                  ? "datasets/places/derived/slam"
-                                                        : "datasets/places/derived";
-    if (threads.getValue() >= 0) o.slam.threads = threads.getValue();
-    if (seed.getValue() < 0) throw InputError("--seed", "must be >= 0");
-    if (!(visit.getValue() >= 0 && visit.getValue() <= 1)) throw InputError("--room-visit-probability", "must be in [0, 1]");
-    if (!(clearance.getValue() >= 0 && clearance.getValue() <= 1)) throw InputError("--clearance", "must be in [0, 1] m");
-    o.laser.seed = static_cast<std::uint64_t>(seed.getValue());
-    o.tour.seed = static_cast<std::uint64_t>(seed.getValue());
-    o.tour.room_visit_probability = visit.getValue();
-    o.tour.clearance = clearance.getValue();
-    std::vector<std::string> only;
-    std::stringstream ss(maps.getValue());
-    for (std::string n; std::getline(ss, n, ',');)
-      if (!n.empty()) only.push_back(n);
-    std::ostringstream command;
-    command << "gridtopo-simulate-maps" << (slam ? " --variant slam" : "") << " -d " << dir.getValue() << " -o "
-            << out_dir << " -c "
-            << (slam_ini.getValue().empty() ? "''" : slam_ini.getValue()) << " -s " << seed.getValue()
-            << " --room-visit-probability " << visit.getValue() << " --clearance " << clearance.getValue()
-            << (maps.getValue().empty() ? "" : " --maps " + maps.getValue());
-    ProgressBar bar(only.empty() ? places::standardLabelledMaps(dir.getValue()).size() : only.size(), "simulated maps",
-                    "maps");
+    const auto run = simtrain::simulateMapsRunOf(
+        {dir.getValue(), out.getValue(), variant.getValue(), threads.getValue(), slam_ini.getValue(), seed.getValue(),
+         visit.getValue(), clearance.getValue(), maps.getValue()});
+    ProgressBar bar(run.only.empty() ? places::standardLabelledMaps(run.places_dir).size() : run.only.size(),
+                    "simulated maps", "maps");
     std::unique_ptr<ProgressBar> scans;  // the SLAM's scans of the current map
     const auto runs = simtrain::simulatePlans(
-        dir.getValue(), out_dir, o, only, command.str(),
+        run.places_dir, run.output, run.options, run.only, run.command,
         [&](std::size_t done, std::size_t, const std::string& name) { bar.update(done, name); },
         [&](const std::string& name, std::size_t fed, std::size_t total) {
           if (!scans) scans = std::make_unique<ProgressBar>(total, "SLAM " + name, "scans");
@@ -80,7 +56,7 @@ int main(int argc, char** argv) {
           if (fed == total) scans->finish(), scans.reset();
         });
     bar.finish();
-    for (const auto& p : runs) std::cout << simtrain::summaryLine(p, o.variant) << "\n";
+    for (const auto& p : runs) std::cout << simtrain::summaryLine(p, run.options.variant) << "\n";
     return 0;
   });
 }

@@ -133,4 +133,33 @@ std::vector<SimulatedPlan> simulatePlans(
   return out;
 }
 
+SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& a) {
+  SimulateMapsRun r;
+  TrainingMapOptions& o = r.options;
+  o.variant = mapVariantFromString(a.variant);
+  loadSlamMapOptions(a.slam_ini, o);
+  const bool slam = o.variant == MapVariant::Slam;
+  r.places_dir = a.places_dir;
+  r.output = !a.output.empty() ? a.output : slam ? "datasets/places/derived/slam" : "datasets/places/derived";
+  if (a.threads >= 0) o.slam.threads = a.threads;
+  if (a.seed < 0) throw InputError("--seed", "must be >= 0");
+  if (!(a.room_visit_probability >= 0 && a.room_visit_probability <= 1))
+    throw InputError("--room-visit-probability", "must be in [0, 1]");
+  if (!(a.clearance >= 0 && a.clearance <= 1)) throw InputError("--clearance", "must be in [0, 1] m");
+  o.laser.seed = static_cast<std::uint64_t>(a.seed);
+  o.tour.seed = static_cast<std::uint64_t>(a.seed);
+  o.tour.room_visit_probability = a.room_visit_probability;
+  o.tour.clearance = a.clearance;
+  std::stringstream names(a.maps);
+  for (std::string n; std::getline(names, n, ',');)
+    if (!n.empty()) r.only.push_back(n);
+  std::ostringstream command;
+  command << "gridtopo-simulate-maps" << (slam ? " --variant slam" : "") << " -d " << a.places_dir << " -o "
+          << r.output << " -c " << (a.slam_ini.empty() ? "''" : a.slam_ini) << " -s " << a.seed
+          << " --room-visit-probability " << a.room_visit_probability << " --clearance " << a.clearance
+          << (a.maps.empty() ? "" : " --maps " + a.maps);
+  r.command = command.str();
+  return r;
+}
+
 }  // namespace gridtopo::simtrain

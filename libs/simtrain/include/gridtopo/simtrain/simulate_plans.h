@@ -41,6 +41,32 @@ std::vector<SimulatedPlan> simulatePlans(
 /// SLAM variant its final error and label agreement).
 std::string summaryLine(const SimulatedPlan& p, MapVariant variant);
 
+/// gridtopo-simulate-maps' command line, as given.
+struct SimulateMapsArgs {
+  std::string places_dir = "datasets/places";
+  std::string output;                       ///< empty: datasets/places/derived (exact) or derived/slam (slam)
+  std::string variant = "exact";            ///< exact | slam
+  int threads = -1;                         ///< SLAM threads; < 0: the INI's
+  std::string slam_ini = "config-ini/slam.ini";  ///< empty: built-in [slam] defaults
+  int seed = 1;
+  double room_visit_probability = 0.7;
+  double clearance = 0.25;                  ///< m
+  std::string maps;                         ///< comma-separated plan names; empty: all
+};
+
+/// What simulatePlans needs for those arguments: the options, the output directory, the plans, and the command line
+/// that remakes the maps (written to the manifest).
+struct SimulateMapsRun {
+  TrainingMapOptions options;
+  std::string places_dir, output;
+  std::vector<std::string> only;
+  std::string command;
+};
+
+/// Checks the arguments (InputError naming the flag: --variant, --seed, --room-visit-probability, --clearance, and
+/// the INI's errors) and loads the [slam] section of the INI.
+SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& args);
+
 /// "exact" / "slam"; InputError(`field`) otherwise.
 MapVariant mapVariantFromString(const std::string& s, const std::string& field = "--variant");
 const char* toString(MapVariant v);
