@@ -364,6 +364,7 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
   const std::size_t copies = 1 + options.capped_ranges.size();
   // Not initialised: every row's base columns are computed and every capped copy is computed or copied.
   cv::Mat out(static_cast<int>(n), static_cast<int>(F * copies), CV_32F);
+  adviseHugePages(out.data, out.total() * out.elemSize());
   // Jobs (a scan and where its features go) are gathered kLanes at a time for extractFeaturesLanes: the base
   // scan of every sample, and each capped copy whose cap is reached; a copy whose cap no beam reaches is the
   // scan itself, so its features are copied from the base columns.

@@ -185,6 +185,7 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   // Not initialised: every sample lies on one line of every family, and both sweeps of a family write its
   // two beams.
   cv::Mat by_beam(M, static_cast<int>(samples.size()), CV_16U);
+  adviseHugePages(by_beam.data, by_beam.total() * by_beam.elemSize());
   // Shallow directions walk the image's columns, read as the rows of its transpose; steep ones walk the
   // transposed image's columns, i.e. the image's rows.
   cv::Mat cells_t;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gridtopo/core/option_schema.h"
+#include "gridtopo/core/bulk_allocator.h"
 #include "gridtopo/places/occupancy.h"
 
 namespace gridtopo::places {
@@ -64,7 +65,8 @@ Lattice buildLattice(const OccupancyImage& occ, double lattice_spacing);
 /// counter-clockwise from the image's +x (column) axis, with image up (decreasing row) as +y.
 struct SimulatedScans {
   int num_beams = 0;
-  std::vector<std::uint16_t> ranges_mm;  ///< samples x num_beams
+  /// samples x num_beams; a bulk buffer (core/bulk_allocator.h): resize() does not zero it
+  std::vector<std::uint16_t, BulkAllocator<std::uint16_t>> ranges_mm;
   std::size_t size() const { return num_beams ? ranges_mm.size() / static_cast<std::size_t>(num_beams) : 0; }
   const std::uint16_t* scan(std::size_t i) const { return ranges_mm.data() + i * static_cast<std::size_t>(num_beams); }
 };
