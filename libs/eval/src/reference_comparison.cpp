@@ -8,6 +8,7 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/eval/label_views.h"
 #include "gridtopo/eval/lomo_report.h"
+#include "gridtopo/eval/oracle_diagnostics.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/export.h"
@@ -21,6 +22,22 @@ cv::Mat readImage(const std::string& path, int flags) {
   cv::Mat m = cv::imread(path, flags);
   if (m.empty()) throw InputError(path, "cannot read the image (missing file or unknown format)");
   return m;
+}
+
+// The oracle region vote of our labels in the plan's place regions on the map, scored like the labels (one-hot
+// probabilities: each region's room / corridor majority by cell count).
+double regionVoteOracleAccuracy(const TopologyComparison& c) {
+  cv::Mat codes = warpReferenceToMap(c.reference_codes, c.score.alignment, c.map_free.size());
+  codes.setTo(0, c.map_free == 0);
+  cv::Mat onehot(c.labels.size(), CV_32FC3, cv::Scalar::all(0));
+  for (int y = 0; y < onehot.rows; ++y)
+    for (int x = 0; x < onehot.cols; ++x) {
+      const int l = c.labels.at<unsigned char>(y, x);
+      if (l >= 0 && l < 3) onehot.at<cv::Vec3f>(y, x)[l] = 1.0f;
+    }
+  ConfusionMatrix m;
+  m.add(codes, oracleRegionVote(codes, c.labels, onehot, true));
+  return m.accuracy();
 }
 
 }  // namespace
@@ -58,6 +75,7 @@ TopologyComparison compareWithReference(const std::string& map, const std::strin
       scoreAligned(c.map_free, c.graph.plan_labels_labels, c.graph.plan_labels_segmentation, c.reference_codes,
                    c.reference_rooms, c.score.alignment)
           .segmentation;
+  c.region_vote_oracle_accuracy = regionVoteOracleAccuracy(c);
   if (std::filesystem::is_regular_file(dir + "/topology.json")) {
     const auto written = topology::graphFromJson(dir + "/topology.json");
     const auto& g = c.graph.graph;
@@ -82,7 +100,8 @@ std::string comparisonJson(const TopologyComparison& c) {
      << ",\n  \"labels\": " << s.labels.toJson(2) << ",\n  \"segmentation\": " << s.segmentation.toJson()
      << ",\n  \"graph\": " << c.graph.score.toJson() << ",\n  \"graph_of_plan_labels\": "
      << c.graph.plan_labels.toJson() << ",\n  \"segmentation_of_plan_labels\": "
-     << c.segmentation_of_plan_labels.toJson() << "\n}\n";
+     << c.segmentation_of_plan_labels.toJson() << ",\n  \"region_vote_oracle_accuracy\": "
+     << c.region_vote_oracle_accuracy << "\n}\n";
   return js.str();
 }
 

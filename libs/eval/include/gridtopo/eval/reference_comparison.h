@@ -31,6 +31,10 @@ struct TopologyComparison {
   /// The room segmentation the same steps make of the plan's own labels on the map, against the plan: the ceiling
   /// of the segmentation score on this map (what the map itself allows: rooms seen in part, walls not mapped).
   SegmentationScore segmentation_of_plan_labels;
+  /// Cell accuracy after the oracle region vote (oracle_diagnostics.h: in every room / corridor region of the plan's
+  /// labels carried to the map, the room / corridor cells take the majority of our labels there; doorway cells and
+  /// predicted doorways keep theirs): what any vote over the true places could reach from our labels.
+  double region_vote_oracle_accuracy = 0;
 };
 
 /// Reads the map (io::readMap: its kind picks the free threshold of `options`) and the topology directory
