@@ -171,3 +171,14 @@ TEST(GuiSmoke, BadFileExitsNonZeroWithFileAndLine) {
   EXPECT_EQ(rc, 1);
   EXPECT_NE(slurp(tmp / "log.txt").find("bad.clf:3"), std::string::npos) << slurp(tmp / "log.txt");
 }
+
+TEST(GuiSmoke, BadUsageExitsTwoAndBadValueOneBeforeAnyWindow) {
+  // The app shell of every gridtopo app (core/app_shell.h): usage errors 2, bad values 1, --help 0.
+  guitest::TempDir tmp;
+  EXPECT_EQ(runGui("--max-scans many --quit", tmp / "usage.txt"), 2) << slurp(tmp / "usage.txt");
+  EXPECT_NE(slurp(tmp / "usage.txt").find("gridtopo-gui: usage:"), std::string::npos) << slurp(tmp / "usage.txt");
+  EXPECT_EQ(runGui("--view sideways --quit", tmp / "value.txt"), 1) << slurp(tmp / "value.txt");
+  EXPECT_NE(slurp(tmp / "value.txt").find("gridtopo-gui: error: --view"), std::string::npos) << slurp(tmp / "value.txt");
+  EXPECT_EQ(runGui("--help", tmp / "help.txt"), 0) << slurp(tmp / "help.txt");
+  EXPECT_NE(slurp(tmp / "help.txt").find("--live-topology"), std::string::npos);
+}
