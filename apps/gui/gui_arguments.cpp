@@ -3,7 +3,9 @@
 #include <tclap/CmdLine.h>
 
 #include <cstdio>
+#include <filesystem>
 
+#include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/error.h"
 
 namespace gridtopo::gui {
@@ -58,6 +60,9 @@ GuiArguments parseGuiArguments(int argc, char** argv) {
   cmd.setExceptionHandling(false);
   cmd.parse(argc, argv);
   a.files = files.getValue();
+  // TCLAP hands an unknown option to the file list: a "file" that starts with '-' and does not exist is one.
+  for (const std::string& f : a.files)
+    if (f.rfind('-', 0) == 0 && !std::filesystem::exists(f)) throw UsageError(f + ": unknown argument");
   a.ini = ini.getValue();
   a.model = model.getValue();
   a.topology_ini = tini.getValue();

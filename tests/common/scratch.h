@@ -9,14 +9,25 @@
 
 namespace gridtopo::test {
 
+/// temp/gridtopo_<binary>_<pid>: this process's own folder, created on first use.
+inline std::filesystem::path processScratch() {
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("gridtopo_" + std::string(program_invocation_short_name) + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
 /// temp/gridtopo_<binary>_<pid>/<name>, created empty.
 inline std::filesystem::path scratch(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("gridtopo_" + std::string(program_invocation_short_name) + "_" + std::to_string(::getpid())) / name;
+  const auto d = processScratch() / name;
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
 }
+
+/// temp/gridtopo_<binary>_<pid>/<name>, neither created nor removed: a file or folder name no other test process
+/// can use at the same time.
+inline std::filesystem::path scratchPath(const std::string& name) { return processScratch() / name; }
 
 struct RemoveScratch : ::testing::Environment {
   void TearDown() override {

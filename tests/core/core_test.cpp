@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -15,7 +17,7 @@ using namespace gridtopo;
 
 namespace {
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_core_test_" + name);
+  const fs::path d = gridtopo::test::scratchPath("core_test_" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

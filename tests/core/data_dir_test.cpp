@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -44,7 +46,7 @@ TEST(DataDirs, EnvironmentThenBesideTheExecutableThenTheBuildTimeDir) {
 }
 
 TEST(DataDirs, FindsAFileInTheFirstDirThatHasIt) {
-  const fs::path root = fs::temp_directory_path() / "gridtopo_data_dir_test";
+  const fs::path root = gridtopo::test::scratchPath("data_dir_test");
   fs::remove_all(root);
   const fs::path installed = root / "share/gridtopo/datasets/models", env_dir = root / "env/models";
   fs::create_directories(installed);

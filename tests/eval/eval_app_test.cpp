@@ -1,6 +1,8 @@
 // The gridtopo-eval command line: help, the reference figures through the app, JSON output, and errors.
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +18,7 @@ namespace {
 using Run = gridtopo::testing_app::AppRun;
 Run run(const std::string& args) { return gridtopo::testing_app::runApp("gridtopo-eval", args); }
 std::string data(const std::string& f) { return std::string(GRIDTOPO_DATA_DIR) + "/slam/" + f; }
-fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("gridtopo_eval_app_" + name); }
+fs::path tmp(const std::string& name) { return gridtopo::test::scratchPath("eval_app_" + name); }
 std::string slurp(const fs::path& p) {
   std::ifstream f(p);
   return std::string(std::istreambuf_iterator<char>(f), {});

@@ -1,5 +1,7 @@
 // Relations files and corrected CARMEN logs (timestamp matching) on synthetic data.
 #include <gtest/gtest.h>
+
+#include "common/scratch.h"
 #include <zlib.h>
 
 #include <filesystem>
@@ -16,7 +18,7 @@ using namespace gridtopo;
 using namespace gridtopo::eval;
 
 namespace {
-fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("gridtopo_eval_" + name); }
+fs::path tmp(const std::string& name) { return gridtopo::test::scratchPath("eval_" + name); }
 
 void writeGz(const fs::path& p, const std::string& s) {
   gzFile g = gzopen(p.c_str(), "wb9");

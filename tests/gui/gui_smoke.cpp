@@ -181,4 +181,16 @@ TEST(GuiSmoke, BadUsageExitsTwoAndBadValueOneBeforeAnyWindow) {
   EXPECT_NE(slurp(tmp / "value.txt").find("gridtopo-gui: error: --view"), std::string::npos) << slurp(tmp / "value.txt");
   EXPECT_EQ(runGui("--help", tmp / "help.txt"), 0) << slurp(tmp / "help.txt");
   EXPECT_NE(slurp(tmp / "help.txt").find("--live-topology"), std::string::npos);
+  // An unknown option is not a file to open.
+  EXPECT_EQ(runGui("--no-such-option --quit", tmp / "unknown.txt"), 2) << slurp(tmp / "unknown.txt");
+  EXPECT_NE(slurp(tmp / "unknown.txt").find("gridtopo-gui: usage: --no-such-option: unknown argument"),
+            std::string::npos)
+      << slurp(tmp / "unknown.txt");
+  // Without a display: a clear error and exit 1, not GTK's.
+  const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY " + kGui + " --quit > " +
+                                 (tmp / "nodisplay.txt") + " 2>&1";
+  const int rc = std::system(no_display.c_str());
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 1) << slurp(tmp / "nodisplay.txt");
+  EXPECT_NE(slurp(tmp / "nodisplay.txt").find("gridtopo-gui: error: no display"), std::string::npos)
+      << slurp(tmp / "nodisplay.txt");
 }

@@ -100,7 +100,9 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
   for (std::size_t i = 0; i < got.results.size(); ++i) {
     const auto& r = *got.results[i];
     EXPECT_EQ(r.sequence, i + 1);
-    if (i > 0) EXPECT_GT(r.steps, got.results[i - 1]->steps);
+    if (i > 0) {
+      EXPECT_GT(r.steps, got.results[i - 1]->steps);
+    }
     EXPECT_TRUE(r.steps % kEvery == 0 || r.steps == final_steps) << r.steps;
     ASSERT_LT(r.steps - 1, snap->stats.size());
     // Scheduled: the scan that made the update is the last one fed; at the end, every scan of the log was fed.

@@ -42,13 +42,19 @@ void expectError(const std::string& text, std::size_t line, const std::string& f
   }
 }
 
+/// One gzip member holding `s`, compressed in memory.
 std::string gzipString(const std::string& s) {
-  const fs::path p = fs::temp_directory_path() / "gridtopo_carmen_gz.tmp";
-  gzFile g = gzopen(p.c_str(), "wb9");
-  gzwrite(g, s.data(), static_cast<unsigned>(s.size()));
-  gzclose(g);
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
+  z_stream z{};
+  EXPECT_EQ(deflateInit2(&z, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);  // 15 + 16: gzip wrapper
+  std::string out(deflateBound(&z, s.size()), '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(s.data()));
+  z.avail_in = static_cast<uInt>(s.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
 }
 
 std::string flaser(const std::vector<std::string>& ranges, const std::string& laser, const std::string& odom,

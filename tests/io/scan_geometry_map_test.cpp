@@ -3,6 +3,8 @@
 // beam end points land on its walls most often with our conversion; with a wrong geometry (a 180 deg aperture
 // for 180 beams, or symmetric beams without the centre-yaw rotation, or all beams turned) they miss more.
 #include <gtest/gtest.h>
+
+#include "common/scratch.h"
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/poses/CPose3D.h>
 
@@ -88,7 +90,7 @@ TEST(ScanGeometryOnRealData, MapOfTheCorrectedIntelScans) {
   for (const auto& r : log.scans)
     grid.insertObservation(*toMrptScan(r.scan),
                            mrpt::poses::CPose3D(r.odometry.x, r.odometry.y, 0, r.odometry.phi, 0, 0));
-  const std::string png = (std::filesystem::temp_directory_path() / "gridtopo_intel_gfs_map.png").string();
+  const std::string png = (gridtopo::test::scratchPath("intel_gfs_map.png")).string();
   writeMapPng(grid, png);
   const auto back = readGridMap(png, MapReadOptions{0.05, -20.0, -30.0});
   EXPECT_EQ(back->getSizeX(), 800u);

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -11,7 +13,7 @@ using namespace gridtopo;
 using namespace gridtopo::io;
 
 TEST(TrajectoryIo, RoundTripsExactly) {
-  const fs::path p = fs::temp_directory_path() / "gridtopo_traj_roundtrip.txt";
+  const fs::path p = gridtopo::test::scratchPath("traj_roundtrip.txt");
   std::vector<TimedPose> in = {{1002560357.218569, {0.1, -2.0000000000000004, 3.14159}},
                                {1002560356.9, {1e-9, 12.5, -0.7}}};  // timestamps may step backwards
   writeTrajectory(p.string(), in, {"produced by a test"});
@@ -26,7 +28,7 @@ TEST(TrajectoryIo, RoundTripsExactly) {
 }
 
 TEST(TrajectoryIo, MalformedLineNamesLineAndField) {
-  const fs::path p = fs::temp_directory_path() / "gridtopo_traj_bad.txt";
+  const fs::path p = gridtopo::test::scratchPath("traj_bad.txt");
   std::ofstream(p) << "# header\n1 2 3 4\n5 6 nan 8\n";
   try {
     readTrajectory(p.string());

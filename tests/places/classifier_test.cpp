@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -72,7 +74,7 @@ TEST(PlacesModel, SaveLoadRoundTripAndMismatch) {
   m.first.bias = -0.4;
   m.second.stumps = {{7, 0.5f, -1.f, 1.f}};
   m.compatibility = {{{0.5, -0.2, 0.1}, {-0.2, 0.6, 0.0}, {0.1, 0.0, 0.3}}};
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_places_model_test";
+  const fs::path dir = gridtopo::test::scratchPath("places_model_test");
   fs::create_directories(dir);
   const std::string path = (dir / "model.yml").string();
   m.save(path);

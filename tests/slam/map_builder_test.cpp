@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -68,7 +70,7 @@ TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
   auto grid = mm->mapByClass<mrpt::maps::COccupancyGridMap2D>();
   ASSERT_TRUE(grid);
   EXPECT_GT(grid->getSizeX(), 100u);
-  const fs::path img = fs::temp_directory_path() / "gridtopo_builder_map.png";
+  const fs::path img = gridtopo::test::scratchPath("builder_map.png");
   fs::remove(img);
   builder.saveCurrentEstimationToImage(img.string());
   EXPECT_GT(fs::file_size(img), 1000u);

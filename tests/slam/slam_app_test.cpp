@@ -22,7 +22,7 @@ const std::string kIntel = std::string(GRIDTOPO_DATA_DIR) + "/slam/intel.clf.gz"
 }  // namespace
 
 TEST(SlamApp, WritesEveryOutputForAShortIntelSlice) {
-  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_out";
+  const fs::path out = gridtopo::test::scratchPath("slam_app_out");
   fs::remove_all(out);
   const Result r = run("-i " + kIntel + " -o " + out.string() + " -c " + GRIDTOPO_SOURCE_DIR +
                        "/config-ini/slam.ini -p 4 -t 2 -q --max-scans 400");
@@ -41,8 +41,8 @@ TEST(SlamApp, WritesEveryOutputForAShortIntelSlice) {
 }
 
 TEST(SlamApp, BadIniValuesFailWithFileSectionAndKey) {
-  const fs::path ini = fs::temp_directory_path() / "gridtopo_slam_app_bad.ini";
-  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_bad_out";
+  const fs::path ini = gridtopo::test::scratchPath("slam_app_bad.ini");
+  const fs::path out = gridtopo::test::scratchPath("slam_app_bad_out");
   fs::remove_all(out);
   std::ofstream(ini) << "[slam]\nparticles = 0\n";
   Result r = run("-i " + kIntel + " -o " + out.string() + " -c " + ini.string() + " -q --max-scans 10");
@@ -68,8 +68,8 @@ const char* const kOutputs[] = {"map.png", "map_trajectory.png", "map.pgm", "map
 // OUT/options.ini is the run's INI: [slam_run] with the absolute paths, then every option in [slam].
 // `gridtopo-slam -c OUT/options.ini` reads its [slam] back (command-line overrides included) and gives the same run.
 TEST(SlamApp, OptionsIniOfARunReproducesIt) {
-  const fs::path out = fs::temp_directory_path() / "gridtopo_slam_app_rerun_a";
-  const fs::path again = fs::temp_directory_path() / "gridtopo_slam_app_rerun_b";
+  const fs::path out = gridtopo::test::scratchPath("slam_app_rerun_a");
+  const fs::path again = gridtopo::test::scratchPath("slam_app_rerun_b");
   fs::remove_all(out);
   fs::remove_all(again);
   Result r = run("-i " + kIntel + " -o " + out.string() + " -p 3 -s 11 -t 2 --proposal mode-only -q --max-scans 150");
@@ -180,7 +180,7 @@ TEST(SlamApp, UsageErrorsWithoutInputOrWithTwoOptionFiles) {
 
 // The reader's decisions against the log's word reach the user of gridtopo-slam, even with -q.
 TEST(SlamApp, PrintsTheReadersWarnings) {
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_app_warn";
+  const fs::path dir = gridtopo::test::scratchPath("slam_app_warn");
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream log(dir / "fov_radians.clf");

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -15,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 std::string loadError(const std::string& body) {
-  const fs::path p = fs::temp_directory_path() / "gridtopo_slam_bad.ini";
+  const fs::path p = gridtopo::test::scratchPath("slam_bad.ini");
   std::ofstream(p) << "[slam]\n" << body << "\n";
   mrpt::config::CConfigFile ini(p.string());
   slam::SlamOptions o;
@@ -30,7 +32,7 @@ std::string loadError(const std::string& body) {
 }  // namespace
 
 TEST(SlamOptions, BadValuesNameFileSectionAndKey) {
-  const std::string path = (fs::temp_directory_path() / "gridtopo_slam_bad.ini").string();
+  const std::string path = (gridtopo::test::scratchPath("slam_bad.ini")).string();
   std::string e = loadError("particles = 0");
   EXPECT_NE(e.find(path), std::string::npos) << e;
   EXPECT_NE(e.find("[slam] particles"), std::string::npos) << e;

@@ -1,6 +1,8 @@
 // The one writer of a SLAM run's output set (gridtopo-slam and the GUI): every file, or none.
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -44,7 +46,7 @@ slam::SlamOutputs smallRun(std::vector<ScanRecord>& records) {
 TEST(SlamOutputs, WritesTheWholeSet) {
   std::vector<ScanRecord> records;
   const slam::SlamOutputs o = smallRun(records);
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_outputs_test";
+  const fs::path dir = gridtopo::test::scratchPath("slam_outputs_test");
   fs::remove_all(dir);
   slam::writeSlamOutputs(dir.string(), o);
   for (const char* f : kFiles) EXPECT_TRUE(fs::exists(dir / f)) << f;
@@ -60,7 +62,7 @@ TEST(SlamOutputs, WritesTheWholeSet) {
 TEST(SlamOutputs, WritesNothingWhenOneFileFails) {
   std::vector<ScanRecord> records;
   const slam::SlamOutputs o = smallRun(records);
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_outputs_fail";
+  const fs::path dir = gridtopo::test::scratchPath("slam_outputs_fail");
   fs::remove_all(dir);
   fs::create_directories(dir / "map.simplemap");  // a directory where a file must go: that write fails
   EXPECT_ANY_THROW(slam::writeSlamOutputs(dir.string(), o));

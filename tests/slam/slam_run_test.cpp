@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -137,7 +139,7 @@ TEST(SlamRun, FinishGivesTheOutputsOfTheRunAndEndsIt) {
 }
 
 TEST(SlamRun, FinishAndWriteWritesTheWholeSet) {
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_slam_run_test_out";
+  const fs::path dir = gridtopo::test::scratchPath("slam_run_test_out");
   fs::remove_all(dir);
   slam::SlamRun run(simulatedLog(), smallOptions());
   run.runToEnd();

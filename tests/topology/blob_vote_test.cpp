@@ -2,6 +2,8 @@
 // and the blob vote of pipeline step 7b.
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -181,7 +183,7 @@ TEST(BlobVote, VoteInBlobsBeforeCorrection) {
 }
 
 TEST(BlobVote, IniKeys) {
-  const fs::path p = fs::temp_directory_path() / "gridtopo_blob_vote_test.ini";
+  const fs::path p = gridtopo::test::scratchPath("blob_vote_test.ini");
   {
     std::ofstream f(p);
     f << "[topology]\nblob_vote = true\nblob_vote_neck_width = 2.0\nblob_vote_min_core_area = 1.5\n"

@@ -1,6 +1,8 @@
 // End-to-end: gridtopo-topology on lab_intel with the shipped model, and its errors on bad input.
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,7 +33,7 @@ std::string slurp(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(f), {});
 }
 fs::path fresh(const std::string& n) {
-  const fs::path d = fs::temp_directory_path() / ("gridtopo_topology_app_" + n);
+  const fs::path d = gridtopo::test::scratchPath("topology_app_" + n);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

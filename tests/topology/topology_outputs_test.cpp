@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -41,7 +43,7 @@ TEST(TopologyOutputs, WritesTheWholeSet) {
   const TwoRooms m;
   const TopologyResult topo = buildTopology(m.labels, m.occ.resolution, TopologyOptions{});
   ASSERT_EQ(topo.graph.nodes.size(), 3u);  // room, doorway, room
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_topology_outputs_test";
+  const fs::path dir = gridtopo::test::scratchPath("topology_outputs_test");
   fs::remove_all(dir);
   writeTopologyOutputs(dir.string(), m.occ, topo, m.labels, 2, "[topology]\nthreads = 2\n");
   for (const char* f : {"topology.graphml", "topology.json", "topology.dot", "topology_posegraph.graph", "overlay.png",
@@ -63,7 +65,7 @@ TEST(TopologyOutputs, LeavesOutWhatTheRunDoesNotHave) {
   const TwoRooms m;
   TopologyResult topo = buildTopology(m.labels, m.occ.resolution, TopologyOptions{});
   topo.segmentation.release();
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_topology_outputs_test_partial";
+  const fs::path dir = gridtopo::test::scratchPath("topology_outputs_test_partial");
   fs::remove_all(dir);
   writeTopologyOutputs(dir.string(), m.occ, topo, cv::Mat(), 1, "");
   EXPECT_TRUE(fs::is_regular_file(dir / "labels.png"));

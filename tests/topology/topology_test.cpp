@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "common/scratch.h"
+
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -205,7 +207,7 @@ TEST(Correction, RulesOnTheFloorPlan) {
 TEST(Export, FilesParseBack) {
   const auto rm = extractRegions(floorPlan(), 0.05);
   const auto g = buildGraph(rm, 0.05);
-  const fs::path dir = fs::temp_directory_path() / "gridtopo_topology_export_test";
+  const fs::path dir = gridtopo::test::scratchPath("topology_export_test");
   fs::create_directories(dir);
   std::ofstream(dir / "t.json") << toJson(g);
   const auto back = graphFromJson((dir / "t.json").string());
@@ -304,7 +306,7 @@ TEST(Export, MrptPoseGraphRoundTrip) {
   const auto pg = toMrptPoseGraph(g);
   EXPECT_EQ(pg.nodes.size(), g.nodes.size());
   EXPECT_EQ(pg.edgeCount(), g.edges.size());
-  const fs::path p = fs::temp_directory_path() / "gridtopo_topology_posegraph.graph";
+  const fs::path p = gridtopo::test::scratchPath("topology_posegraph.graph");
   pg.saveToTextFile(p.string());
   mrpt::graphs::CNetworkOfPoses2D back;
   back.loadFromTextFile(p.string());
