@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
         "map", "map: .png/.pgm/.jpg (+ ROS .yaml beside it), .yaml, .gridmap(.gz); or a RUN.ini ([topology_run] map, "
         "model, output and the option sections; see config-ini/run-topology.ini), which the flags override",
         true, "", "map|RUN.ini", cmd);
-    TCLAP::ValueArg<std::string> model_arg("m", "model", "place model from gridtopo-train", false,
+    TCLAP::ValueArg<std::string> model_arg("m", "model", "place model from gridtopo-train; default: the shipped models/places_model.yml, "
+                                           "from $GRIDTOPO_DATA_DIR, beside the executable or the source tree", false,
                                            topology::kDefaultPlacesModel, "file", cmd);
     TCLAP::ValueArg<std::string> ini("c", "ini", "INI file (config-ini/topology.ini)", false, "", "file", cmd);
     TCLAP::ValueArg<double> res("r", "resolution", "metres per pixel for plain images (overrides the INI)", false, 0,

@@ -81,6 +81,26 @@ TEST(OutputSet, FailedRunLeavesNoNewDirectory) {
   EXPECT_TRUE(fs::is_empty(dir / "kept"));
 }
 
+// An output folder that cannot be made (a file stands where a folder must go) is an InputError naming the folder,
+// and the folders made before the failure are taken away again.
+TEST(OutputSet, UncreatableFolderNamesItAndLeavesNothing) {
+  const auto dir = freshDir("uncreatable");
+  std::ofstream(dir / "file") << "x";
+  {
+    OutputSet set;
+    set.write((dir / "a/b.txt").string(), [](const std::string& tmp) { std::ofstream(tmp) << "B"; });
+    try {
+      set.add((dir / "file/sub/c.txt").string());
+      ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), (dir / "file/sub").string());
+      EXPECT_NE(std::string(e.what()).find("cannot create the output folder"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "file"));
+}
+
 // A commit that cannot complete (here: a directory where a file must go) leaves the outputs of an earlier run as
 // they were, and no new or temporary file: before, the files renamed ahead of the failing one stayed.
 TEST(OutputSet, FailedCommitKeepsThePreviousOutputs) {

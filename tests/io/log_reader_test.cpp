@@ -156,6 +156,14 @@ TEST(LogReader, SniffsContentNotExtension) {
   EXPECT_EQ(detectLogFormat(e.string()), LogFormat::Empty);
   EXPECT_TRUE(readScanLog(e.string()).empty());
   EXPECT_THROW(detectLogFormat((tmpDir() / "nope.clf").string()), gridtopo::InputError);
+  // A folder given as the log says so.
+  try {
+    detectLogFormat(tmpDir().string());
+    ADD_FAILURE() << "a folder was read as a log";
+  } catch (const gridtopo::InputError& e) {
+    EXPECT_EQ(e.file(), tmpDir().string());
+    EXPECT_NE(std::string(e.what()).find("is a folder, not a log file"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LogReader, MalformedCarmenLineNamesFileLineAndField) {

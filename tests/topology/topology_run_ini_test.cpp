@@ -93,3 +93,27 @@ TEST(TopologyRunIni, FlagsOverrideSingleValuesAndAreChecked) {
   EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, -1.0, std::nullopt}), InputError);
   EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, std::nullopt, 0}), InputError);
 }
+
+// Without -m the apps use the shipped model from any working directory: $GRIDTOPO_DATA_DIR first, then beside the
+// executable, then the source tree's datasets/ (gridtopo::findDataFile). A model named otherwise is kept as given.
+TEST(TopologyRunIni, TheDefaultModelIsFoundFromAnyWorkingDirectory) {
+  const fs::path elsewhere = test::scratch("elsewhere");
+  const fs::path old = fs::current_path();
+  fs::current_path(elsewhere);
+  topology::TopologyRunFlags flags;
+  flags.output = "out";
+  const auto spec = topology::topologyRunOfCommandLine(kSource + "/datasets/places/maps/lab_intel.png", {}, flags);
+  EXPECT_TRUE(fs::equivalent(spec.model, kSource + "/datasets/models/places_model.yml")) << spec.model;
+  // $GRIDTOPO_DATA_DIR comes first.
+  fs::create_directories("data/models");
+  fs::copy_file(kSource + "/datasets/models/places_model.yml", "data/models/places_model.yml");
+  ::setenv("GRIDTOPO_DATA_DIR", (elsewhere / "data").c_str(), 1);
+  const auto from_env = topology::topologyRunOfCommandLine(kSource + "/datasets/places/maps/lab_intel.png", {}, flags);
+  ::unsetenv("GRIDTOPO_DATA_DIR");
+  EXPECT_EQ(from_env.model, (elsewhere / "data/models/places_model.yml").string());
+  // Another name is the user's: left to the reader, which names it when it is missing.
+  flags.model = "mine.yml";
+  EXPECT_EQ(topology::topologyRunOfCommandLine(kSource + "/datasets/places/maps/lab_intel.png", {}, flags).model,
+            "mine.yml");
+  fs::current_path(old);
+}

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gridtopo/core/error.h"
+
 namespace fs = std::filesystem;
 
 namespace gridtopo {
@@ -41,8 +43,11 @@ std::string OutputSet::add(const std::string& final_path) {
     // The directories about to be made, outermost first, so that an uncommitted set can take them away again.
     std::vector<fs::path> missing;
     for (fs::path d = p.parent_path(); !d.empty() && !fs::exists(d); d = d.parent_path()) missing.push_back(d);
-    fs::create_directories(p.parent_path());
-    created_dirs_.insert(created_dirs_.end(), missing.rbegin(), missing.rend());
+    std::error_code ec;
+    fs::create_directories(p.parent_path(), ec);
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it)
+      if (fs::is_directory(*it)) created_dirs_.push_back(*it);
+    if (ec) throw InputError(p.parent_path().string(), "cannot create the output folder: " + ec.message());
   }
   const std::string name = p.filename().string();
   const std::string tmp_name = "." + name + ".tmp-" + std::to_string(::getpid()) + "-" +

@@ -49,6 +49,7 @@ const char* logFormatName(LogFormat format) {
 }
 
 LogFormat detectLogFormat(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(path, "is a folder, not a log file");
   if (!std::filesystem::is_regular_file(path)) throw InputError(path, "no such log file");
   const std::string head = leadingBytes(path, 4096);
   if (head.empty()) return LogFormat::Empty;

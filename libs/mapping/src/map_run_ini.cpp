@@ -80,6 +80,7 @@ MapRunSpec mapRunOfCommandLine(const std::string& run_ini, const MapRunFlags& ru
   requireRunIniOrInputOutput(run_ini, run.input.has_value(), run.output.has_value());
   MapRunSpec spec = run_ini.empty() ? MapRunSpec{} : loadMapRunIni(run_ini);
   overrideRun(spec, run);
+  spec.model = topology::placesModelPath(spec.model);
   slam::overrideOptions(spec.slam, slam);
   return spec;
 }

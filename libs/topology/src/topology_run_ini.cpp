@@ -4,12 +4,19 @@
 #include <vector>
 
 #include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/data_dir.h"
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
 
 namespace fs = std::filesystem;
 
 namespace gridtopo::topology {
+
+std::string placesModelPath(const std::string& model) {
+  if (model != kDefaultPlacesModel || fs::exists(model)) return model;
+  const std::string shipped = findDataFile("models/places_model.yml", GRIDTOPO_BUILD_TIME_DATA_DIR);
+  return shipped.empty() ? model : shipped;
+}
 
 const OptionSchema<TopologyRunSpec>& topologyRunSchema() {
   using S = TopologyRunSpec;
@@ -104,6 +111,7 @@ TopologyRunSpec topologyRunOfCommandLine(const std::string& first, const std::op
     spec.options = loadTopologyOptions(options_ini.value_or(""));
   }
   overrideRun(spec, flags);
+  spec.model = placesModelPath(spec.model);
   checkTopologyRunSpec(spec);
   return spec;
 }

@@ -17,6 +17,12 @@ namespace gridtopo::topology {
 inline constexpr const char* kTopologyRunSection = "topology_run";
 inline constexpr const char* kDefaultPlacesModel = "datasets/models/places_model.yml";
 
+/// `model`, or, when it is the default kDefaultPlacesModel and no such file exists from the working directory, the
+/// shipped model found by gridtopo::findDataFile("models/places_model.yml") ($GRIDTOPO_DATA_DIR, beside the
+/// executable, the source tree's datasets/): the apps then work from any directory. Unchanged when none has it (the
+/// reader then names the missing file).
+std::string placesModelPath(const std::string& model);
+
 struct TopologyRunSpec {
   std::string map;     ///< the occupancy map; relative paths are taken from the working directory
   std::string model = kDefaultPlacesModel;  ///< the place model (gridtopo-train)
