@@ -26,8 +26,10 @@ int main(int argc, char** argv) {
                                                   "RUN.ini", cmd);
     TCLAP::ValueArg<std::string> input("i", "input", "input log (.clf, .log, .gz, .rawlog)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> output("o", "output", "output directory", false, "", "dir", cmd);
-    TCLAP::ValueArg<std::string> model("m", "model", "place model from gridtopo-train; default: the shipped models/places_model.yml, "
-                                           "from $GRIDTOPO_DATA_DIR, beside the executable or the source tree", false, "", "file", cmd);
+    TCLAP::ValueArg<std::string> model("m", "model",
+                                       "place model from gridtopo-train; default: the shipped models/places_model.yml, "
+                                       "from $GRIDTOPO_DATA_DIR, beside the executable or the source tree",
+                                       false, "", "file", cmd);
     TCLAP::ValueArg<int> particles("p", "particles", "number of particles (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<long long> seed("s", "seed", "random seed (overrides the INI)", false, -1, "n", cmd);
     TCLAP::ValueArg<int> threads("t", "threads", "SLAM threads, 0 = all cores (overrides the INI)", false, -1, "n", cmd);
