@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/topology/correction.h"
+#include "gridtopo/topology/regions.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
@@ -25,6 +26,7 @@ CorrectionOptions rulesOff() {
   o.min_room_area = o.min_corridor_area = o.min_doorway_area = 0;
   o.doorways_must_separate = false;
   o.max_doorway_area = 0;
+  o.junctions = false;
   return o;
 }
 
@@ -238,6 +240,42 @@ TEST(Correction, R3OversizedDoorwayTakesTheLongestBorderNeighboursLabel) {
   for (int r = 0; r < 5; ++r) EXPECT_EQ(out.at<unsigned char>(r, 4), R) << r;
 }
 
+// R4: a corridor 1 m wide runs west and east of a junction that reads as room together with the office that opens
+// onto it (one room region). The corridor runs on through the junction; the office stays room.
+TEST(Correction, R4CorridorsRunOnThroughAJunctionReadAsRoom) {
+  cv::Mat l = fill(40, 100, N);
+  l(cv::Rect(0, 25, 40, 10)).setTo(C);   // west corridor, rows 25..34
+  l(cv::Rect(60, 25, 40, 10)).setTo(C);  // east corridor
+  l(cv::Rect(40, 25, 20, 10)).setTo(R);  // the junction, read as room
+  l(cv::Rect(42, 2, 16, 23)).setTo(R);   // the office above it, 1.6 m x 2.3 m, open onto the junction
+  CorrectionOptions o = rulesOff();
+  o.junctions = true;
+  CorrectionStats st;
+  const cv::Mat out = correctRegions(l, kRes, o, &st);
+  EXPECT_EQ(st.junctions, 1);
+  // The junction's cells in line with the corridor are corridor; the office's upper part stays room.
+  const int junction_corridor = cv::countNonZero(out(cv::Rect(40, 25, 20, 10)) == C);
+  EXPECT_GE(junction_corridor, 180) << junction_corridor << " of 200";
+  EXPECT_EQ(cv::countNonZero(out(cv::Rect(42, 2, 16, 15)) == R), 16 * 15);
+  // West and east are one corridor region now.
+  const RegionMap rm = extractRegions(out, kRes);
+  EXPECT_EQ(rm.ids.at<int>(30, 0), rm.ids.at<int>(30, 99));
+  // Nothing else changed: every cell that was not room keeps its label.
+  EXPECT_EQ(cv::countNonZero((l != R) & (out != l)), 0);
+
+  // A passage wider than junction_max_half_width (here 0.3 m against the corridor's 0.5 m) stays room.
+  o.junction_max_half_width = 0.3;
+  EXPECT_TRUE(same(correctRegions(l, kRes, o, &st), l));
+  EXPECT_EQ(st.junctions, 0);
+  // On by default.
+  EXPECT_TRUE(CorrectionOptions().junctions);
+  // A room region that touches one corridor region only is left alone.
+  cv::Mat one = l.clone();
+  one(cv::Rect(60, 25, 40, 10)).setTo(N);
+  o.junction_max_half_width = 1.25;
+  EXPECT_TRUE(same(correctRegions(one, kRes, o, &st), one));
+}
+
 TEST(Correction, DisabledOrNoPassesLimitTheWork) {
   cv::Mat l = fill(3, 10, R);
   l.col(4).setTo(C);
@@ -317,7 +355,7 @@ TEST(Correction, LoadFromConfigReadsEveryKeyAndNamesBadOnes) {
   EXPECT_EQ(o.max_passes, 7);
   std::ostringstream dump;
   o.dumpToTextStream(dump);
-  EXPECT_NE(dump.str().find("max_passes             = 7\n"), std::string::npos) << dump.str();
+  EXPECT_NE(dump.str().find("max_passes              = 7\n"), std::string::npos) << dump.str();
 
   // Missing keys keep their values.
   CorrectionOptions d;

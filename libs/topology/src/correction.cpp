@@ -3,6 +3,9 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -28,6 +31,12 @@ const OptionSchema<CorrectionOptions>& correctionOptionSchema() {
                "R2: a doorway joining fewer than two places takes its neighbour's label")
           .add("max_doorway_area", &O::max_doorway_area, R::atLeast(0), "m^2",
                "R3: larger doorway regions are not doors (0 = off)")
+          .add("junctions", &O::junctions, R::any(), "",
+               "R4: corridors run on through the room regions that join two corridor regions directly")
+          .add("junction_min_border", &O::junction_min_border, R::atLeast(0), "m",
+               "R4: the shortest border with a corridor region that counts")
+          .add("junction_max_half_width", &O::junction_max_half_width, R::atLeast(0), "m",
+               "R4: wider passages (median clearance along the path) stay room")
           .add("max_passes", &O::max_passes, R::closed(0, 1000), "", "passes of each rule at most");
   return schema;
 }
@@ -55,6 +64,100 @@ void apply(cv::Mat& labels, const RegionMap& rm, const std::vector<int>& new_lab
       if (id > 0 && new_label[static_cast<std::size_t>(id - 1)] >= 0)
         labels.at<unsigned char>(y, x) = static_cast<unsigned char>(new_label[static_cast<std::size_t>(id - 1)]);
     }
+}
+
+// R4 (see correctRegions).
+void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions& o, CorrectionStats& st) {
+  const RegionMap rm = extractRegions(labels, resolution);
+  const int corridor = static_cast<int>(places::PlaceLabel::Corridor);
+  const int room = static_cast<int>(places::PlaceLabel::Room);
+  const int min_len = static_cast<int>(std::ceil(o.junction_min_border / resolution));
+  std::vector<std::set<int>> corridor_nbs(rm.regions.size());
+  for (const auto& [k, len] : regionAdjacency(rm.ids)) {
+    if (len < min_len) continue;
+    for (auto [u, v] : {std::pair{k.first, k.second}, std::pair{k.second, k.first}})
+      if (rm.region(u).label == room && rm.region(v).label == corridor)
+        corridor_nbs[static_cast<std::size_t>(u - 1)].insert(v);
+  }
+  cv::Mat half_width;  // cells to the nearest cell without a place
+  cv::distanceTransform(labels < places::kNumLabels, half_width, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  const int dx[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+  cv::Mat strip = cv::Mat::zeros(labels.size(), CV_8U);
+  for (std::size_t i = 0; i < rm.regions.size(); ++i) {
+    const Region& r = rm.regions[i];
+    if (corridor_nbs[i].size() < 2) continue;
+    // Which corridor region each cell of the room region touches (0: none).
+    auto touching = [&](int x, int y) {
+      for (int d = 0; d < 8; ++d) {
+        const int nx = x + dx[d], ny = y + dy[d];
+        if (nx < 0 || ny < 0 || nx >= labels.cols || ny >= labels.rows) continue;
+        const int id = rm.ids.at<int>(ny, nx);
+        if (id > 0 && corridor_nbs[i].count(id)) return id;
+      }
+      return 0;
+    };
+    const std::vector<int> nbs(corridor_nbs[i].begin(), corridor_nbs[i].end());
+    for (std::size_t a = 0; a < nbs.size(); ++a)
+      for (std::size_t b = a + 1; b < nbs.size(); ++b) {
+        // Least-cost path from the cells touching corridor a to the first cell touching corridor b, inside the
+        // region; a step costs 1 + (0.7 m / clearance)^2, so the path keeps to the middle of the passage.
+        cv::Mat parent(labels.size(), CV_32S, cv::Scalar(-1));
+        cv::Mat cost(labels.size(), CV_64F, cv::Scalar(std::numeric_limits<double>::infinity()));
+        using Item = std::pair<double, int>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+        for (int y = r.bbox.y; y < r.bbox.y + r.bbox.height; ++y)
+          for (int x = r.bbox.x; x < r.bbox.x + r.bbox.width; ++x)
+            if (rm.ids.at<int>(y, x) == r.id && touching(x, y) == nbs[a]) {
+              parent.at<int>(y, x) = y * labels.cols + x;
+              cost.at<double>(y, x) = 0.0;
+              queue.push({0.0, y * labels.cols + x});
+            }
+        const double scale = 0.7 / resolution;
+        int goal = -1;
+        while (!queue.empty() && goal < 0) {
+          const auto [c0, idx] = queue.top();
+          queue.pop();
+          const cv::Point p(idx % labels.cols, idx / labels.cols);
+          if (c0 > cost.at<double>(p)) continue;
+          if (touching(p.x, p.y) == nbs[b]) {
+            goal = idx;
+            break;
+          }
+          for (int d = 0; d < 8; ++d) {
+            const int nx = p.x + dx[d], ny = p.y + dy[d];
+            if (nx < 0 || ny < 0 || nx >= labels.cols || ny >= labels.rows) continue;
+            if (rm.ids.at<int>(ny, nx) != r.id) continue;
+            const double q = scale / std::max(1.0f, half_width.at<float>(ny, nx));
+            const double nc = c0 + (d < 4 ? 1.0 : M_SQRT2) * (1.0 + q * q);
+            if (nc < cost.at<double>(ny, nx)) {
+              cost.at<double>(ny, nx) = nc;
+              parent.at<int>(ny, nx) = idx;
+              queue.push({nc, ny * labels.cols + nx});
+            }
+          }
+        }
+        if (goal < 0) continue;
+        std::vector<cv::Point> path;
+        std::vector<float> widths;
+        for (int c = goal;; c = parent.at<int>(c / labels.cols, c % labels.cols)) {
+          path.push_back({c % labels.cols, c / labels.cols});
+          widths.push_back(half_width.at<float>(path.back()));
+          if (parent.at<int>(c / labels.cols, c % labels.cols) == c) break;
+        }
+        std::nth_element(widths.begin(), widths.begin() + static_cast<long>(widths.size() / 2), widths.end());
+        const float w = widths[widths.size() / 2];
+        if (w * resolution > o.junction_max_half_width) continue;
+        cv::Mat on_path = cv::Mat::ones(labels.size(), CV_8U);
+        for (const cv::Point& p : path) on_path.at<unsigned char>(p) = 0;
+        cv::Mat to_path;
+        cv::distanceTransform(on_path, to_path, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+        for (int y = r.bbox.y; y < r.bbox.y + r.bbox.height; ++y)
+          for (int x = r.bbox.x; x < r.bbox.x + r.bbox.width; ++x)
+            if (rm.ids.at<int>(y, x) == r.id && to_path.at<float>(y, x) <= w) strip.at<unsigned char>(y, x) = 1;
+        ++st.junctions;
+      }
+  }
+  labels.setTo(corridor, strip);
 }
 }  // namespace
 
@@ -133,6 +236,11 @@ cv::Mat correctRegions(const cv::Mat& labels_in, double resolution, const Correc
     if (!changed) break;
     apply(labels, rm, new_label);
   }
+  // R4, once the small regions are settled: where a room region joins two corridor regions directly, the corridor
+  // runs on through it (in a SLAM map a junction opens onto rooms with open doors and reads as room together with
+  // them). The cells of the room region within the passage's half-width of the shortest path between the two
+  // corridors become corridor.
+  if (o.junctions) junctionStrips(labels, resolution, o, st);
   if (stats) *stats = st;
   return labels;
 }

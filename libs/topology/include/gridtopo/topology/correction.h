@@ -24,6 +24,13 @@ struct CorrectionOptions : public mrpt::config::CLoadableOptions {
   double min_doorway_area = 0.1;    ///< m^2 (R1)
   bool doorways_must_separate = true;  ///< R2
   double max_doorway_area = 6.0;    ///< m^2 (R3); 0 = off
+  /// R4, corridors through junctions read as room: where a room region borders two corridor regions directly (each
+  /// along at least junction_min_border, not through a doorway), the cells within the passage's half-width of the
+  /// least-cost path between them become corridor, when that half-width (median clearance along the path) is at
+  /// most junction_max_half_width (a corridor is narrow; a wider space between corridors is a hall or a room).
+  bool junctions = true;
+  double junction_min_border = 0.5;       ///< m (R4)
+  double junction_max_half_width = 1.25;  ///< m (R4)
   int max_passes = 20;
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -38,7 +45,8 @@ struct CorrectionOptions : public mrpt::config::CLoadableOptions {
 const OptionSchema<CorrectionOptions>& correctionOptionSchema();
 
 struct CorrectionStats {
-  int patches_removed = 0, small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, passes = 0;
+  int patches_removed = 0, small_merged = 0, doorways_not_separating = 0, doorways_oversized = 0, junctions = 0,
+      passes = 0;
 };
 
 /// Corrected copy of `labels` (CV_8U, 0..2 place labels, other values = no label).
