@@ -147,13 +147,15 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
         std::nth_element(widths.begin(), widths.begin() + static_cast<long>(widths.size() / 2), widths.end());
         const float w = widths[widths.size() / 2];
         if (w * resolution > o.junction_max_half_width) continue;
-        cv::Mat on_path = cv::Mat::ones(labels.size(), CV_8U);
-        for (const cv::Point& p : path) on_path.at<unsigned char>(p) = 0;
+        // Distances to the path within the region's box (the path lies in the region).
+        cv::Mat on_path = cv::Mat::ones(r.bbox.size(), CV_8U);
+        for (const cv::Point& p : path) on_path.at<unsigned char>(p - r.bbox.tl()) = 0;
         cv::Mat to_path;
         cv::distanceTransform(on_path, to_path, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
         for (int y = r.bbox.y; y < r.bbox.y + r.bbox.height; ++y)
           for (int x = r.bbox.x; x < r.bbox.x + r.bbox.width; ++x)
-            if (rm.ids.at<int>(y, x) == r.id && to_path.at<float>(y, x) <= w) strip.at<unsigned char>(y, x) = 1;
+            if (rm.ids.at<int>(y, x) == r.id && to_path.at<float>(y - r.bbox.y, x - r.bbox.x) <= w)
+              strip.at<unsigned char>(y, x) = 1;
         ++st.junctions;
       }
   }
