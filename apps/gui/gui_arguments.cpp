@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/run_args.h"
 #include "gridtopo/core/error.h"
 
 namespace gridtopo::gui {
@@ -60,9 +60,9 @@ GuiArguments parseGuiArguments(int argc, char** argv) {
   cmd.setExceptionHandling(false);
   cmd.parse(argc, argv);
   a.files = files.getValue();
-  // TCLAP hands an unknown option to the file list: a "file" that starts with '-' and does not exist is one.
+  // An unknown option lands in the file list; a file that exists may start with '-'.
   for (const std::string& f : a.files)
-    if (f.rfind('-', 0) == 0 && !std::filesystem::exists(f)) throw UsageError(f + ": unknown argument");
+    if (!std::filesystem::exists(f)) rejectUnknownFlag(f);
   a.ini = ini.getValue();
   a.model = model.getValue();
   a.topology_ini = tini.getValue();

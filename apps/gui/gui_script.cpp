@@ -14,7 +14,7 @@ namespace gridtopo::gui {
 
 namespace {
 
-GuiArguments g_opt;  // the steps read it when they run (the app has one window and one command line)
+const GuiArguments* g_opt = nullptr;  // the app's command line, read by the steps when they run (see startGui)
 
 std::function<bool()> waitIdle(MainFrame* f) {
   return [f] {
@@ -62,51 +62,51 @@ bool benchFrames(MainFrame* f, int n, const std::string& out) {
 }  // namespace
 
 void startGui(MainFrame* f, const GuiArguments& a) {
-  g_opt = a;
+  g_opt = &a;
   const bool is_scripted = scripted(a);
   if (is_scripted) f->script.push_back([] { return true; });  // errors go to stderr, not to modal dialogs
-  f->quit_when_done = g_opt.quit;
-  if (g_opt.max_scans > 0) f->runner_options.max_scans = static_cast<std::size_t>(g_opt.max_scans);
+  f->quit_when_done = g_opt->quit;
+  if (g_opt->max_scans > 0) f->runner_options.max_scans = static_cast<std::size_t>(g_opt->max_scans);
   f->Show();
   bool ok = true;
-  if (!g_opt.ini.empty()) ok = f->openFile(g_opt.ini) && ok;
-  if (!g_opt.topology_ini.empty()) {
+  if (!g_opt->ini.empty()) ok = f->openFile(g_opt->ini) && ok;
+  if (!g_opt->topology_ini.empty()) {
     try {
-      f->session().openTopologyIni(g_opt.topology_ini);
+      f->session().openTopologyIni(g_opt->topology_ini);
       f->rebuildOptionGrid();
     } catch (const std::exception& e) {
       std::cerr << "gridtopo-gui: " << e.what() << "\n";
       ok = false;
     }
   }
-  if (g_opt.particles > 0) {
-    f->session().slamOptions().particles = static_cast<int>(g_opt.particles);
+  if (g_opt->particles > 0) {
+    f->session().slamOptions().particles = static_cast<int>(g_opt->particles);
     f->rebuildOptionGrid();
   }
-  if (!g_opt.model.empty()) ok = f->openFile(g_opt.model) && ok;
+  if (!g_opt->model.empty()) ok = f->openFile(g_opt->model) && ok;
   else f->openDefaultModel();
-  if (g_opt.live_topology >= 0) ok = f->setLiveTopology(true, static_cast<unsigned>(g_opt.live_topology)) && ok;
-  for (const auto& p : g_opt.files) ok = f->openFile(p, g_opt.resolution) && ok;
+  if (g_opt->live_topology >= 0) ok = f->setLiveTopology(true, static_cast<unsigned>(g_opt->live_topology)) && ok;
+  for (const auto& p : g_opt->files) ok = f->openFile(p, g_opt->resolution) && ok;
   if (!ok && is_scripted) {
     f->exit_code = 1;
-    if (g_opt.quit) {
+    if (g_opt->quit) {
       f->script.clear();
       f->CallAfter([f] { f->Close(true); });
       return;
     }
   }
-  f->canvas()->layers().particle_paths = g_opt.particle_paths;
-  if (!g_opt.labels.empty()) {
+  f->canvas()->layers().particle_paths = g_opt->particle_paths;
+  if (!g_opt->labels.empty()) {
     try {
-      f->session().openLabelImage(g_opt.labels);
+      f->session().openLabelImage(g_opt->labels);
     } catch (const std::exception& e) {
       std::cerr << "gridtopo-gui: " << e.what() << "\n";
       f->exit_code = 1;
     }
   }
-  if (g_opt.tile_cols > 0) {
+  if (g_opt->tile_cols > 0) {
     try {
-      f->session().tileMap(g_opt.tile_cols, g_opt.tile_rows);
+      f->session().tileMap(g_opt->tile_cols, g_opt->tile_rows);
       f->canvas()->fit();
     } catch (const std::exception& e) {
       std::cerr << "gridtopo-gui: " << e.what() << "\n";
@@ -115,15 +115,15 @@ void startGui(MainFrame* f, const GuiArguments& a) {
   }
   // The scripted steps, polled every timer tick (the window keeps redrawing meanwhile).
   auto& sc = f->script;
-  if (g_opt.run_steps >= 0 || g_opt.run_to_end) {
+  if (g_opt->run_steps >= 0 || g_opt->run_to_end) {
     auto t_start = std::make_shared<std::chrono::steady_clock::time_point>();
     sc.push_back([f, t_start] {
       *t_start = std::chrono::steady_clock::now();
       f->startSlam();
       auto* r = f->session().runner();
       if (!r) return true;
-      if (g_opt.run_to_end) r->play();
-      else r->step(static_cast<std::size_t>(g_opt.run_steps));
+      if (g_opt->run_to_end) r->play();
+      else r->step(static_cast<std::size_t>(g_opt->run_steps));
       return true;
     });
     sc.push_back(waitIdle(f));
@@ -147,16 +147,16 @@ void startGui(MainFrame* f, const GuiArguments& a) {
       return true;
     });
   }
-  if (!g_opt.save_slam.empty()) sc.push_back([f] {
+  if (!g_opt->save_slam.empty()) sc.push_back([f] {
     try {
-      f->session().saveSlamOutputs(g_opt.save_slam);
+      f->session().saveSlamOutputs(g_opt->save_slam);
     } catch (const std::exception& e) {
       std::cerr << "gridtopo-gui: " << e.what() << "\n";
       f->exit_code = 1;
     }
     return true;
   });
-  if (g_opt.use_slam_map) sc.push_back([f] {
+  if (g_opt->use_slam_map) sc.push_back([f] {
     try {
       f->session().useSlamMap();
     } catch (const std::exception& e) {
@@ -165,7 +165,7 @@ void startGui(MainFrame* f, const GuiArguments& a) {
     }
     return true;
   });
-  if (g_opt.run_topology) {
+  if (g_opt->run_topology) {
     sc.push_back([f] {
       f->startTopology();
       return true;
@@ -176,13 +176,13 @@ void startGui(MainFrame* f, const GuiArguments& a) {
       return true;
     });
   }
-  if (!g_opt.view.empty()) sc.push_back([f] {
-    f->setView(g_opt.view == "topology" ? session::ViewMode::Topology
-               : g_opt.view == "labels" ? session::ViewMode::Labels
+  if (!g_opt->view.empty()) sc.push_back([f] {
+    f->setView(g_opt->view == "topology" ? session::ViewMode::Topology
+               : g_opt->view == "labels" ? session::ViewMode::Labels
                                         : session::ViewMode::Slam);
     return true;
   });
-  if (g_opt.click_col >= 0 || g_opt.click_particle) {
+  if (g_opt->click_col >= 0 || g_opt->click_particle) {
     // A real mouse click through the window system (XTest under Xvfb) on the cell's screen position.
     auto state = std::make_shared<int>(0);
     sc.push_back([f, state] {
@@ -190,7 +190,7 @@ void startGui(MainFrame* f, const GuiArguments& a) {
                           ? f->session().topology()->map
                           : f->session().map();
       const auto snap = f->session().slamSnapshot();
-      if (g_opt.click_particle ? !snap || snap->particles.empty() : m.empty()) {
+      if (g_opt->click_particle ? !snap || snap->particles.empty() : m.empty()) {
         std::cerr << "gridtopo-gui: nothing to click\n";
         f->exit_code = 1;
         return true;
@@ -198,11 +198,11 @@ void startGui(MainFrame* f, const GuiArguments& a) {
       if (*state == 0) {
         f->refreshNow();
         cv::Point2d w;
-        if (g_opt.click_particle) {
+        if (g_opt->click_particle) {
           const auto& p = snap->particles[snap->best].pose;
           w = {p.x, p.y};
         } else {
-          w = m.cellCentre(g_opt.click_row, g_opt.click_col);
+          w = m.cellCentre(g_opt->click_row, g_opt->click_col);
         }
         const wxPoint p = f->canvas()->ClientToScreen(f->canvas()->toClient(w.x, w.y));
         wxUIActionSimulator sim;
@@ -214,25 +214,25 @@ void startGui(MainFrame* f, const GuiArguments& a) {
       }
       return ++*state > 5;  // a few ticks for the click to be delivered and handled
     });
-    if (!g_opt.inspector_out.empty())
+    if (!g_opt->inspector_out.empty())
       sc.push_back([f] {
-        std::ofstream(g_opt.inspector_out) << f->inspectorText();
+        std::ofstream(g_opt->inspector_out) << f->inspectorText();
         return true;
       });
   }
-  if (g_opt.bench_frames > 0) sc.push_back([f] { return benchFrames(f, g_opt.bench_frames, g_opt.bench_out); });
-  if (!g_opt.export_view.empty()) sc.push_back([f] {
+  if (g_opt->bench_frames > 0) sc.push_back([f] { return benchFrames(f, g_opt->bench_frames, g_opt->bench_out); });
+  if (!g_opt->export_view.empty()) sc.push_back([f] {
     f->refreshNow();
-    if (!cv::imwrite(g_opt.export_view, f->canvas()->renderImage())) f->exit_code = 1;
+    if (!cv::imwrite(g_opt->export_view, f->canvas()->renderImage())) f->exit_code = 1;
     return true;
   });
-  if (g_opt.show_options) sc.push_back([f] {
+  if (g_opt->show_options) sc.push_back([f] {
     f->showOptionsTab();
     return true;
   });
-  if (!g_opt.screenshot.empty()) sc.push_back([f] {
-    if (!f->screenshot(g_opt.screenshot)) {
-      std::cerr << "gridtopo-gui: cannot write " << g_opt.screenshot << "\n";
+  if (!g_opt->screenshot.empty()) sc.push_back([f] {
+    if (!f->screenshot(g_opt->screenshot)) {
+      std::cerr << "gridtopo-gui: cannot write " << g_opt->screenshot << "\n";
       f->exit_code = 1;
     }
     return true;

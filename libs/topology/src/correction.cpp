@@ -11,6 +11,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/edge_route.h"
 #include "gridtopo/topology/regions.h"
 
 namespace gridtopo::topology {
@@ -82,80 +83,80 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
   cv::Mat half_width;  // cells to the nearest cell without a place
   cv::distanceTransform(labels < places::kNumLabels, half_width, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   const int dx[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+  const double scale = kPathClearanceScale / resolution;  // cells
   cv::Mat strip = cv::Mat::zeros(labels.size(), CV_8U);
   for (std::size_t i = 0; i < rm.regions.size(); ++i) {
     const Region& r = rm.regions[i];
     if (corridor_nbs[i].size() < 2) continue;
-    // Which corridor region each cell of the room region touches (0: none).
-    auto touching = [&](int x, int y) {
-      for (int d = 0; d < 8; ++d) {
-        const int nx = x + dx[d], ny = y + dy[d];
-        if (nx < 0 || ny < 0 || nx >= labels.cols || ny >= labels.rows) continue;
-        const int id = rm.ids.at<int>(ny, nx);
-        if (id > 0 && corridor_nbs[i].count(id)) return id;
+    // Everything below works in the region's box: `inside` its cells, `touch` the corridor region each of them
+    // borders (0: none), box-local indices y * box.width + x.
+    const cv::Rect box = r.bbox;
+    const cv::Mat inside = rm.ids(box) == r.id;
+    cv::Mat touch(box.size(), CV_32S, cv::Scalar(0));
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x) {
+        if (!inside.at<unsigned char>(y, x)) continue;
+        for (int d = 0; d < 8 && touch.at<int>(y, x) == 0; ++d) {
+          const int nx = box.x + x + dx[d], ny = box.y + y + dy[d];
+          if (nx < 0 || ny < 0 || nx >= labels.cols || ny >= labels.rows) continue;
+          const int id = rm.ids.at<int>(ny, nx);
+          if (id > 0 && corridor_nbs[i].count(id)) touch.at<int>(y, x) = id;
+        }
       }
-      return 0;
-    };
     const std::vector<int> nbs(corridor_nbs[i].begin(), corridor_nbs[i].end());
     for (std::size_t a = 0; a < nbs.size(); ++a)
       for (std::size_t b = a + 1; b < nbs.size(); ++b) {
-        // Least-cost path from the cells touching corridor a to the first cell touching corridor b, inside the
-        // region; a step costs 1 + (0.7 m / clearance)^2, so the path keeps to the middle of the passage.
-        cv::Mat parent(labels.size(), CV_32S, cv::Scalar(-1));
-        cv::Mat cost(labels.size(), CV_64F, cv::Scalar(std::numeric_limits<double>::infinity()));
+        // Least-cost path (kPathClearanceScale, as the edge routes: it keeps to the middle of the passage) from the
+        // cells touching corridor a to the first cell touching corridor b, inside the region.
+        cv::Mat parent(box.size(), CV_32S, cv::Scalar(-1));
+        cv::Mat cost(box.size(), CV_64F, cv::Scalar(std::numeric_limits<double>::infinity()));
         using Item = std::pair<double, int>;
         std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-        for (int y = r.bbox.y; y < r.bbox.y + r.bbox.height; ++y)
-          for (int x = r.bbox.x; x < r.bbox.x + r.bbox.width; ++x)
-            if (rm.ids.at<int>(y, x) == r.id && touching(x, y) == nbs[a]) {
-              parent.at<int>(y, x) = y * labels.cols + x;
+        for (int y = 0; y < box.height; ++y)
+          for (int x = 0; x < box.width; ++x)
+            if (touch.at<int>(y, x) == nbs[a]) {
+              parent.at<int>(y, x) = y * box.width + x;
               cost.at<double>(y, x) = 0.0;
-              queue.push({0.0, y * labels.cols + x});
+              queue.push({0.0, y * box.width + x});
             }
-        const double scale = 0.7 / resolution;
         int goal = -1;
-        while (!queue.empty() && goal < 0) {
+        while (!queue.empty()) {
           const auto [c0, idx] = queue.top();
           queue.pop();
-          const cv::Point p(idx % labels.cols, idx / labels.cols);
+          const cv::Point p(idx % box.width, idx / box.width);
           if (c0 > cost.at<double>(p)) continue;
-          if (touching(p.x, p.y) == nbs[b]) {
+          if (touch.at<int>(p) == nbs[b]) {
             goal = idx;
             break;
           }
           for (int d = 0; d < 8; ++d) {
             const int nx = p.x + dx[d], ny = p.y + dy[d];
-            if (nx < 0 || ny < 0 || nx >= labels.cols || ny >= labels.rows) continue;
-            if (rm.ids.at<int>(ny, nx) != r.id) continue;
-            const double q = scale / std::max(1.0f, half_width.at<float>(ny, nx));
+            if (nx < 0 || ny < 0 || nx >= box.width || ny >= box.height || !inside.at<unsigned char>(ny, nx)) continue;
+            const double q = scale / std::max(1.0f, half_width.at<float>(box.y + ny, box.x + nx));
             const double nc = c0 + (d < 4 ? 1.0 : M_SQRT2) * (1.0 + q * q);
             if (nc < cost.at<double>(ny, nx)) {
               cost.at<double>(ny, nx) = nc;
               parent.at<int>(ny, nx) = idx;
-              queue.push({nc, ny * labels.cols + nx});
+              queue.push({nc, ny * box.width + nx});
             }
           }
         }
         if (goal < 0) continue;
-        std::vector<cv::Point> path;
+        // The path back to corridor a, and the passage's half-width: the median clearance along it.
+        cv::Mat on_path = cv::Mat::ones(box.size(), CV_8U);
         std::vector<float> widths;
-        for (int c = goal;; c = parent.at<int>(c / labels.cols, c % labels.cols)) {
-          path.push_back({c % labels.cols, c / labels.cols});
-          widths.push_back(half_width.at<float>(path.back()));
-          if (parent.at<int>(c / labels.cols, c % labels.cols) == c) break;
+        for (int c = goal;; c = parent.at<int>(c / box.width, c % box.width)) {
+          const cv::Point p(c % box.width, c / box.width);
+          on_path.at<unsigned char>(p) = 0;
+          widths.push_back(half_width.at<float>(p + box.tl()));
+          if (parent.at<int>(p) == c) break;
         }
         std::nth_element(widths.begin(), widths.begin() + static_cast<long>(widths.size() / 2), widths.end());
         const float w = widths[widths.size() / 2];
         if (w * resolution > o.junction_max_half_width) continue;
-        // Distances to the path within the region's box (the path lies in the region).
-        cv::Mat on_path = cv::Mat::ones(r.bbox.size(), CV_8U);
-        for (const cv::Point& p : path) on_path.at<unsigned char>(p - r.bbox.tl()) = 0;
         cv::Mat to_path;
         cv::distanceTransform(on_path, to_path, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-        for (int y = r.bbox.y; y < r.bbox.y + r.bbox.height; ++y)
-          for (int x = r.bbox.x; x < r.bbox.x + r.bbox.width; ++x)
-            if (rm.ids.at<int>(y, x) == r.id && to_path.at<float>(y - r.bbox.y, x - r.bbox.x) <= w)
-              strip.at<unsigned char>(y, x) = 1;
+        strip(box).setTo(1, inside & (to_path <= w));
         ++st.junctions;
       }
   }
@@ -240,7 +241,7 @@ cv::Mat correctRegions(const cv::Mat& labels_in, double resolution, const Correc
   }
   // R4, once the small regions are settled: where a room region joins two corridor regions directly, the corridor
   // runs on through it (in a SLAM map a junction opens onto rooms with open doors and reads as room together with
-  // them). The cells of the room region within the passage's half-width of the shortest path between the two
+  // them). The cells of the room region within the passage's half-width of the least-cost path between the two
   // corridors become corridor.
   if (o.junctions) junctionStrips(labels, resolution, o, st);
   if (stats) *stats = st;

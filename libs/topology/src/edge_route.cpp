@@ -13,7 +13,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kUnreached = std::numeric_limits<int>::max();
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
-constexpr double kClearanceScale = 0.7;  // m: a step costs 1 + (kClearanceScale / clearance)^2
 constexpr double kSimplify = 1.0;        // cells
 
 // Every cell of the straight 8-connected line p -> q lies in region a or b.
@@ -85,7 +84,7 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
 EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
     : rm_(rm) {
   const cv::Mat& ids = rm.ids;
-  const double scale = kClearanceScale / resolution;  // cells
+  const double scale = kPathClearanceScale / resolution;  // cells
   cv::Mat inside = ids > 0, clearance;
   cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);

@@ -14,7 +14,7 @@ namespace gridtopo::topology {
 
 std::string placesModelPath(const std::string& model) {
   if (model != kDefaultPlacesModel || fs::exists(model)) return model;
-  const std::string shipped = findDataFile("models/places_model.yml", GRIDTOPO_BUILD_TIME_DATA_DIR);
+  const std::string shipped = findDataFile(kShippedPlacesModel, GRIDTOPO_BUILD_TIME_DATA_DIR);
   return shipped.empty() ? model : shipped;
 }
 

@@ -17,11 +17,16 @@ auto given(const Arg& arg) -> std::optional<std::decay_t<decltype(const_cast<Arg
   return const_cast<Arg&>(arg).getValue();
 }
 
-/// The text of a positional argument (a RUN.ini or a map). TCLAP hands an unknown flag to a positional argument, so
-/// a text that starts with '-' is a UsageError "<text>: unknown argument".
+/// TCLAP hands an unknown flag to a positional argument: a positional text that starts with '-' is a UsageError
+/// "<text>: unknown argument".
+inline void rejectUnknownFlag(const std::string& text) {
+  if (text.rfind('-', 0) == 0) throw UsageError(text + ": unknown argument");
+}
+
+/// The text of a positional argument (a RUN.ini or a map), rejectUnknownFlag checked.
 inline std::string positionalArgument(const TCLAP::UnlabeledValueArg<std::string>& arg) {
   const std::string& text = const_cast<TCLAP::UnlabeledValueArg<std::string>&>(arg).getValue();
-  if (text.rfind('-', 0) == 0) throw UsageError(text + ": unknown argument");
+  rejectUnknownFlag(text);
   return text;
 }
 

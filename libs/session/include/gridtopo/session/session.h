@@ -25,11 +25,12 @@
 #include "gridtopo/session/topology_state.h"
 #include "gridtopo/slam/slam_options.h"
 #include "gridtopo/topology/pipeline.h"
+#include "gridtopo/topology/topology_run_ini.h"
 
 namespace gridtopo::session {
 
 /// The place model shipped with the project, relative to its data folder (datasets/ in the source tree).
-inline constexpr const char* kDefaultModel = "models/places_model.yml";
+inline constexpr const char* kDefaultModel = topology::kShippedPlacesModel;
 
 enum class FileKind { Unknown, Log, Map, Trajectory, Relations, Topology, Model, SlamIni, TopologyIni };
 const char* toString(FileKind k);

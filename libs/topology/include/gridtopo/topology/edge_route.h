@@ -19,6 +19,11 @@
 
 namespace gridtopo::topology {
 
+/// Least-cost paths that keep to the middle of corridors and doors (the edge routes, correction rule R4): an
+/// 8-connected step into a cell costs 1 + (kPathClearanceScale / clearance)^2 (times sqrt(2) diagonally), clearance
+/// in metres to the nearest cell without a place.
+inline constexpr double kPathClearanceScale = 0.7;
+
 /// The anchor cell of every region (index id - 1).
 std::vector<cv::Point> regionAnchors(const RegionMap& regions);
 

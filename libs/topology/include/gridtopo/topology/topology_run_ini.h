@@ -16,9 +16,11 @@ namespace gridtopo::topology {
 
 inline constexpr const char* kTopologyRunSection = "topology_run";
 inline constexpr const char* kDefaultPlacesModel = "datasets/models/places_model.yml";
+/// The shipped place model inside a data folder (gridtopo::dataDirs()).
+inline constexpr const char* kShippedPlacesModel = "models/places_model.yml";
 
 /// `model`, or, when it is the default kDefaultPlacesModel and no such file exists from the working directory, the
-/// shipped model found by gridtopo::findDataFile("models/places_model.yml") ($GRIDTOPO_DATA_DIR, beside the
+/// shipped model found by gridtopo::findDataFile(kShippedPlacesModel) ($GRIDTOPO_DATA_DIR, beside the
 /// executable, the source tree's datasets/): the apps then work from any directory. Unchanged when none has it (the
 /// reader then names the missing file).
 std::string placesModelPath(const std::string& model);
