@@ -7,6 +7,8 @@ PACKAGES=(
   build-essential cmake pkg-config
   libmrpt-slam-dev libmrpt-gui-dev libwxgtk3.2-dev libopencv-dev libeigen3-dev
   libtclap-dev zlib1g-dev libssl-dev nlohmann-json3-dev
+  # the loop closure's pose-graph solver (issue 23)
+  libceres-dev
   googletest libgtest-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   # gridtopo-experiment: plots (gnuplot), and scripts/check_slurm.sh, which the suite runs (a one-node Slurm).

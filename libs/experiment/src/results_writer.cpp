@@ -58,7 +58,7 @@ std::vector<std::string> resultsColumns(const ExperimentPlan& plan) {
   c.insert(c.end(), plan.slam_keys.begin(), plan.slam_keys.end());
   c.insert(c.end(), plan.topology_keys.begin(), plan.topology_keys.end());
   for (const char* k : {"relations_scored", "trans_mean_m", "trans_std_m", "trans_max_m", "rot_mean_deg", "rot_std_deg",
-                        "rot_max_deg", "success", "steps", "resamplings"})
+                        "rot_max_deg", "trans_local_mean_m", "trans_revisit_mean_m", "success", "steps", "resamplings"})
     c.push_back(k);
   if (!plan.topology_keys.empty()) c.insert(c.end(), std::begin(kTopologyColumns), std::end(kTopologyColumns));
   for (const char* k : {"wall_s", "cpu_s", "peak_rss_mb", "commit", "host", "start_time", "error", "dir"}) c.push_back(k);
@@ -77,7 +77,8 @@ std::string resultsCsv(const ExperimentPlan& plan, const std::vector<RunRecord>&
     for (const auto& k : plan.slam_keys) f.push_back(optionOf(r.options, k));
     for (const auto& k : plan.topology_keys) f.push_back(optionOf(r.topology_options, k));
     for (const auto& v : {std::to_string(r.relations_scored), num(r.trans_mean), num(r.trans_std), num(r.trans_max),
-                          num(r.rot_mean), num(r.rot_std), num(r.rot_max),
+                          num(r.rot_mean), num(r.rot_std), num(r.rot_max), num(r.trans_local_mean),
+                          num(r.trans_revisit_mean),
                           success < 0 ? std::string() : std::to_string(success), std::to_string(r.steps),
                           std::to_string(r.resamplings)})
       f.push_back(v);

@@ -64,6 +64,7 @@ RunRecord finishRun(const ExperimentPlan& plan, const PlannedRun& run, const Pro
   r.host = host;
   r.start_time = started.start_time;
   r.trans_mean = r.trans_std = r.trans_max = r.rot_mean = r.rot_std = r.rot_max = NAN;
+  r.trans_local_mean = r.trans_revisit_mean = NAN;
   r.label_accuracy = r.recall_room = r.recall_corridor = r.recall_doorway = NAN;
   r.seg_recall = r.seg_precision = r.graph_attached = r.graph_loops_closed = r.graph_plan_loops = NAN;
   const fs::path dir(run.dir), out = dir / "out", log = stage.log;
@@ -95,6 +96,8 @@ RunRecord finishRun(const ExperimentPlan& plan, const PlannedRun& run, const Pro
         r.rot_mean = e.rotational.mean;
         r.rot_std = e.rotational.std;
         r.rot_max = e.rotational.max;
+        if (e.local.translational.count > 0) r.trans_local_mean = e.local.translational.mean;
+        if (e.revisit.translational.count > 0) r.trans_revisit_mean = e.revisit.translational.mean;
       }
       }
       r.status = "ok";

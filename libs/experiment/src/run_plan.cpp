@@ -62,6 +62,8 @@ std::string optionValue(const std::string& options_ini, const std::string& key) 
   return "";
 }
 
+constexpr const char* kLoopClosurePrefix = "loop_closure.";
+
 ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& output) {
   ExperimentPlan plan;
   plan.spec = spec;
@@ -76,6 +78,8 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
     plan.slam_keys.push_back(key);
     known.insert(key);
   }
+  // The loop closure's keys, as "loop_closure.KEY" (its own section in the runs' options.ini).
+  for (const auto& key : slam::loopClosureOptionSchema().keys()) known.insert(kLoopClosurePrefix + key);
 
   // Where each option key is set in the experiment INI, to name it when its value is refused.
   std::map<std::string, std::pair<std::string, std::size_t>> origin;  // key -> ("[slam]" | "[sweep]", line)
@@ -179,9 +183,15 @@ ExperimentPlan planExperiment(const ExperimentSpec& spec, const std::string& out
     if (!ms.empty()) run.max_scans = std::stol(ms);
 
     mrpt::config::CConfigFileMemory ini(base_text);
-    for (const auto& e : spec.slam) ini.write(spec.base_section, e.key, e.value);
+    auto writeKey = [&](const std::string& k, const std::string& v) {
+      if (k.rfind(kLoopClosurePrefix, 0) == 0)
+        ini.write(slam::LoopClosureOptions::kSection, k.substr(std::string(kLoopClosurePrefix).size()), v);
+      else
+        ini.write(spec.base_section, k, v);
+    };
+    for (const auto& e : spec.slam) writeKey(e.key, e.value);
     for (const auto& [k, v] : run.params)
-      if (!isRunKey(k)) ini.write(spec.base_section, k, v);
+      if (!isRunKey(k)) writeKey(k, v);
     slam::SlamOptions o;
     try {
       o.loadFromConfigFile(ini, spec.base_section);

@@ -51,6 +51,8 @@ void forEachSlamScore(R& r, F&& f) {
   f("rot_mean_deg", r.rot_mean);
   f("rot_std_deg", r.rot_std);
   f("rot_max_deg", r.rot_max);
+  f("trans_local_mean_m", r.trans_local_mean);
+  f("trans_revisit_mean_m", r.trans_revisit_mean);
   f("steps", r.steps);
   f("resamplings", r.resamplings);
 }

@@ -71,6 +71,8 @@ ErrorScores RunScorer::score(const std::vector<TimedPose>& trajectory, const std
   s.relations = within.size();
   s.translational = r.translational;
   s.rotational = r.rotational;
+  s.local = r.local;
+  s.revisit = r.revisit;
   return s;
 }
 

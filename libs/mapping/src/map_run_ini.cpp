@@ -44,11 +44,13 @@ MapRunSpec loadMapRunIni(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
   const std::string run = kMapRunSection;
-  std::vector<std::string> sections = {run, "slam", kTopologyBuilderSection};
+  std::vector<std::string> sections = {run, "slam", slam::LoopClosureOptions::kSection, kTopologyBuilderSection};
   for (const char* s : topology::kTopologyOptionSections) sections.push_back(s);
   ini.requireKnownSections(sections);
   ini.requireKnownKeys(run, mapRunSchema().keys());
   ini.requireKnownKeys("slam", slam::slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
+  ini.requireKnownKeys(slam::LoopClosureOptions::kSection, slam::loopClosureOptionSchema().keys(),
+                       "not an option of the loop closure; see config-ini/slam.ini");
   for (const char* s : topology::kTopologyOptionSections)
     ini.requireKnownKeys(s, topology::topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
   ini.requireKnownKeys(kTopologyBuilderSection, topologyBuilderOptionKeys());

@@ -310,22 +310,46 @@ std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
 }
 
 std::vector<TimedPose> RbpfSlam::trajectory() const {
+  if (scans_.empty() || particles_.empty()) return std::vector<TimedPose>(scans_.size());
+  std::vector<Pose2> processed;
+  for (const TrajectoryNode* n : pathOf(bestParticle().node)) processed.push_back(n->estimate);
+  return trajectoryThrough(processed);
+}
+
+void RbpfSlam::applyCorrection(const Pose2& correction, const GridMap& map) {
+  for (Particle& p : particles_) {
+    p.pose = compose(correction, p.pose);
+    p.map = map;
+    if (p.node)
+      p.node = std::make_shared<const TrajectoryNode>(p.pose, compose(correction, p.node->estimate),
+                                                      p.node->scan_index, p.node->parent);
+  }
+}
+
+std::vector<TimedPose> RbpfSlam::trajectoryThrough(const std::vector<Pose2>& processed) const {
   std::vector<TimedPose> out(scans_.size());
   if (scans_.empty() || particles_.empty()) return out;
-  const auto path = pathOf(bestParticle().node);
+  struct Anchor {
+    std::size_t scan_index;
+    Pose2 estimate;
+  };
+  std::vector<Anchor> anchors(std::min(processed.size(), stats_.size()));
+  for (std::size_t k = 0; k < anchors.size(); ++k) anchors[k] = {stats_[k].scan_index, processed[k]};
+  const std::vector<Anchor>& path = anchors;
+  if (path.empty()) return out;
   // The odometry between processed scans, scaled by the best particle's (current) odometry scale.
   const double scale = bestParticle().odometry_scale;
   // processed scan index -> pose
   std::vector<long> proc_at(scans_.size(), -1);
-  for (std::size_t k = 0; k < path.size(); ++k) proc_at[path[k]->scan_index] = static_cast<long>(k);
+  for (std::size_t k = 0; k < path.size(); ++k) proc_at[path[k].scan_index] = static_cast<long>(k);
   auto fromAnchor = [&](std::size_t k, std::size_t i) {
-    const ScanInfo& a = scans_[path[k]->scan_index];
+    const ScanInfo& a = scans_[path[k].scan_index];
     const ScanInfo& b = scans_[i];
     if (a.has_odometry && b.has_odometry) {
       const Pose2 d = relative(a.odometry, b.odometry);
-      return compose(path[k]->estimate, {scale * d.x, scale * d.y, d.theta});
+      return compose(path[k].estimate, {scale * d.x, scale * d.y, d.theta});
     }
-    return path[k]->estimate;
+    return path[k].estimate;
   };
   std::size_t prev = 0;  // index into path
   for (std::size_t i = 0; i < scans_.size(); ++i) {
@@ -333,10 +357,10 @@ std::vector<TimedPose> RbpfSlam::trajectory() const {
     Pose2 p;
     if (proc_at[i] >= 0) {
       prev = static_cast<std::size_t>(proc_at[i]);
-      p = path[prev]->estimate;
+      p = path[prev].estimate;
     } else if (prev + 1 < path.size()) {
       // Blend the odometry extrapolations from the previous and the next processed scan.
-      const std::size_t i0 = path[prev]->scan_index, i1 = path[prev + 1]->scan_index;
+      const std::size_t i0 = path[prev].scan_index, i1 = path[prev + 1].scan_index;
       const double f = static_cast<double>(i - i0) / static_cast<double>(i1 - i0);
       const Pose2 a = fromAnchor(prev, i), b = fromAnchor(prev + 1, i);
       p = {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), wrapAngle(a.theta + f * wrapAngle(b.theta - a.theta))};

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -14,7 +15,7 @@
 namespace gridtopo::slam {
 
 SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream& log) {
-  if (!quiet) spec.options.dumpToTextStream(log);
+  if (!quiet) log << "options: " << (std::filesystem::path(spec.output) / "options.ini").string() << "\n";
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const auto t0 = Clock::now();

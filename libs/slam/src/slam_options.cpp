@@ -194,16 +194,22 @@ ProposalType proposalFromString(const std::string& s) {
 
 void SlamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) {
   slamOptionSchema().load(*this, source, section);
+  loop_closure.loadFromConfigFile(source, LoopClosureOptions::kSection);
 }
 
 void SlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const {
   slamOptionSchema().save(*this, target, section);
+  loop_closure.saveToConfigFile(target, LoopClosureOptions::kSection);
 }
 
-void SlamOptions::dumpToTextStream(std::ostream& out) const { slamOptionSchema().dump(*this, out); }
+void SlamOptions::dumpToTextStream(std::ostream& out) const {
+  slamOptionSchema().dump(*this, out);
+  loop_closure.dumpToTextStream(out);
+}
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
   slamOptionSchema().validate(*this, file, section);
+  loop_closure.validate(file);
 }
 
 }  // namespace gridtopo::slam

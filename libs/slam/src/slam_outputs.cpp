@@ -30,6 +30,18 @@ mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vec
   return sm;
 }
 
+mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses,
+                                   const std::vector<ScanRecord>& scans) {
+  mrpt::maps::CSimpleMap sm;
+  for (std::size_t k = 0; k < std::min(scan_indices.size(), poses.size()); ++k) {
+    auto sf = mrpt::obs::CSensoryFrame::Create();
+    sf->insert(io::toMrptScan(scans.at(scan_indices[k]).scan));
+    const Pose2& p = poses[k];
+    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(mrpt::poses::CPose3D(p.x, p.y, 0, p.theta, 0, 0)), sf);
+  }
+  return sm;
+}
+
 std::string statsRow(const StepStats& s) {
   std::ostringstream o;
   o << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' ' << s.neff << ' '

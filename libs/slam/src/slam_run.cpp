@@ -8,6 +8,7 @@
 #include "gridtopo/core/process_memory.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
+#include "gridtopo/slam/prepared_scan.h"
 
 namespace gridtopo::slam {
 
@@ -18,6 +19,7 @@ SlamRun::SlamRun(std::shared_ptr<const std::vector<ScanRecord>> scans, const Sla
   options_.validate("<options>", "slam");
   limit_ = max_scans ? std::min(max_scans, scans_->size()) : scans_->size();
   filter_ = std::make_unique<RbpfSlam>(options_);
+  if (options_.loop_closure.enabled) closer_ = std::make_unique<LoopCloser>(options_.loop_closure);
 }
 
 SlamRun::SlamRun(const SlamOptions& options)
@@ -25,6 +27,7 @@ SlamRun::SlamRun(const SlamOptions& options)
   options_.validate("<options>", "slam");
   scans_ = appended_;
   filter_ = std::make_unique<RbpfSlam>(options_);
+  if (options_.loop_closure.enabled) closer_ = std::make_unique<LoopCloser>(options_.loop_closure);
 }
 
 void SlamRun::requireFilter(const char* what) const {
@@ -44,10 +47,43 @@ const RbpfSlam& SlamRun::filter() const {
 bool SlamRun::feedNext() {
   const auto t0 = std::chrono::steady_clock::now();
   const bool processed = filter_->processScan((*scans_)[fed_]);
+  if (processed && closer_) closeLoops(fed_);
   filter_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++fed_;
   if (processed) rss_kb_.push_back(processMemory().rss_kb);
   return processed;
+}
+
+void SlamRun::closeLoops(std::size_t index) {
+  const TrajectoryNodePtr& node = filter_->bestParticle().node;
+  const Pose2 motion = node->parent ? relative(node->parent->estimate, node->estimate) : Pose2{};
+  const PreparedScan scan = prepareScan((*scans_)[index].scan, options_.beams, options_.resolution);
+  const LoopClosureStep step = closer_->addScan(index, (*scans_)[index].scan.timestamp, node->estimate, motion, scan);
+  if (!step.feedback) return;
+  // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
+  // particle's estimate to the optimised pose, in the map of the optimised poses.
+  const Pose2 correction = compose(step.newest_after, relative(node->estimate, Pose2{}));
+  filter_->applyCorrection(correction, mapOfGraph());
+}
+
+GridMap SlamRun::mapOfGraph() const {
+  GridMap map(options_.resolution);
+  const std::vector<Pose2> poses = closer_->poses();
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const PreparedScan ps = prepareScan((*scans_)[closer_->scanIndexOf(k)].scan, options_.beams, options_.resolution);
+    map.insertScan(poses[k], ps.sensor, ps.map_beams, options_.map);
+  }
+  return map;
+}
+
+std::vector<TimedPose> SlamRun::trajectory() const {
+  requireFilter("trajectory");
+  return closer_ ? filter_->trajectoryThrough(closer_->poses()) : filter_->trajectory();
+}
+
+GridMap SlamRun::resultMap() const {
+  requireFilter("resultMap");
+  return closer_ ? mapOfGraph() : filter_->bestParticle().map;
 }
 
 bool SlamRun::step() {
@@ -85,21 +121,25 @@ std::string SlamRun::statsText() const {
   std::ostringstream out;
   out << "# " << kStatsColumns << " rss_kb\n";
   for (std::size_t i = 0; i < st.size(); ++i) out << statsRow(st[i]) << ' ' << rss_kb_[i] << '\n';
+  if (closer_) out << closuresText(closer_->closures());
   return out.str();
 }
 
 mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
   requireFilter("simpleMap");
   if (filter_->particles().empty()) return {};
-  return simpleMapOf(filter_->bestParticle().node, *scans_);
+  if (!closer_) return simpleMapOf(filter_->bestParticle().node, *scans_);
+  std::vector<std::size_t> idx(closer_->nodes());
+  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = closer_->scanIndexOf(k);
+  return simpleMapAt(idx, closer_->poses(), *scans_);
 }
 
 SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
   requireFilter("outputs");
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
-  o.grid = toOccupancyGrid(filter_->bestParticle().map);
-  o.trajectory = filter_->trajectory();
+  o.grid = toOccupancyGrid(resultMap());
+  o.trajectory = trajectory();
   o.trajectory_header = trajectory_header;
   o.simplemap = simpleMap();
   o.stats = statsText();
@@ -111,20 +151,20 @@ SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, c
   requireFilter("finish");
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
-  o.trajectory = filter_->trajectory();
+  if (closer_) closer_->finish();
+  o.trajectory = trajectory();
   o.stats = statsText();
-  const TrajectoryNodePtr best_node = filter_->bestParticle().node;
-  // The export needs only the best particle: the other particles' maps are freed before the map (and its
-  // pictures, 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
+  o.simplemap = simpleMap();
+  // The export needs only the result's map: the particles' maps are freed before the map (and its pictures,
+  // 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
   o.grid = [&] {
-    const GridMap best_map = filter_->bestParticle().map;  // shares the tiles
+    const GridMap map = closer_ ? mapOfGraph() : filter_->bestParticle().map;  // the best one shares the tiles
     filter_.reset();
     releaseFreedMemory();
-    return toOccupancyGrid(best_map);
+    return toOccupancyGrid(map);
   }();
   releaseFreedMemory();
   o.trajectory_header = trajectory_header;
-  o.simplemap = simpleMapOf(best_node, *scans_);
   o.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
   return o;
 }

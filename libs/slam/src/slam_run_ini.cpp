@@ -54,9 +54,11 @@ std::string absolute(const std::string& p) { return fs::absolute(fs::path(p)).le
 SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_section) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
-  ini.requireKnownSections({kSlamRunSection, options_section});
+  ini.requireKnownSections({kSlamRunSection, options_section, LoopClosureOptions::kSection});
   ini.requireKnownKeys(kSlamRunSection, slamRunSchema().keys());
   ini.requireKnownKeys(options_section, slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
+  ini.requireKnownKeys(LoopClosureOptions::kSection, loopClosureOptionSchema().keys(),
+                       "not an option of the loop closure; see config-ini/slam.ini");
   SlamRunSpec spec;
   spec.ini = path;
   slamRunSchema().loadRun(spec, spec.lines, ini, kSlamRunSection);
@@ -68,6 +70,8 @@ SlamOptions loadSlamOptionsIni(const std::string& path, const std::string& secti
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
   if (!ini.hasSection(section)) throw InputError(path, 0, "[" + section + "]", "section not found");
+  ini.requireKnownKeys(LoopClosureOptions::kSection, loopClosureOptionSchema().keys(),
+                       "not an option of the loop closure; see config-ini/slam.ini");
   return loadOptions(path, ini, section);
 }
 

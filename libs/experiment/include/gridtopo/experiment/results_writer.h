@@ -11,8 +11,8 @@
 namespace gridtopo::experiment {
 
 /// The CSV's columns, in order: index id label status dataset log relations max_scans, every [slam] option key,
-/// relations_scored trans_mean_m trans_std_m trans_max_m rot_mean_deg rot_std_deg rot_max_deg success steps
-/// resamplings wall_s cpu_s peak_rss_mb commit host start_time error dir.
+/// relations_scored trans_mean_m trans_std_m trans_max_m rot_mean_deg rot_std_deg rot_max_deg trans_local_mean_m
+/// trans_revisit_mean_m success steps resamplings wall_s cpu_s peak_rss_mb commit host start_time error dir.
 std::vector<std::string> resultsColumns(const ExperimentPlan& plan);
 
 std::string resultsCsv(const ExperimentPlan& plan, const std::vector<RunRecord>& records);

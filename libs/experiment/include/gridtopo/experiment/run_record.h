@@ -23,6 +23,9 @@ struct RunRecord {
   std::size_t relations_scored = 0;
   double trans_mean = 0, trans_std = 0, trans_max = 0;  ///< m
   double rot_mean = 0, rot_std = 0, rot_max = 0;        ///< deg
+  /// m: the mean translational error over the local relations (|t2 - t1| <= 50 s) and over the revisits (> 50 s);
+  /// NaN when there are none (also in records written before these fields existed).
+  double trans_local_mean = 0, trans_revisit_mean = 0;
   std::size_t steps = 0, resamplings = 0;
   // Topology runs (topology = true): the options (section.key) and the scores (topology_scoring.h; NaN without a
   // plan, or when the run failed).

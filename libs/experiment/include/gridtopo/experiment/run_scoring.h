@@ -32,6 +32,7 @@ std::vector<eval::Relation> relationsWithin(const std::vector<eval::Relation>& r
 struct ErrorScores {
   std::size_t relations = 0;                ///< relations scored (0: no relations, no error figures)
   eval::ErrorStats translational, rotational;  ///< m, deg
+  eval::RelationsSplit local, revisit;  ///< the same over local / revisit relations (RelationsMetricOptions' span)
 };
 
 /// Scores trajectories; keeps each dataset's relations and odometry after the first use.

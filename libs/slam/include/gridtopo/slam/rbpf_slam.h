@@ -65,6 +65,15 @@ class RbpfSlam {
   /// A pose for every scan fed so far: processed scans from the best particle's path, the others from the
   /// neighbouring processed poses plus odometry (blended between the previous and the next processed scan).
   std::vector<TimedPose> trajectory() const;
+  /// The same interpolation through given poses of the processed scans (`processed[k]` for the k-th processed
+  /// scan, e.g. a pose graph's optimised poses) instead of the best particle's path.
+  std::vector<TimedPose> trajectoryThrough(const std::vector<Pose2>& processed) const;
+  /// The scan index of the k-th processed scan.
+  std::size_t processedScanIndex(std::size_t k) const { return stats_[k].scan_index; }
+  /// Continues from a corrected estimate (loop closure fed back): every particle's pose (and its newest
+  /// trajectory node) moved by `correction` (applied on the left: x ↦ correction ⊕ x) and its map replaced by
+  /// `map` (shared). Between processed scans only.
+  void applyCorrection(const Pose2& correction, const GridMap& map);
   std::size_t bestParticleIndex() const;
   const Particle& bestParticle() const { return particles_[bestParticleIndex()]; }
   const std::vector<Particle>& particles() const { return particles_; }

@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/option_schema.h"
 #include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/loop_closure_options.h"
 #include "gridtopo/slam/motion_model.h"
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/proposal.h"
@@ -41,8 +42,11 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   BeamOptions beams;
   ScanMatcherOptions matcher;
   ProposalOptions proposal;
+  /// The pose graph over the filter, in its own section [loop_closure] (loopClosureOptionSchema): the
+  /// section-taking methods below read and write it beside the filter's section.
+  LoopClosureOptions loop_closure;
 
-  /// Loads `section`; throws gridtopo::InputError(file, 0, "[section] key", reason) on invalid values.
+  /// Loads `section` and [loop_closure] (each key that is present); throws gridtopo::InputError(file, 0, "[section] key", reason) on invalid values.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
   void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   void dumpToTextStream(std::ostream& out) const override;

@@ -18,6 +18,9 @@ namespace gridtopo::slam {
 
 /// The processed scans along the path that ends at `leaf` (the best particle's), at its poses: MRPT's simple map.
 mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<ScanRecord>& scans);
+/// The scans `scan_indices` at `poses` (the loop closure's optimised poses): MRPT's simple map.
+mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses,
+                                   const std::vector<ScanRecord>& scans);
 
 /// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
 inline constexpr const char* kStatsColumns =

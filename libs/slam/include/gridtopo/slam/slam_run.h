@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gridtopo/core/scan_record.h"
+#include "gridtopo/slam/loop_closure.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/slam_options.h"
 #include "gridtopo/slam/slam_outputs.h"
@@ -45,8 +46,17 @@ class SlamRun {
   /// The scans this run feeds: min(max_scans, log size), or the scans appended so far by feed().
   std::size_t scanLimit() const { return limit_; }
   const std::vector<ScanRecord>& scans() const { return *scans_; }
-  /// Wall time spent in the filter (s), pauses excluded.
+  /// Wall time spent in the filter (s), pauses excluded (the loop closure's included).
   double filterSeconds() const { return filter_seconds_; }
+
+  /// The loop closure beside the filter ([loop_closure] enabled), or null.
+  const LoopCloser* loopCloser() const { return closer_.get(); }
+  /// The trajectory of every scan fed so far: through the pose graph's optimised poses with loop closure, else
+  /// the filter's (RbpfSlam::trajectory).
+  std::vector<TimedPose> trajectory() const;
+  /// The map of the result: with loop closure every processed scan inserted at its optimised pose, else the best
+  /// particle's map.
+  GridMap resultMap() const;
 
   /// The text of stats.txt: "# " kStatsColumns " rss_kb", then one row per processed scan with the process's
   /// resident memory (kB) right after that scan.
@@ -68,12 +78,17 @@ class SlamRun {
 
  private:
   bool feedNext();
+  /// The loop closure's step after a processed scan, and the feedback of a large correction into the filter.
+  void closeLoops(std::size_t index);
+  /// Every processed scan inserted into a new map at the pose graph's poses.
+  GridMap mapOfGraph() const;
   void requireFilter(const char* what) const;
 
   SlamOptions options_;
   std::shared_ptr<const std::vector<ScanRecord>> scans_;
   std::shared_ptr<std::vector<ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
   std::unique_ptr<RbpfSlam> filter_;
+  std::unique_ptr<LoopCloser> closer_;
   std::size_t limit_ = 0;
   std::size_t fed_ = 0;
   std::vector<std::size_t> rss_kb_;  ///< per processed scan

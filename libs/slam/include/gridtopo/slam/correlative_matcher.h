@@ -1,0 +1,84 @@
+#pragma once
+// Exhaustive scan-to-submap matching in a search window: the branch-and-bound search over a multi-resolution
+// grid of Hess, Kohler, Rapp, Andor, "Real-time loop closure in 2D LIDAR SLAM", ICRA 2016, sec. V-C (after the
+// correlative matching of Olson, "Real-time correlative scan matching", ICRA 2009). The submap's points become a
+// correlation grid (value exp(−d²/2σ²) at distance d from the nearest point, in [0, 1]); level h of its
+// precomputation stack holds, per cell, the maximum of the finest level over the 2^h × 2^h cells starting there,
+// so a candidate's score at level h bounds the scores of the 4^h finer candidates it covers. The result is the
+// best-scoring pose of the whole window on the finest level, then refined by hill climbing on the interpolated
+// grid.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "gridtopo/slam/pose2.h"
+
+namespace gridtopo::slam {
+
+struct Point2 {
+  double x = 0.0, y = 0.0;
+};
+
+class CorrelationGrid {
+ public:
+  /// The grid of `points` (in the submap's frame) with cell `resolution`, value width `sigma` and `depth` + 1
+  /// levels.
+  CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth);
+
+  double resolution() const { return res_; }
+  int depth() const { return depth_; }
+  /// Value in [0, 255] of level `h` at cell (cx, cy) of the finest lattice; 0 outside.
+  int value(int h, int cx, int cy) const {
+    const int x = cx + pad_, y = cy + pad_;
+    if (static_cast<unsigned>(x) >= static_cast<unsigned>(w_) || static_cast<unsigned>(y) >= static_cast<unsigned>(h_))
+      return 0;
+    return levels_[static_cast<std::size_t>(h)][static_cast<std::size_t>(y) * w_ + x];
+  }
+  /// The finest level interpolated bilinearly at a point of the submap's frame, in [0, 1].
+  double interpolated(double x, double y) const;
+  /// Cell of a coordinate on the finest lattice.
+  int cellX(double x) const { return floorInt((x - x0_) / res_); }
+  int cellY(double y) const { return floorInt((y - y0_) / res_); }
+  std::size_t bytes() const;
+
+ private:
+  static int floorInt(double v) {
+    const int i = static_cast<int>(v);
+    return i - (v < static_cast<double>(i));
+  }
+  double res_;
+  int depth_;
+  double x0_ = 0.0, y0_ = 0.0;  ///< submap-frame coordinates of the corner of finest cell (0, 0)
+  int pad_ = 0;                 ///< cells of margin on every side (2^depth)
+  int w_ = 0, h_ = 0;           ///< stored size, margins included
+  std::vector<std::vector<std::uint8_t>> levels_;
+};
+
+struct SearchWindow {
+  Pose2 center;        ///< the query's estimated pose in the grid's frame
+  double xy = 1.0;     ///< m, half-width in x and y
+  double theta = 0.1;  ///< rad, half-width in heading
+};
+
+struct CorrelativeMatch {
+  Pose2 pose;          ///< of the query in the grid's frame
+  double score = 0.0;  ///< mean value over the query's points, in [0, 1]
+};
+
+/// The best pose of `query` (points in its own frame) in `window` whose score is at least `min_score`, or
+/// nothing. With `exclude_center`, poses within `exclude_radius` (m) of it are not considered (the search for a
+/// second, distinct match). The angular step follows from the query's extent (Hess et al., eq. 7).
+std::optional<CorrelativeMatch> branchAndBoundSearch(const CorrelationGrid& grid, const std::vector<Point2>& query,
+                                                     const SearchWindow& window, double min_score,
+                                                     const Point2* exclude_center = nullptr,
+                                                     double exclude_radius = 0.0);
+
+/// Local refinement of a match: hill climbing on the interpolated grid from `start` (steps of half a cell and the
+/// given angular step, halved `refinements` times).
+CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,
+                             double theta_step, int refinements = 5);
+
+/// The mean interpolated grid value of `query` at pose `x`.
+double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x);
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,111 @@
+#pragma once
+// Loop closure beyond the filter: a pose graph over the best particle's processed poses (the approach of
+// graph-based 2D SLAM: Hess, Kohler, Rapp, Andor, "Real-time loop closure in 2D LIDAR SLAM", ICRA 2016; Konolige
+// et al.'s Karto). Run incrementally, in time order, beside the filter:
+//   1. addFilterMotion: a node per processed scan, joined to the previous node by the filter's own motion;
+//   2. searchForClosures: the newest scans (the query) are matched against older submaps (runs of consecutive
+//      scans) that the current estimate places inside a search window, which grows with the distance travelled
+//      since the last closure; an exhaustive branch-and-bound search (correlative_matcher.h), a minimum score, and
+//      a second search that refuses the match when a distinct pose scores nearly as well (look-alike corridors);
+//   3. optimizePoseGraph: Ceres with a Huber loss on the closures (pose_graph.h), every optimize_every scans
+//      while closures are pending;
+//   4. the correction of the newest pose, which the caller may feed back into the filter (SlamRun).
+// The final trajectory and map are rebuilt from the optimised poses.
+#include <cstddef>
+#include <list>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "gridtopo/slam/correlative_matcher.h"
+#include "gridtopo/slam/loop_closure_options.h"
+#include "gridtopo/slam/pose2.h"
+#include "gridtopo/slam/pose_graph.h"
+#include "gridtopo/slam/prepared_scan.h"
+
+namespace gridtopo::slam {
+
+/// One accepted closure (a line of stats.txt's closure table).
+struct LoopClosureRecord {
+  std::size_t node = 0;        ///< the newest node when found (processed-scan counter)
+  std::size_t scan_index = 0;  ///< its input scan index
+  double timestamp = 0.0;
+  std::size_t submap_node = 0;  ///< the submap's first node (the edge's other end)
+  double score = 0.0;           ///< mean correlation over the query's points
+  double second_score = 0.0;    ///< best distinct alternative (0: none above the threshold)
+  double window_xy = 0.0;       ///< m, the search's half-width
+  double offset_xy = 0.0;       ///< m, how far the match lies from the estimate it started from
+  double offset_theta = 0.0;    ///< rad
+  /// How far the optimisation that took it in moved the newest pose (m, rad); set at that optimisation.
+  double correction_xy = 0.0, correction_theta = 0.0;
+};
+
+/// What one step of the loop closure did.
+struct LoopClosureStep {
+  int searches = 0;        ///< submaps searched
+  int accepted = 0;        ///< closures added
+  int refused_ambiguous = 0;
+  bool optimized = false;
+  Pose2 newest_before, newest_after;  ///< the newest node before and after the optimisation
+  bool feedback = false;   ///< the correction is large enough to feed back into the filter
+};
+
+class LoopCloser {
+ public:
+  explicit LoopCloser(const LoopClosureOptions& options);
+
+  /// Adds the node of processed scan `scan_index`: the first at `filter_pose`, the others joined to the previous
+  /// node by `motion` (the filter's estimate of the motion since the previous processed scan, in its frame), then
+  /// searches for closures and optimises when due.
+  LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
+                          const PreparedScan& scan);
+  /// Optimises once more if closures were added since the last optimisation (at the end of a run).
+  void finish();
+
+  std::size_t nodes() const { return nodes_.size(); }
+  /// The optimised pose of every node, in processing order.
+  std::vector<Pose2> poses() const;
+  std::size_t scanIndexOf(std::size_t node) const { return nodes_[node].scan_index; }
+  const std::vector<LoopClosureRecord>& closures() const { return closures_; }
+  const PoseGraph& graph() const { return graph_; }
+  const LoopClosureOptions& options() const { return o_; }
+  /// Search and optimisation time so far (s).
+  double searchSeconds() const { return search_s_; }
+  double optimizeSeconds() const { return optimize_s_; }
+
+ private:
+  struct Node {
+    std::size_t scan_index;
+    double timestamp;
+    double travelled;             ///< m along the trajectory from the first node
+    std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
+  };
+  struct Submap {
+    std::size_t first, last;  ///< node range [first, last]
+  };
+
+  void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
+                       const PreparedScan& scan);
+  void searchForClosures(LoopClosureStep& step);
+  void optimizePoseGraph(LoopClosureStep& step);
+  std::vector<Point2> queryOf(std::size_t node) const;
+  const CorrelationGrid& gridOf(std::size_t submap);
+
+  LoopClosureOptions o_;
+  PoseGraph graph_;
+  std::vector<Node> nodes_;
+  std::vector<Submap> submaps_;
+  std::vector<LoopClosureRecord> closures_;
+  std::size_t pending_from_ = 0;        ///< closures_[pending_from_..] not yet optimised
+  std::size_t last_optimized_node_ = 0;
+  double travelled_at_closure_ = 0.0;
+  // Correlation grids, least recently used last.
+  std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
+  double search_s_ = 0.0, optimize_s_ = 0.0;
+};
+
+/// The text of the closures table of stats.txt ("# closures" header, one row per closure).
+std::string closuresText(const std::vector<LoopClosureRecord>& closures);
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,63 @@
+#pragma once
+// Every tunable of the loop closure (a pose graph over the filter's trajectory, loop_closure.h), loadable from
+// its own INI section [loop_closure] through one key table (loopClosureOptionSchema). `enabled = false` gives the
+// filter alone. config-ini/slam.ini documents each key.
+#include "gridtopo/core/option_schema.h"
+
+namespace gridtopo::slam {
+
+struct LoopClosureOptions;
+/// The key table of [loop_closure].
+const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema();
+
+struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSchema> {
+  static constexpr const char* kSection = "loop_closure";
+  bool enabled = true;  ///< false: the filter alone (its best particle's trajectory and map)
+
+  // Submaps and the query
+  int submap_nodes = 20;        ///< consecutive processed scans per submap
+  double point_range = 15.0;    ///< m, hits further from their scan's pose are not used for matching
+  int query_nodes = 5;          ///< the newest processed scans whose points, in the newest's frame, form the query
+  double query_voxel = 0.1;     ///< m, the query's points are thinned to one per voxel of this size
+  double resolution = 0.05;     ///< m, cell of the submaps' correlation grids
+  double field_sigma = 0.07;    ///< m, the grid's value falls as exp(−d²/2σ²) with the distance d to a hit
+  int depth = 7;                ///< levels of the branch-and-bound precomputation (the coarsest spans 2^depth cells)
+  int grid_cache = 12;          ///< correlation grids kept (least recently used dropped)
+
+  // When and where to search
+  int search_every = 2;         ///< search at every n-th processed scan
+  double min_travel = 15.0;     ///< m travelled since a submap's last scan before it is a candidate
+  int max_candidates = 3;       ///< submaps searched per search, nearest first
+  double window_xy_min = 1.0;   ///< m, search half-width right after a closure
+  double window_xy_per_m = 0.05;    ///< m of half-width per m travelled since the last closure
+  double window_xy_max = 8.0;       ///< m
+  double window_theta_min = 0.1;    ///< rad
+  double window_theta_per_m = 0.004;  ///< rad per m travelled since the last closure
+  double window_theta_max = 0.5;    ///< rad
+  double min_score = 0.55;      ///< mean grid value over the query's points a match must reach
+  /// A match is refused as ambiguous when a pose further than ambiguity_distance from it scores at least
+  /// ambiguity_ratio times its score (look-alike corridors, a corridor's own length).
+  double ambiguity_ratio = 0.93;
+  double ambiguity_distance = 0.6;  ///< m
+
+  // The pose graph
+  double loop_sigma_xy = 0.05;      ///< m, deviation of a closure's translation
+  double loop_sigma_theta = 0.01;   ///< rad
+  double odometry_sigma_xy = 0.01;  ///< m, floor of a filter motion edge's deviation (added to the proposal's)
+  double odometry_sigma_xy_per_m = 0.01;  ///< m per m of the motion
+  double odometry_sigma_theta = 0.002;    ///< rad, floor
+  double odometry_sigma_theta_per_rad = 0.01;  ///< rad per rad of rotation
+  double huber_scale = 3.0;     ///< closures' robust loss: Huber, in standard deviations
+  int optimize_every = 15;      ///< processed scans between optimisations (when a closure was added since)
+  int max_iterations = 30;      ///< solver iterations per optimisation
+
+  // Feeding back into the filter
+  /// After an optimisation that moves the newest pose by more than feedback_min_correction (m) or
+  /// feedback_min_rotation (rad), every particle continues from the optimised poses: its map rebuilt from the
+  /// graph, its pose moved by the same correction.
+  bool feedback = true;
+  double feedback_min_correction = 0.10;
+  double feedback_min_rotation = 0.02;
+};
+
+}  // namespace gridtopo::slam

@@ -1,0 +1,216 @@
+#include "gridtopo/slam/correlative_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+namespace gridtopo::slam {
+
+CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth)
+    : res_(resolution), depth_(std::max(0, depth)) {
+  pad_ = 1 << depth_;
+  double minx = 0.0, miny = 0.0, maxx = 0.0, maxy = 0.0;
+  if (!points.empty()) {
+    minx = maxx = points.front().x;
+    miny = maxy = points.front().y;
+    for (const Point2& p : points) {
+      minx = std::min(minx, p.x);
+      maxx = std::max(maxx, p.x);
+      miny = std::min(miny, p.y);
+      maxy = std::max(maxy, p.y);
+    }
+  }
+  // The value falls below 1/255 beyond about 3.3 sigma: that much margin around the points.
+  const int margin = static_cast<int>(std::ceil(3.5 * sigma / res_)) + 1;
+  x0_ = minx - margin * res_;
+  y0_ = miny - margin * res_;
+  const int w0 = static_cast<int>(std::ceil((maxx - minx) / res_)) + 2 * margin + 1;
+  const int h0 = static_cast<int>(std::ceil((maxy - miny) / res_)) + 2 * margin + 1;
+  // Distance of every cell to the nearest cell holding a point (OpenCV's exact Euclidean distance transform).
+  cv::Mat seeds(h0, w0, CV_8UC1, cv::Scalar(255));
+  for (const Point2& p : points) {
+    const int cx = cellX(p.x), cy = cellY(p.y);
+    if (cx >= 0 && cy >= 0 && cx < w0 && cy < h0) seeds.at<std::uint8_t>(cy, cx) = 0;
+  }
+  cv::Mat dist;
+  cv::distanceTransform(seeds, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  w_ = w0 + 2 * pad_;
+  h_ = h0 + 2 * pad_;
+  levels_.assign(static_cast<std::size_t>(depth_) + 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w_) * h_, 0));
+  std::vector<std::uint8_t>& base = levels_[0];
+  const double k = -0.5 * (res_ * res_) / (sigma * sigma);
+  for (int y = 0; y < h0; ++y) {
+    const float* d = dist.ptr<float>(y);
+    std::uint8_t* row = &base[static_cast<std::size_t>(y + pad_) * w_ + pad_];
+    for (int x = 0; x < w0; ++x) {
+      const double dd = static_cast<double>(d[x]);
+      row[x] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(k * dd * dd)));
+    }
+  }
+  // Level h: the maximum of level h−1 over the cell and its neighbours 2^(h−1) cells right, up, and both.
+  for (int h = 1; h <= depth_; ++h) {
+    const int s = 1 << (h - 1);
+    const std::vector<std::uint8_t>& prev = levels_[static_cast<std::size_t>(h) - 1];
+    std::vector<std::uint8_t>& cur = levels_[static_cast<std::size_t>(h)];
+    auto at = [&](int x, int y) -> std::uint8_t {
+      return (x < w_ && y < h_) ? prev[static_cast<std::size_t>(y) * w_ + x] : 0;
+    };
+    for (int y = 0; y < h_; ++y)
+      for (int x = 0; x < w_; ++x)
+        cur[static_cast<std::size_t>(y) * w_ + x] = std::max(std::max(at(x, y), at(x + s, y)),
+                                                             std::max(at(x, y + s), at(x + s, y + s)));
+  }
+}
+
+double CorrelationGrid::interpolated(double x, double y) const {
+  const double gx = (x - x0_) / res_ - 0.5, gy = (y - y0_) / res_ - 0.5;
+  const int ix = floorInt(gx), iy = floorInt(gy);
+  const double fx = gx - ix, fy = gy - iy;
+  const double v00 = value(0, ix, iy), v10 = value(0, ix + 1, iy), v01 = value(0, ix, iy + 1),
+               v11 = value(0, ix + 1, iy + 1);
+  return ((1 - fy) * ((1 - fx) * v00 + fx * v10) + fy * ((1 - fx) * v01 + fx * v11)) / 255.0;
+}
+
+std::size_t CorrelationGrid::bytes() const {
+  std::size_t b = sizeof(*this);
+  for (const auto& l : levels_) b += l.capacity();
+  return b;
+}
+
+double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x) {
+  if (query.empty()) return 0.0;
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  double sum = 0.0;
+  for (const Point2& q : query) sum += grid.interpolated(x.x + c * q.x - s * q.y, x.y + s * q.x + c * q.y);
+  return sum / static_cast<double>(query.size());
+}
+
+CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,
+                             double theta_step, int refinements) {
+  CorrelativeMatch best{start, correlationScore(grid, query, start)};
+  double sxy = 0.5 * grid.resolution(), st = 0.5 * theta_step;
+  for (int level = 0; level <= refinements; ++level) {
+    for (int it = 0; it < 50; ++it) {
+      const Pose2 moves[6] = {{sxy, 0, 0}, {-sxy, 0, 0}, {0, sxy, 0}, {0, -sxy, 0}, {0, 0, st}, {0, 0, -st}};
+      CorrelativeMatch next = best;
+      for (const Pose2& m : moves) {
+        const Pose2 p{best.pose.x + m.x, best.pose.y + m.y, wrapAngle(best.pose.theta + m.theta)};
+        const double sc = correlationScore(grid, query, p);
+        if (sc > next.score) next = {p, sc};
+      }
+      if (next.score <= best.score) break;
+      best = next;
+    }
+    sxy *= 0.5;
+    st *= 0.5;
+  }
+  return best;
+}
+
+namespace {
+
+struct Candidate {
+  int angle;   // index into the rotated queries
+  int ox, oy;  // offset in cells
+  long score;  // sum of grid values over the query's points
+};
+
+struct Search {
+  const CorrelationGrid& grid;
+  const std::vector<std::vector<int>>& cells;  // per angle: x0, y0, x1, y1, ... (finest cells at offset 0)
+  int wx;                                      // window half-width in cells
+  const Point2* exclude;
+  double exclude_radius;
+  double cx, cy;  // window centre (m, grid frame)
+  Candidate best;
+
+  long score(int h, int angle, int ox, int oy) const {
+    const std::vector<int>& c = cells[static_cast<std::size_t>(angle)];
+    long s = 0;
+    for (std::size_t i = 0; i < c.size(); i += 2) s += grid.value(h, c[i] + ox, c[i + 1] + oy);
+    return s;
+  }
+  /// Every offset a candidate of level h covers lies within the excluded disc.
+  bool whollyExcluded(int h, int ox, int oy) const {
+    if (!exclude) return false;
+    const double r = grid.resolution();
+    const int span = (1 << h) - 1;
+    for (int dx : {0, span})
+      for (int dy : {0, span})
+        if (std::hypot(cx + (ox + dx) * r - exclude->x, cy + (oy + dy) * r - exclude->y) >= exclude_radius)
+          return false;
+    return true;
+  }
+  void descend(std::vector<Candidate>& list, int h) {
+    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.score != b.score) return a.score > b.score;
+      if (a.angle != b.angle) return a.angle < b.angle;  // a total order: the result does not depend on sort details
+      if (a.ox != b.ox) return a.ox < b.ox;
+      return a.oy < b.oy;
+    });
+    for (const Candidate& c : list) {
+      if (c.score <= best.score) break;
+      if (whollyExcluded(h, c.ox, c.oy)) continue;
+      if (h == 0) {
+        best = c;
+        break;  // the list is sorted: the rest score less
+      }
+      const int s = 1 << (h - 1);
+      std::vector<Candidate> children;
+      children.reserve(4);
+      for (int dy : {0, s})
+        for (int dx : {0, s}) {
+          const int ox = c.ox + dx, oy = c.oy + dy;
+          if (ox > wx || oy > wx) continue;
+          children.push_back({c.angle, ox, oy, score(h - 1, c.angle, ox, oy)});
+        }
+      descend(children, h - 1);
+    }
+  }
+};
+
+}  // namespace
+
+std::optional<CorrelativeMatch> branchAndBoundSearch(const CorrelationGrid& grid, const std::vector<Point2>& query,
+                                                     const SearchWindow& window, double min_score,
+                                                     const Point2* exclude_center, double exclude_radius) {
+  if (query.empty()) return std::nullopt;
+  const double r = grid.resolution();
+  double d_max = r;
+  for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
+  // Hess et al. eq. 7: the angular step moves the furthest point by about one cell.
+  const double dtheta = std::acos(std::max(-1.0, 1.0 - r * r / (2.0 * d_max * d_max)));
+  const int n_theta = static_cast<int>(std::ceil(window.theta / dtheta));
+  const int wx = static_cast<int>(std::ceil(window.xy / r));
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(2 * n_theta + 1));
+  for (int k = -n_theta; k <= n_theta; ++k) {
+    const double th = window.center.theta + k * dtheta;
+    const double c = std::cos(th), s = std::sin(th);
+    std::vector<int>& out = cells[static_cast<std::size_t>(k + n_theta)];
+    out.reserve(2 * query.size());
+    for (const Point2& q : query) {
+      out.push_back(grid.cellX(window.center.x + c * q.x - s * q.y));
+      out.push_back(grid.cellY(window.center.y + s * q.x + c * q.y));
+    }
+  }
+  const long n = static_cast<long>(query.size());
+  const long threshold = static_cast<long>(std::ceil(min_score * 255.0 * static_cast<double>(n)));
+  Search search{grid, cells, wx, exclude_center, exclude_radius, window.center.x, window.center.y,
+                Candidate{-1, 0, 0, threshold - 1}};
+  const int H = grid.depth();
+  const int step = 1 << H;
+  std::vector<Candidate> top;
+  for (int a = 0; a < static_cast<int>(cells.size()); ++a)
+    for (int oy = -wx; oy <= wx; oy += step)
+      for (int ox = -wx; ox <= wx; ox += step) top.push_back({a, ox, oy, search.score(H, a, ox, oy)});
+  search.descend(top, H);
+  if (search.best.angle < 0) return std::nullopt;
+  CorrelativeMatch m;
+  m.pose = {window.center.x + search.best.ox * r, window.center.y + search.best.oy * r,
+            wrapAngle(window.center.theta + (search.best.angle - n_theta) * dtheta)};
+  m.score = static_cast<double>(search.best.score) / (255.0 * static_cast<double>(n));
+  return m;
+}
+
+}  // namespace gridtopo::slam

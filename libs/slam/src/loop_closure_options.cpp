@@ -1,0 +1,49 @@
+#include "gridtopo/slam/loop_closure_options.h"
+
+namespace gridtopo::slam {
+
+const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
+  using O = LoopClosureOptions;
+  using R = OptionRange;
+  static const OptionSchema<O> schema =
+      OptionSchema<O>("gridtopo::slam::LoopClosureOptions")
+          .add("enabled", &O::enabled, R::any(), "", "pose graph with loop closures over the filter (false: the filter alone)")
+          .add("submap_nodes", &O::submap_nodes, R::closed(1, 1000), "", "processed scans per submap")
+          .add("point_range", &O::point_range, R::above(0), "m", "hits further from their scan are not matched")
+          .add("query_nodes", &O::query_nodes, R::closed(1, 100), "", "newest processed scans that form the query")
+          .add("query_voxel", &O::query_voxel, R::above(0), "m", "the query is thinned to a point per voxel")
+          .add("resolution", &O::resolution, R::closed(0.005, 1), "m", "cell of the correlation grids")
+          .add("field_sigma", &O::field_sigma, R::above(0), "m", "width of the grid's value around a hit")
+          .add("depth", &O::depth, R::closed(0, 12), "", "branch-and-bound levels (coarsest: 2^depth cells)")
+          .add("grid_cache", &O::grid_cache, R::closed(1, 10000), "", "correlation grids kept in memory")
+          .add("search_every", &O::search_every, R::closed(1, 100000), "", "search at every n-th processed scan")
+          .add("min_travel", &O::min_travel, R::atLeast(0), "m", "travel since a submap before it is searched")
+          .add("max_candidates", &O::max_candidates, R::closed(1, 1000), "", "submaps searched per search")
+          .add("window_xy_min", &O::window_xy_min, R::atLeast(0), "m", "search half-width after a closure")
+          .add("window_xy_per_m", &O::window_xy_per_m, R::atLeast(0), "m/m", "its growth per metre travelled")
+          .add("window_xy_max", &O::window_xy_max, R::atLeast(0), "m", "its largest value")
+          .add("window_theta_min", &O::window_theta_min, R::closed(0, 3.14), "rad", "heading half-width after a closure")
+          .add("window_theta_per_m", &O::window_theta_per_m, R::atLeast(0), "rad/m", "its growth per metre")
+          .add("window_theta_max", &O::window_theta_max, R::closed(0, 3.14), "rad", "its largest value")
+          .add("min_score", &O::min_score, R::closed(0, 1), "", "a match's mean grid value must reach this")
+          .add("ambiguity_ratio", &O::ambiguity_ratio, R::leftOpen(0, 1), "",
+               "refuse a match when another pose scores this fraction of it (1: never refuse)")
+          .add("ambiguity_distance", &O::ambiguity_distance, R::above(0), "m", "how far that other pose must be")
+          .add("loop_sigma_xy", &O::loop_sigma_xy, R::above(0), "m", "deviation of a closure's translation")
+          .add("loop_sigma_theta", &O::loop_sigma_theta, R::above(0), "rad", "deviation of a closure's heading")
+          .add("odometry_sigma_xy", &O::odometry_sigma_xy, R::above(0), "m", "floor of a motion edge's deviation")
+          .add("odometry_sigma_xy_per_m", &O::odometry_sigma_xy_per_m, R::atLeast(0), "m/m", "its growth with the motion")
+          .add("odometry_sigma_theta", &O::odometry_sigma_theta, R::above(0), "rad", "heading floor")
+          .add("odometry_sigma_theta_per_rad", &O::odometry_sigma_theta_per_rad, R::atLeast(0), "rad/rad",
+               "its growth with the rotation")
+          .add("huber_scale", &O::huber_scale, R::above(0), "sigma", "closures' Huber loss scale")
+          .add("optimize_every", &O::optimize_every, R::closed(1, 1000000), "", "processed scans between optimisations")
+          .add("max_iterations", &O::max_iterations, R::closed(1, 10000), "", "solver iterations per optimisation")
+          .add("feedback", &O::feedback, R::any(), "", "the particles continue from the optimised poses and map")
+          .add("feedback_min_correction", &O::feedback_min_correction, R::atLeast(0), "m",
+               "feed back only corrections larger than this")
+          .add("feedback_min_rotation", &O::feedback_min_rotation, R::atLeast(0), "rad", "... or this rotation");
+  return schema;
+}
+
+}  // namespace gridtopo::slam
