@@ -42,9 +42,9 @@ Point2 transform(const Pose2& t, const Point2& p) {
 LoopCloser::LoopCloser(const LoopClosureOptions& options) : o_(options) { o_.validate(); }
 
 LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
-                                    const Pose2& motion, const PreparedScan& scan) {
+                                    const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
   LoopClosureStep step;
-  addFilterMotion(scan_index, timestamp, filter_pose, motion, scan);
+  addFilterMotion(scan_index, timestamp, filter_pose, motion, odometry, scan);
   const std::size_t i = nodes_.size() - 1;
   step.newest_before = step.newest_after = graph_.pose(i);
   if (i % static_cast<std::size_t>(o_.search_every) == 0) searchForClosures(step);
@@ -69,7 +69,7 @@ std::vector<Pose2> LoopCloser::poses() const {
 }
 
 void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
-                                 const Pose2& motion, const PreparedScan& scan) {
+                                 const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
   Node n;
   n.scan_index = scan_index;
   n.timestamp = timestamp;
@@ -86,15 +86,21 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   n.points.shrink_to_fit();
   if (nodes_.empty()) {
     graph_.addNode(filter_pose);
+    dead_reckoned_ = filter_pose;
   } else {
     const std::size_t prev = nodes_.size() - 1;
     graph_.addNode(compose(graph_.pose(prev), motion));
+    dead_reckoned_ = compose(dead_reckoned_, odometry ? *odometry : motion);
     PoseGraphEdge e;
     e.a = prev;
     e.b = prev + 1;
     e.z = motion;
-    const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * dist;
-    const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta);
+    // The disagreement with the odometry adds to the deviation: a filter that followed something moving with the
+    // robot (or an odometry that slipped) leaves an edge a closure can bend.
+    const double dxy = odometry ? std::hypot(motion.x - odometry->x, motion.y - odometry->y) : 0.0;
+    const double dth = odometry ? std::abs(wrapAngle(motion.theta - odometry->theta)) : 0.0;
+    const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * dist + dxy;
+    const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + dth;
     e.sqrt_information = sqrtInformationOfSigmas(sxy, sxy, st);
     graph_.addEdge(e);
   }
@@ -147,8 +153,11 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const Node& cur = nodes_[i];
   const Pose2& x = graph_.pose(i);
   const double since = cur.travelled - travelled_at_closure_;
-  const double wxy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * since);
-  const double wth = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * since);
+  // The window grows with the travel since the last closure and covers the odometry's dead reckoning from there.
+  const double off_xy = std::hypot(dead_reckoned_.x - x.x, dead_reckoned_.y - x.y);
+  const double off_th = std::abs(wrapAngle(dead_reckoned_.theta - x.theta));
+  const double wxy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * since + off_xy);
+  const double wth = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * since + off_th);
   // Candidates: complete submaps left at least min_travel ago, one of whose poses lies within the window (plus
   // the reach of a view) of the current estimate; nearest first.
   const double reach = wxy + 0.5 * o_.point_range;
@@ -222,6 +231,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     closures_.push_back(rec);
     ++step.accepted;
     travelled_at_closure_ = cur.travelled;
+    dead_reckoned_ = compose(graph_.pose(sm.first), m.pose);
   }
   search_s_ += secondsSince(t0);
 }

@@ -1,6 +1,7 @@
 #include "gridtopo/slam/slam_run.h"
 
 #include <chrono>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -57,8 +58,18 @@ bool SlamRun::feedNext() {
 void SlamRun::closeLoops(std::size_t index) {
   const TrajectoryNodePtr& node = filter_->bestParticle().node;
   const Pose2 motion = node->parent ? relative(node->parent->estimate, node->estimate) : Pose2{};
-  const PreparedScan scan = prepareScan((*scans_)[index].scan, options_.beams, options_.resolution);
-  const LoopClosureStep step = closer_->addScan(index, (*scans_)[index].scan.timestamp, node->estimate, motion, scan);
+  const ScanRecord& record = (*scans_)[index];
+  const PreparedScan scan = prepareScan(record.scan, options_.beams, options_.resolution);
+  // The odometry over the same step (from the previous processed scan), when both scans carry it.
+  std::optional<Pose2> odometry;
+  if (node->parent) {
+    const ScanRecord& before = (*scans_)[node->parent->scan_index];
+    if (record.has_odometry && before.has_odometry)
+      odometry = relative({before.odometry.x, before.odometry.y, before.odometry.phi},
+                          {record.odometry.x, record.odometry.y, record.odometry.phi});
+  }
+  const LoopClosureStep step = closer_->addScan(index, record.scan.timestamp, node->estimate, motion,
+                                                odometry ? &*odometry : nullptr, scan);
   if (!step.feedback) return;
   // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
   // particle's estimate to the optimised pose, in the map of the optimised poses.

@@ -57,9 +57,11 @@ class LoopCloser {
 
   /// Adds the node of processed scan `scan_index`: the first at `filter_pose`, the others joined to the previous
   /// node by `motion` (the filter's estimate of the motion since the previous processed scan, in its frame), then
-  /// searches for closures and optimises when due.
+  /// searches for closures and optimises when due. `odometry` is the odometry's motion over the same step (null
+  /// without odometry): where the filter and the odometry disagree, one of them is wrong, so the motion edge is
+  /// that much weaker and the search window that much wider.
   LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
-                          const PreparedScan& scan);
+                          const Pose2* odometry, const PreparedScan& scan);
   /// Optimises once more if closures were added since the last optimisation (at the end of a run).
   void finish();
 
@@ -86,7 +88,7 @@ class LoopCloser {
   };
 
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
-                       const PreparedScan& scan);
+                       const Pose2* odometry, const PreparedScan& scan);
   void searchForClosures(LoopClosureStep& step);
   void optimizePoseGraph(LoopClosureStep& step);
   std::vector<Point2> queryOf(std::size_t node) const;
@@ -100,6 +102,9 @@ class LoopCloser {
   std::size_t pending_from_ = 0;        ///< closures_[pending_from_..] not yet optimised
   std::size_t last_optimized_node_ = 0;
   double travelled_at_closure_ = 0.0;
+  /// The newest pose dead-reckoned with the odometry (the filter's motion where there is none) from the pose of
+  /// the last closure: how far it lies from the estimate widens the search window.
+  Pose2 dead_reckoned_;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
   double search_s_ = 0.0, optimize_s_ = 0.0;

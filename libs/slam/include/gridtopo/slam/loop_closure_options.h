@@ -26,7 +26,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
 
   // When and where to search
   int search_every = 2;         ///< search at every n-th processed scan
-  double min_travel = 15.0;     ///< m travelled since a submap's last scan before it is a candidate
+  double min_travel = 5.0;      ///< m travelled since a submap's last scan before it is a candidate
   int max_candidates = 3;       ///< submaps searched per search, nearest first
   double window_xy_min = 1.0;   ///< m, search half-width right after a closure
   double window_xy_per_m = 0.05;    ///< m of half-width per m travelled since the last closure
