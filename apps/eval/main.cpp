@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
         cmd);
     TCLAP::ValueArg<double> max_gap("", "max-gap", "seconds: nearer estimated poses are used as they are [0.1]",
                                     false, 0.1, "s", cmd);
+    TCLAP::ValueArg<double> revisit_span("", "revisit-span", "seconds: relations with |t2 - t1| over this are "
+                                         "revisits, the others local (errors of each) [50]", false, 50.0, "s", cmd);
     TCLAP::ValueArg<std::string> config("c", "config", "INI file with a [relations_metric] section (config-ini/eval.ini)",
                                         false, "", "file", cmd);
     TCLAP::ValueArg<std::string> json("j", "json", "write the result as JSON to this file", false, "", "file", cmd);
@@ -69,7 +71,8 @@ int main(int argc, char** argv) {
     spec.read.skip_bad_lines = skip_bad.getValue();
     eval::configureRelationsRun(spec, given(config), {odometry.isSet() ? odometry.getValue() : "", gfs_match.getValue(),
                                                       gfs_pose.getValue(), interpolate.getValue(),
-                                                      interpolate_estimate.getValue(), given(max_gap)});
+                                                      interpolate_estimate.getValue(), given(max_gap),
+                                                      given(revisit_span)});
 
     const eval::RelationsRun scored = eval::runRelations(spec, std::cerr);
     std::cout << eval::relationsRunText(scored);

@@ -5,10 +5,36 @@
 #include <wx/propgrid/propgrid.h>
 
 namespace gridtopo::gui {
+namespace {
+
+// wxPropertyGridManager with its description box (wxPG_DESCRIPTION), without wx 3.2's warning at its first size
+// event: there OnResize creates the box (RecreateControls) while the manager's width is still the "not sized yet"
+// value -12345 that Init2 sets, and sizes the box's caption to that width - 6, which makes GTK print
+// "Gtk-CRITICAL: gtk_widget_set_size_request: assertion 'width >= -1' failed" (once per manager: twice at start,
+// for the SLAM and the topology options). This handler runs before OnResize (dynamic handlers come first): it gives
+// the manager its real width and creates the box itself, then lets OnResize lay everything out as usual.
+class DescribedGridManager : public wxPropertyGridManager {
+ public:
+  DescribedGridManager(wxWindow* parent, long style) {
+    Bind(wxEVT_SIZE, &DescribedGridManager::onFirstSize, this);  // before Create, which sends the first size event
+    Create(parent, wxID_ANY, wxDefaultPosition, wxDefaultSize, style | wxPG_DESCRIPTION);
+  }
+
+ private:
+  static constexpr int kNotSized = -12345;  // wxPropertyGridManager::Init2's m_width until the first OnResize
+  void onFirstSize(wxSizeEvent& e) {
+    if (m_width == kNotSized) {
+      m_width = GetClientSize().x;  // what the box is laid out with before RecalculatePositions sets it
+      RecreateControls();           // as OnResize would (it skips it now that m_width is set)
+    }
+    e.Skip();  // OnResize
+  }
+};
+
+}  // namespace
 
 OptionGrid::OptionGrid(wxWindow* parent, Hooks hooks) : wxPanel(parent), hooks_(std::move(hooks)) {
-  grid_ = new wxPropertyGridManager(this, wxID_ANY, wxDefaultPosition, wxDefaultSize,
-                                    wxPG_SPLITTER_AUTO_CENTER | wxPG_DESCRIPTION);
+  grid_ = new DescribedGridManager(this, wxPG_SPLITTER_AUTO_CENTER);
   auto* apply = new wxButton(this, wxID_APPLY, "Apply");
   auto* defaults = new wxButton(this, wxID_ANY, "Defaults");
   auto* save = new wxButton(this, wxID_SAVEAS, "Save INI...");

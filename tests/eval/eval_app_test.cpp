@@ -40,6 +40,10 @@ TEST(EvalApp, GmappingReferenceWithJson) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("translational error:   0.0606 ± 0.0778 m"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("rotational error:      2.387 ± 3.297 deg"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\nlocal (|t2-t1| <= 50 s): 0.0589 m (n=1773), 2.47 deg; revisits (> 50 s): 0.0631 m "
+                          "(n=1211), 2.27 deg\n"),
+            std::string::npos)
+      << r.output;
   const std::string j = slurp(json);
   EXPECT_NE(j.find("\"translational_m\": {\"mean\": 0.0606"), std::string::npos) << j;
   EXPECT_NE(j.find("\"count\": 2984"), std::string::npos);
@@ -64,6 +68,28 @@ TEST(EvalApp, ShuffledTrajectoryFileEqualsBaseline) {
   EXPECT_NE(b.output.find("translational error:   7.3702 ± 14.3515 m"), std::string::npos) << b.output;
   const std::string e = slurp(errors);
   EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 2985);
+}
+
+TEST(EvalApp, LocalAndRevisitSplitWithTheRevisitSpanFlagAndJson) {
+  const fs::path rel = tmp("split.relations"), traj = tmp("split_traj.txt"), json = tmp("split.json");
+  // Two local relations (10 s) with 0.1 and 0.3 m error, one revisit (100 s) with 2 m error.
+  std::ofstream(rel) << "0 10 1.1 0 0 0 0 0\n10 0 -1.3 0 0 0 0 0\n0 100 0 2 0 0 0 0\n";
+  std::ofstream(traj) << "0 0 0 0\n10 1 0 0\n100 0 0 0\n";
+  auto r = run("-r " + rel.string() + " -t " + traj.string() + " --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("local (|t2-t1| <= 50 s): 0.2000 m (n=2), 0.00 deg; revisits (> 50 s): 2.0000 m (n=1)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(slurp(json).find("\"revisit_span_s\": 50,"), std::string::npos);
+  r = run("-r " + rel.string() + " -t " + traj.string() + " --revisit-span 200 --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("local (|t2-t1| <= 200 s): 0.8000 m (n=3), 0.00 deg; revisits (> 200 s): none (n=0)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(slurp(json).find("\"revisit_span_s\": 200,"), std::string::npos);
+  r = run("-r " + rel.string() + " -t " + traj.string() + " --revisit-span 0");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--revisit-span must be > 0"), std::string::npos) << r.output;
 }
 
 TEST(EvalApp, BadInputGivesFileLineFieldAndNonZeroExit) {

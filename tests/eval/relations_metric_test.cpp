@@ -195,6 +195,97 @@ TEST(RelationsMetric, NearestPoseTieAndDuplicates) {
   EXPECT_NEAR(look.poseAt(7.0).gap, 6.0, 1e-12);
 }
 
+namespace {
+// Four estimated poses on a line; three relations with known errors: two local ones (|t2 - t1| = 10 s; the second
+// with t2 < t1) of 0.1 m / 1 deg and 0.3 m / 3 deg, one revisit (100 s apart: the robot is back at its start) of
+// 2.0 m / 20 deg.
+struct SplitCase {
+  std::vector<TimedPose> est = {{0.0, {0, 0, 0}}, {10.0, {1, 0, 0}}, {20.0, {2, 0, 0}}, {100.0, {0, 0, 0}}};
+  std::vector<Relation> rel;
+  SplitCase() {
+    const double deg = M_PI / 180.0;
+    rel.push_back({0.0, 10.0, {1.1, 0, 1 * deg}, 1});     // estimated delta (1, 0, 0): 0.1 m, 1 deg
+    rel.push_back({20.0, 10.0, {-1.3, 0, -3 * deg}, 2});  // estimated delta (-1, 0, 0): 0.3 m, 3 deg
+    rel.push_back({0.0, 100.0, {0, 2.0, 20 * deg}, 3});   // estimated delta (0, 0, 0): 2.0 m, 20 deg
+  }
+};
+}  // namespace
+
+TEST(RelationsMetric, SplitsLocalAndRevisitRelationsByTheirTimeSpan) {
+  const SplitCase c;
+  const auto r = evaluateRelations(c.est, c.rel, nullptr);  // default span: 50 s
+  EXPECT_EQ(r.revisit_span, 50.0);
+  ASSERT_EQ(r.local.translational.count, 2u);
+  EXPECT_EQ(r.local.rotational.count, 2u);
+  EXPECT_NEAR(r.local.translational.mean, 0.2, 1e-12);
+  EXPECT_NEAR(r.local.translational.std, std::sqrt(0.02), 1e-12);  // sample std of {0.1, 0.3}
+  EXPECT_NEAR(r.local.translational.min, 0.1, 1e-12);
+  EXPECT_NEAR(r.local.translational.max, 0.3, 1e-12);
+  EXPECT_NEAR(r.local.rotational.mean, 2.0, 1e-9);  // deg
+  EXPECT_NEAR(r.local.rotational.max, 3.0, 1e-9);
+  ASSERT_EQ(r.revisit.translational.count, 1u);
+  EXPECT_EQ(r.revisit.rotational.count, 1u);
+  EXPECT_NEAR(r.revisit.translational.mean, 2.0, 1e-12);
+  EXPECT_EQ(r.revisit.translational.std, 0.0);
+  EXPECT_NEAR(r.revisit.rotational.mean, 20.0, 1e-9);
+  // The totals are over all three, as before.
+  EXPECT_EQ(r.translational.count, 3u);
+  EXPECT_NEAR(r.translational.mean, 0.8, 1e-12);
+  EXPECT_NEAR(r.rotational.mean, 8.0, 1e-9);
+}
+
+TEST(RelationsMetric, RevisitSpanMovesRelationsBetweenLocalAndRevisit) {
+  const SplitCase c;
+  RelationsMetricOptions o;
+  const auto totals = evaluateRelations(c.est, c.rel, nullptr, o);
+  o.revisit_span = 5.0;  // every relation is longer: all revisits
+  const auto all_revisits = evaluateRelations(c.est, c.rel, nullptr, o);
+  EXPECT_EQ(all_revisits.revisit_span, 5.0);
+  EXPECT_EQ(all_revisits.local.translational.count, 0u);
+  EXPECT_EQ(all_revisits.local.translational.mean, 0.0);
+  EXPECT_EQ(all_revisits.revisit.translational.count, 3u);
+  EXPECT_NEAR(all_revisits.revisit.translational.mean, 0.8, 1e-12);
+  EXPECT_NEAR(all_revisits.revisit.rotational.mean, 8.0, 1e-9);
+  o.revisit_span = 100.0;  // |t2 - t1| = 100 is not more than the span: local (the bound belongs to local)
+  const auto all_local = evaluateRelations(c.est, c.rel, nullptr, o);
+  EXPECT_EQ(all_local.local.translational.count, 3u);
+  EXPECT_NEAR(all_local.local.translational.mean, 0.8, 1e-12);
+  EXPECT_EQ(all_local.revisit.translational.count, 0u);
+  o.revisit_span = 99.999;
+  const auto just_below = evaluateRelations(c.est, c.rel, nullptr, o);
+  EXPECT_EQ(just_below.local.translational.count, 2u);
+  EXPECT_EQ(just_below.revisit.translational.count, 1u);
+  // The span changes the split only: totals and per-relation errors stay the same.
+  for (const auto* x : {&all_revisits, &all_local, &just_below}) {
+    EXPECT_EQ(x->translational.mean, totals.translational.mean);
+    EXPECT_EQ(x->rotational_squared.mean, totals.rotational_squared.mean);
+    ASSERT_EQ(x->errors.size(), totals.errors.size());
+    for (std::size_t i = 0; i < x->errors.size(); ++i)
+      EXPECT_EQ(x->errors[i].translational, totals.errors[i].translational);
+  }
+}
+
+TEST(RelationsMetric, RevisitSpanFromIniMustBePositive) {
+  RelationsMetricOptions o;
+  EXPECT_EQ(o.revisit_span, 50.0);
+  const auto load = [](RelationsMetricOptions& x, const std::string& text) {
+    x.loadFromConfigFile(mrpt::config::CConfigFileMemory("[relations_metric]\n" + text), "relations_metric");
+  };
+  load(o, "revisit_span = 12.5\n");
+  EXPECT_EQ(o.revisit_span, 12.5);
+  load(o, "max_time_gap = 0.2\n");
+  EXPECT_EQ(o.revisit_span, 12.5);  // a missing key keeps its value
+  for (const char* bad : {"0", "-3", "abc"}) {
+    try {
+      RelationsMetricOptions b;
+      load(b, std::string("revisit_span = ") + bad + "\n");
+      ADD_FAILURE() << "revisit_span = " << bad << " accepted";
+    } catch (const gridtopo::InputError& e) {
+      EXPECT_EQ(e.field(), "[relations_metric] revisit_span") << e.what();
+    }
+  }
+}
+
 TEST(RelationsMetric, EmptyInputsAreErrors) {
   std::vector<Relation> rel = {{0.0, 1.0, {1, 0, 0}, 1}};
   EXPECT_THROW(evaluateRelations({}, rel, nullptr), std::invalid_argument);

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "common/scratch.h"
@@ -59,6 +61,65 @@ TEST(RelationsRun, FlagsOverrideTheIniAndNameTheBadOne) {
   EXPECT_EQ(usage(b), "--max-gap must be >= 0");
   b = {}, b.gfs_pose = "head";
   EXPECT_EQ(usage(b), "--gfs-pose must be robot or laser");
+}
+
+TEST(RelationsRun, RevisitSpanFlagOverridesTheIniAndMustBePositive) {
+  RelationsRunSpec s;
+  s.metric.revisit_span = 30.0;  // as from an INI
+  applyRelationsFlags(s, {});
+  EXPECT_EQ(s.metric.revisit_span, 30.0);
+  RelationsFlags f;
+  f.revisit_span = 7.5;
+  applyRelationsFlags(s, f);
+  EXPECT_EQ(s.metric.revisit_span, 7.5);
+  for (const double bad : {0.0, -1.0, std::nan("")}) {
+    f.revisit_span = bad;
+    try {
+      applyRelationsFlags(s, f);
+      ADD_FAILURE() << "--revisit-span " << bad << " accepted";
+    } catch (const UsageError& e) {
+      EXPECT_EQ(std::string(e.what()), "--revisit-span must be > 0");
+    }
+  }
+  EXPECT_EQ(s.metric.revisit_span, 7.5);
+}
+
+TEST(RelationsRun, TextAndJsonSplitLocalAndRevisitRelations) {
+  const auto d = test::scratch("relations_run_split");
+  const std::string rel = (d / "rel.txt").string(), traj = (d / "traj.txt").string();
+  // Poses at t = 0, 10 and 100 (back at the start). Two local relations (10 s) with 0.1 and 0.3 m error, one
+  // revisit (100 s) with 2 m error.
+  std::ofstream(rel) << "0 10 1.1 0 0 0 0 0\n10 0 -1.3 0 0 0 0 0\n0 100 0 2 0 0 0 0\n";
+  std::ofstream(traj) << "0 0 0 0\n10 1 0 0\n100 0 0 0\n";
+  RelationsRunSpec s;
+  s.relations = rel, s.trajectory = traj;
+  std::ostringstream log;
+  RelationsRun run = runRelations(s, log);
+  EXPECT_NEAR(run.result.local.translational.mean, 0.2, 1e-12);
+  EXPECT_NEAR(run.result.revisit.translational.mean, 2.0, 1e-12);
+  std::string text = relationsRunText(run);
+  EXPECT_NE(text.find("\nlocal (|t2-t1| <= 50 s): 0.2000 m (n=2), 0.00 deg; revisits (> 50 s): 2.0000 m (n=1), "
+                      "0.00 deg\n"),
+            std::string::npos)
+      << text;
+  OutputSet out;
+  stageRelationsOutputs(out, run, (d / "split.json").string(), "");
+  out.commit();
+  std::ifstream jf(d / "split.json");
+  const std::string json((std::istreambuf_iterator<char>(jf)), {});
+  EXPECT_NE(json.find("  \"revisit_span_s\": 50,\n"), std::string::npos) << json;
+  EXPECT_NE(json.find("  \"local\": {\"count\": 2, \"translational_m\": {\"mean\": 0.2"), std::string::npos) << json;
+  EXPECT_NE(json.find("  \"revisit\": {\"count\": 1, \"translational_m\": {\"mean\": 2,"), std::string::npos)
+      << json;
+  // A span of 5 s makes every relation a revisit.
+  RelationsFlags f;
+  f.revisit_span = 5.0;
+  applyRelationsFlags(s, f);
+  run = runRelations(s, log);
+  text = relationsRunText(run);
+  EXPECT_NE(text.find("\nlocal (|t2-t1| <= 5 s): none (n=0); revisits (> 5 s): 0.8000 m (n=3), 0.00 deg\n"),
+            std::string::npos)
+      << text;
 }
 
 TEST(RelationsRun, ScoresATrajectoryFileAndWritesBothOutputs) {

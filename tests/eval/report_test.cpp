@@ -25,6 +25,10 @@ RelationsResult result() {
   r.endpoints_direct = 5;
   r.endpoints_corrected = 1;
   r.max_gap = 0.25;
+  r.local.translational = stats(2, 0.016, 0.001, 0.015, 0.017);
+  r.local.rotational = stats(2, 0.554, 0.1, 0.5, 0.6);
+  r.revisit.translational = stats(1, 0.02204, 0, 0.02204, 0.02204);
+  r.revisit.rotational = stats(1, 0.7, 0, 0.7, 0.7);
   return r;
 }
 }  // namespace
@@ -36,7 +40,29 @@ TEST(Report, SummaryLinesAndEndpointCounts) {
             "translational squared: 0.0153 ± 0.0000 m²   (min 0.0100, max 0.0225, n = 3)\n"
             "rotational error:      1.235 ± 0.500 deg   (min 0.250, max 2.000, n = 3)\n"
             "rotational squared:    1.750 ± 0.125 deg²   (min 0.062, max 4.000, n = 3)\n"
-            "relation endpoints: 5 with an estimate in reach, 1 corrected by odometry; largest time gap 0.250 s\n");
+            "relation endpoints: 5 with an estimate in reach, 1 corrected by odometry; largest time gap 0.250 s\n"
+            "local (|t2-t1| <= 50 s): 0.0160 m (n=2), 0.55 deg; revisits (> 50 s): 0.0220 m (n=1), 0.70 deg\n");
+}
+
+TEST(Report, SummarySplitLineNamesTheSpanAndAnEmptySide) {
+  RelationsResult r = result();
+  r.revisit_span = 12.5;
+  r.revisit = {};
+  std::string s = formatSummary(r);
+  EXPECT_NE(s.find("\nlocal (|t2-t1| <= 12.5 s): 0.0160 m (n=2), 0.55 deg; revisits (> 12.5 s): none (n=0)\n"),
+            std::string::npos)
+      << s;
+  const std::string j = formatJson(r, {});
+  EXPECT_NE(j.find("  \"revisit_span_s\": 12.5,\n"), std::string::npos) << j;
+  EXPECT_NE(j.find("  \"revisit\": {\"count\": 0, \"translational_m\": {\"mean\": null, \"std\": null, \"min\": null, "
+                   "\"max\": null, \"count\": 0}, \"rotational_deg\": {\"mean\": null, \"std\": null, \"min\": null, "
+                   "\"max\": null, \"count\": 0}},\n"),
+            std::string::npos)
+      << j;
+  r.local = {};
+  s = formatSummary(r);
+  EXPECT_NE(s.find("\nlocal (|t2-t1| <= 12.5 s): none (n=0); revisits (> 12.5 s): none (n=0)\n"), std::string::npos)
+      << s;
 }
 
 TEST(Report, SummaryNamesInterpolatedAndUncorrectedEndpointsOnlyWhenThereAreAny) {
@@ -73,6 +99,13 @@ TEST(Report, JsonHasInfoStatsAndCounts) {
             "  \"endpoints_corrected\": 1,\n"
             "  \"endpoints_interpolated\": 2,\n"
             "  \"endpoints_uncorrected\": 4,\n"
+            "  \"revisit_span_s\": 50,\n"
+            "  \"local\": {\"count\": 2, \"translational_m\": {\"mean\": 0.016, \"std\": 0.001, \"min\": 0.015, "
+            "\"max\": 0.017, \"count\": 2}, \"rotational_deg\": {\"mean\": 0.554, \"std\": 0.1, \"min\": 0.5, "
+            "\"max\": 0.6, \"count\": 2}},\n"
+            "  \"revisit\": {\"count\": 1, \"translational_m\": {\"mean\": 0.02204, \"std\": null, \"min\": 0.02204, "
+            "\"max\": 0.02204, \"count\": 1}, \"rotational_deg\": {\"mean\": 0.7, \"std\": null, \"min\": 0.7, "
+            "\"max\": 0.7, \"count\": 1}},\n"
             "  \"max_time_gap_s\": 0.25\n"
             "}\n");
 }

@@ -31,6 +31,8 @@ RunRecord record(const ExperimentPlan& p, std::size_t i, double trans_mean, cons
   r.relations_scored = status == "ok" ? 10 : 0;
   r.trans_mean = status == "ok" ? trans_mean : NAN;
   r.trans_std = r.trans_max = r.rot_mean = r.rot_std = r.rot_max = status == "ok" ? 0.5 : NAN;
+  r.trans_local_mean = status == "ok" ? 0.25 : NAN;
+  r.trans_revisit_mean = NAN;  // no revisit relations
   r.steps = 100;
   r.resamplings = 7;
   r.wall_s = 2.0 + static_cast<double>(i);
@@ -72,7 +74,8 @@ TEST(ResultsWriter, CsvSchema) {
   const auto cols = resultsColumns(p);
   const std::vector<std::string> head = {"index", "id", "label", "status", "dataset", "log", "relations", "max_scans"};
   const std::vector<std::string> tail = {"relations_scored", "trans_mean_m", "trans_std_m", "trans_max_m",
-                                         "rot_mean_deg", "rot_std_deg", "rot_max_deg", "success", "steps",
+                                         "rot_mean_deg", "rot_std_deg", "rot_max_deg", "trans_local_mean_m",
+                                         "trans_revisit_mean_m", "success", "steps",
                                          "resamplings", "wall_s", "cpu_s", "peak_rss_mb", "commit", "host",
                                          "start_time", "error", "dir"};
   ASSERT_EQ(cols.size(), head.size() + p.slam_keys.size() + tail.size());
@@ -106,6 +109,9 @@ TEST(ResultsWriter, CsvSchema) {
   EXPECT_EQ(at(1, "success"), "0");  // 0.06 > 0.05
   EXPECT_EQ(at(2, "success"), "0");  // failed
   EXPECT_EQ(at(2, "trans_mean_m"), "");
+  EXPECT_EQ(at(0, "trans_local_mean_m"), "0.25");
+  EXPECT_EQ(at(0, "trans_revisit_mean_m"), "");
+  EXPECT_EQ(at(2, "trans_local_mean_m"), "");
   EXPECT_EQ(at(2, "status"), "failed");
   EXPECT_EQ(at(2, "error"), "exit code 1: bad \"line\", see log");
   EXPECT_EQ(at(1, "peak_rss_mb"), "101");

@@ -92,6 +92,8 @@ TEST(RunExecutor, RecordsOkFailedAndCrashedRunsAndResumes) {
   EXPECT_NEAR(ok.trans_max, 0.1, 1e-12);
   EXPECT_NEAR(ok.trans_std, std::sqrt(0.005), 1e-12);
   EXPECT_NEAR(ok.rot_mean, 0.0, 1e-12);
+  EXPECT_NEAR(ok.trans_local_mean, 0.05, 1e-12);  // both scored relations are 1 s long: local
+  EXPECT_TRUE(std::isnan(ok.trans_revisit_mean));  // no revisit among them
   EXPECT_EQ(ok.steps, 3u);
   EXPECT_EQ(ok.resamplings, 1u);
   EXPECT_GT(ok.wall_s, 0.0);

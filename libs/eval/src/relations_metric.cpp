@@ -25,7 +25,9 @@ const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema() {
           .addWords<OdometrySource>("odometry", field(&O::odometry),
                                     {{"auto", OdometrySource::Auto}, {"odom", OdometrySource::OdomLines},
                                      {"laser", OdometrySource::LaserLines}},
-                                    "the odometry that fills the gaps: ODOM lines, laser lines, auto (odom if any)");
+                                    "the odometry that fills the gaps: ODOM lines, laser lines, auto (odom if any)")
+          .add("revisit_span", &O::revisit_span, OptionRange::above(0), "s",
+               "relations with |t2 - t1| up to this are local, longer ones revisits (the errors split in two)");
   return schema;
 }
 
@@ -106,6 +108,7 @@ RelationsResult evaluateRelations(const std::vector<TimedPose>& estimate, const 
   const TrajectoryLookup lookup(estimate, odometry, options);
   RelationsResult res;
   std::vector<double> te, te2, re, re2;
+  std::vector<double> local_te, local_re, revisit_te, revisit_re;
   te.reserve(relations.size());
   res.errors.reserve(relations.size());
   constexpr double kRadToDeg = 180.0 / M_PI;
@@ -131,12 +134,18 @@ RelationsResult evaluateRelations(const std::vector<TimedPose>& estimate, const 
     const double deg = err.rotational * kRadToDeg;
     re.push_back(deg);
     re2.push_back(deg * deg);
+    const bool revisit = std::abs(rel.t2 - rel.t1) > options.revisit_span;
+    (revisit ? revisit_te : local_te).push_back(err.translational);
+    (revisit ? revisit_re : local_re).push_back(deg);
     res.errors.push_back(err);
   }
   res.translational = ErrorStats::of(te);
   res.translational_squared = ErrorStats::of(te2);
   res.rotational = ErrorStats::of(re);
   res.rotational_squared = ErrorStats::of(re2);
+  res.revisit_span = options.revisit_span;
+  res.local = {ErrorStats::of(local_te), ErrorStats::of(local_re)};
+  res.revisit = {ErrorStats::of(revisit_te), ErrorStats::of(revisit_re)};
   return res;
 }
 

@@ -45,6 +45,10 @@ void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& f) {
     if (!(*f.max_gap >= 0.0)) throw UsageError("--max-gap must be >= 0");
     opt.max_time_gap = *f.max_gap;
   }
+  if (f.revisit_span) {
+    if (!(*f.revisit_span > 0.0)) throw UsageError("--revisit-span must be > 0");
+    opt.revisit_span = *f.revisit_span;
+  }
   spec.corrected.match = parsed("--gfs-match", correctedTimeMatchFromString, f.gfs_match);
   if (f.gfs_pose == "laser") spec.corrected.pose = CorrectedPose::Laser;
   else if (f.gfs_pose != "robot") throw UsageError("--gfs-pose must be robot or laser");

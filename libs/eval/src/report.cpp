@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gridtopo/core/option_schema.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::eval {
@@ -56,6 +57,23 @@ std::string jsonStats(const ErrorStats& s) {
          ", \"count\": " + std::to_string(s.count) + "}";
 }
 
+// "0.0160 m (n=1773), 0.55 deg", or "none (n=0)" for an empty subset.
+std::string splitText(const RelationsSplit& s) {
+  if (s.translational.count == 0) return "none (n=0)";
+  return fixed(s.translational.mean, 4) + " m (n=" + std::to_string(s.translational.count) + "), " +
+         fixed(s.rotational.mean, 2) + " deg";
+}
+
+// An empty side has no figures: null, not the zeros of an empty ErrorStats.
+std::string jsonSplitStats(const ErrorStats& s) {
+  return s.count == 0 ? "{\"mean\": null, \"std\": null, \"min\": null, \"max\": null, \"count\": 0}" : jsonStats(s);
+}
+
+std::string jsonSplit(const RelationsSplit& s) {
+  return "{\"count\": " + std::to_string(s.translational.count) + ", \"translational_m\": " +
+         jsonSplitStats(s.translational) + ", \"rotational_deg\": " + jsonSplitStats(s.rotational) + "}";
+}
+
 }  // namespace
 
 std::string formatSummary(const RelationsResult& r) {
@@ -70,6 +88,9 @@ std::string formatSummary(const RelationsResult& r) {
     s += ", " + std::to_string(r.endpoints_interpolated) + " interpolated between estimates";
   if (r.endpoints_uncorrected) s += ", " + std::to_string(r.endpoints_uncorrected) + " UNCORRECTED (no odometry)";
   s += "; largest time gap " + fixed(r.max_gap, 3) + " s\n";
+  const std::string span = shortestText(r.revisit_span);
+  s += "local (|t2-t1| <= " + span + " s): " + splitText(r.local) + "; revisits (> " + span +
+       " s): " + splitText(r.revisit) + "\n";
   return s;
 }
 
@@ -84,6 +105,9 @@ std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std
   s += "  \"endpoints_corrected\": " + std::to_string(r.endpoints_corrected) + ",\n";
   s += "  \"endpoints_interpolated\": " + std::to_string(r.endpoints_interpolated) + ",\n";
   s += "  \"endpoints_uncorrected\": " + std::to_string(r.endpoints_uncorrected) + ",\n";
+  s += "  \"revisit_span_s\": " + jsonNumber(r.revisit_span) + ",\n";
+  s += "  \"local\": " + jsonSplit(r.local) + ",\n";
+  s += "  \"revisit\": " + jsonSplit(r.revisit) + ",\n";
   s += "  \"max_time_gap_s\": " + jsonNumber(r.max_gap) + "\n";
   return s + "}\n";
 }

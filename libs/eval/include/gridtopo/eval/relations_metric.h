@@ -4,7 +4,9 @@
 // for each relation timestamp take the estimated pose nearest in time; if it is more than 0.1 s away, carry it
 // to the relation's time with the odometry motion between the two times. d_est = p1⁻¹ ⊕ p2; translational
 // error |t(d_est) − t(ref)|, rotational error |wrap(θ(d_est) − θ(ref))|; mean ± sample std, min, max, count,
-// absolute and squared. See doc/evaluation.md for the conventions that reproduce the published figures.
+// absolute and squared; the same split into "local" relations (|t2 − t1| ≤ revisit_span) and "revisit" relations
+// (|t2 − t1| > revisit_span: the robot came back). See doc/evaluation.md for the conventions that reproduce the
+// published figures.
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cstddef>
@@ -24,7 +26,7 @@ struct RelationsMetricOptions;
 const OptionSchema<RelationsMetricOptions>& relationsMetricOptionSchema();
 
 /// Loaded, saved, dumped and validated through relationsMetricOptionSchema: max_time_gap, interpolate_odometry,
-/// interpolate_estimate, odometry = auto|odom|laser; missing keys keep their value; wrong values throw
+/// interpolate_estimate, odometry = auto|odom|laser, revisit_span; missing keys keep their value; wrong values throw
 /// gridtopo::InputError(file, 0, "[section] key", ...).
 struct RelationsMetricOptions : TableOptions<RelationsMetricOptions, relationsMetricOptionSchema> {
   static constexpr const char* kSection = "relations_metric";
@@ -39,6 +41,9 @@ struct RelationsMetricOptions : TableOptions<RelationsMetricOptions, relationsMe
   bool interpolate_estimate = false;
   /// Which odometry of the raw log corrects the gaps.
   OdometrySource odometry = OdometrySource::Auto;
+  /// Seconds (> 0): a relation with |t2 − t1| at most this is "local", a longer one a "revisit" (RelationsResult's
+  /// split; it does not change which relations are scored or how).
+  double revisit_span = 50.0;
 };
 
 /// Mean ± sample standard deviation (n − 1), min, max and count of a set of values.
@@ -57,6 +62,12 @@ struct RelationError {
   double gap1 = 0.0, gap2 = 0.0;  ///< |time of the estimated pose used − relation timestamp| for t1 and t2
 };
 
+/// The errors of a subset of the relations (its count: translational.count == rotational.count).
+struct RelationsSplit {
+  ErrorStats translational;  ///< m
+  ErrorStats rotational;     ///< deg
+};
+
 struct RelationsResult {
   ErrorStats translational;          ///< m
   ErrorStats translational_squared;  ///< m²
@@ -68,6 +79,9 @@ struct RelationsResult {
   std::size_t endpoints_interpolated = 0; ///< endpoints interpolated between two estimates (interpolate_estimate)
   std::size_t endpoints_uncorrected = 0; ///< endpoints beyond max_time_gap with no odometry to correct them
   double max_gap = 0.0;                  ///< largest |t_estimate − t_relation| met (s)
+  double revisit_span = 50.0;  ///< s: the options' revisit_span that split `local` and `revisit`
+  RelationsSplit local;        ///< the relations with |t2 − t1| <= revisit_span
+  RelationsSplit revisit;      ///< the relations with |t2 − t1| > revisit_span (the robot came back)
 };
 
 /// The estimated pose at time t: the nearest estimate, carried over the gap by odometry when further than

@@ -38,10 +38,11 @@ struct RelationsFlags {
   std::string gfs_match = "auto", gfs_pose = "robot";
   bool interpolate = false, interpolate_estimate = false;  ///< switch on (never off)
   std::optional<double> max_gap;
+  std::optional<double> revisit_span;  ///< s, > 0: local / revisit split (overrides the INI's revisit_span)
 };
 
 /// Applies the flags over spec.metric (e.g. read by loadRelationsMetricIni) and spec.corrected. UsageError naming
-/// the flag for an unknown word or a negative max gap.
+/// the flag for an unknown word, a negative max gap or a revisit span not > 0.
 void applyRelationsFlags(RelationsRunSpec& spec, const RelationsFlags& flags);
 
 /// UsageError unless exactly one estimate is named, and the corrected log and the baseline have the raw log.
