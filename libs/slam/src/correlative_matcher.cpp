@@ -7,8 +7,11 @@
 
 namespace gridtopo::slam {
 
-CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth)
+CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth,
+                                 double refine_sigma)
     : res_(resolution), depth_(std::max(0, depth)) {
+  if (!(refine_sigma > 0.0)) refine_sigma = sigma;
+  refine_k_ = -0.5 / (refine_sigma * refine_sigma);
   pad_ = 1 << depth_;
   double minx = 0.0, miny = 0.0, maxx = 0.0, maxy = 0.0;
   if (!points.empty()) {
@@ -35,6 +38,13 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
   }
   cv::Mat dist;
   cv::distanceTransform(seeds, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  w0_ = w0;
+  h0_ = h0;
+  dist_.resize(static_cast<std::size_t>(w0) * h0);
+  for (int y = 0; y < h0; ++y) {
+    const float* d = dist.ptr<float>(y);
+    for (int x = 0; x < w0; ++x) dist_[static_cast<std::size_t>(y) * w0 + x] = static_cast<float>(d[x] * res_);
+  }
   w_ = w0 + 2 * pad_;
   h_ = h0 + 2 * pad_;
   levels_.assign(static_cast<std::size_t>(depth_) + 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w_) * h_, 0));
@@ -72,8 +82,19 @@ double CorrelationGrid::interpolated(double x, double y) const {
   return ((1 - fy) * ((1 - fx) * v00 + fx * v10) + fy * ((1 - fx) * v01 + fx * v11)) / 255.0;
 }
 
+double CorrelationGrid::refined(double x, double y) const {
+  const double gx = (x - x0_) / res_ - 0.5, gy = (y - y0_) / res_ - 0.5;
+  const int ix = floorInt(gx), iy = floorInt(gy);
+  if (ix < 0 || iy < 0 || ix + 1 >= w0_ || iy + 1 >= h0_) return 0.0;
+  const double fx = gx - ix, fy = gy - iy;
+  const std::size_t i = static_cast<std::size_t>(iy) * w0_ + ix;
+  const double d = (1 - fy) * ((1 - fx) * dist_[i] + fx * dist_[i + 1]) +
+                   fy * ((1 - fx) * dist_[i + w0_] + fx * dist_[i + w0_ + 1]);
+  return std::exp(refine_k_ * d * d);
+}
+
 std::size_t CorrelationGrid::bytes() const {
-  std::size_t b = sizeof(*this);
+  std::size_t b = sizeof(*this) + dist_.capacity() * sizeof(float);
   for (const auto& l : levels_) b += l.capacity();
   return b;
 }
@@ -86,9 +107,17 @@ double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& 
   return sum / static_cast<double>(query.size());
 }
 
+double refinementScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x) {
+  if (query.empty()) return 0.0;
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  double sum = 0.0;
+  for (const Point2& q : query) sum += grid.refined(x.x + c * q.x - s * q.y, x.y + s * q.x + c * q.y);
+  return sum / static_cast<double>(query.size());
+}
+
 CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,
                              double theta_step, int refinements) {
-  CorrelativeMatch best{start, correlationScore(grid, query, start)};
+  CorrelativeMatch best{start, refinementScore(grid, query, start)};
   double sxy = 0.5 * grid.resolution(), st = 0.5 * theta_step;
   for (int level = 0; level <= refinements; ++level) {
     for (int it = 0; it < 50; ++it) {
@@ -96,7 +125,7 @@ CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Poin
       CorrelativeMatch next = best;
       for (const Pose2& m : moves) {
         const Pose2 p{best.pose.x + m.x, best.pose.y + m.y, wrapAngle(best.pose.theta + m.theta)};
-        const double sc = correlationScore(grid, query, p);
+        const double sc = refinementScore(grid, query, p);
         if (sc > next.score) next = {p, sc};
       }
       if (next.score <= best.score) break;
@@ -105,6 +134,7 @@ CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Poin
     sxy *= 0.5;
     st *= 0.5;
   }
+  best.score = correlationScore(grid, query, best.pose);
   return best;
 }
 

@@ -1,5 +1,7 @@
 #include "gridtopo/slam/loop_closure.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +9,8 @@
 #include <iomanip>
 #include <sstream>
 #include <unordered_set>
+
+#include "gridtopo/slam/proposal.h"
 
 namespace gridtopo::slam {
 
@@ -39,7 +43,10 @@ Point2 transform(const Pose2& t, const Point2& p) {
 
 }  // namespace
 
-LoopCloser::LoopCloser(const LoopClosureOptions& options) : o_(options) { o_.validate(); }
+LoopCloser::LoopCloser(const LoopClosureOptions& options, const MotionModelOptions& motion)
+    : o_(options), motion_(motion) {
+  o_.validate();
+}
 
 LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
                                     const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
@@ -50,8 +57,8 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
   if (i % static_cast<std::size_t>(o_.search_every) == 0) searchForClosures(step);
   const bool pending = pending_from_ < closures_.size();
   // Optimise every optimize_every scans while closures are pending, and at once after a closure that moves the
-  // estimate by more than a few deviations (the first closure after a long excursion).
-  const bool large = step.accepted > 0 && closures_.back().offset_xy > 4.0 * o_.loop_sigma_xy;
+  // estimate by more than ten loop_sigma_xy (the first closure after a long excursion).
+  const bool large = step.accepted > 0 && closures_.back().offset_xy > 10.0 * o_.loop_sigma_xy;
   if (pending && (i - last_optimized_node_ >= static_cast<std::size_t>(o_.optimize_every) || large))
     optimizePoseGraph(step);
   return step;
@@ -59,7 +66,11 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
 
 void LoopCloser::finish() {
   LoopClosureStep step;
-  if (pending_from_ < closures_.size()) optimizePoseGraph(step);
+  if (!closures_.empty()) {
+    optimizePoseGraph(step);
+  } else {
+    adoptFilterPath();
+  }
 }
 
 std::vector<Pose2> LoopCloser::poses() const {
@@ -71,6 +82,7 @@ std::vector<Pose2> LoopCloser::poses() const {
 void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
                                  const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
   Node n;
+  if (odometry) n.odometry = *odometry;
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   const double dist = std::hypot(motion.x, motion.y);
@@ -90,19 +102,13 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   } else {
     const std::size_t prev = nodes_.size() - 1;
     graph_.addNode(compose(graph_.pose(prev), motion));
-    dead_reckoned_ = compose(dead_reckoned_, odometry ? *odometry : motion);
-    PoseGraphEdge e;
-    e.a = prev;
-    e.b = prev + 1;
-    e.z = motion;
-    // The disagreement with the odometry adds to the deviation: a filter that followed something moving with the
-    // robot (or an odometry that slipped) leaves an edge a closure can bend.
-    const double dxy = odometry ? std::hypot(motion.x - odometry->x, motion.y - odometry->y) : 0.0;
-    const double dth = odometry ? std::abs(wrapAngle(motion.theta - odometry->theta)) : 0.0;
-    const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * dist + dxy;
-    const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + dth;
-    e.sqrt_information = sqrtInformationOfSigmas(sxy, sxy, st);
-    graph_.addEdge(e);
+    const PoseGraphEdge e = motionEdge(prev, motion, odometry ? &*odometry : nullptr);
+    const bool suspect = e.sqrt_information(0, 0) < 1.0 / (o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * dist) ||
+                         e.sqrt_information(2, 2) <
+                             1.0 / (o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta));
+    suspect_ += suspect;
+    dead_reckoned_ = compose(dead_reckoned_, suspect ? *odometry : motion);
+    n.motion_edge = graph_.addEdge(e);
   }
   nodes_.push_back(std::move(n));
   // Submaps: runs of submap_nodes consecutive nodes.
@@ -111,6 +117,83 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
     submaps_.push_back({i, i});
   else
     submaps_.back().last = i;
+}
+
+PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const {
+  // A step where the filter and the odometry disagree beyond the motion model's noise is suspect: one of them is
+  // wrong (a filter that followed something moving with the robot, or an odometry that slipped). Its edge is
+  // weakened by the difference, so that a closure can bend it (and the window follows the odometry there).
+  double dxy = 0.0, dth = 0.0;
+  if (odometry) {
+    const OdometryMotionModel::Sigmas sg = motion_.sigmas(*odometry, true);
+    const double ex = motion.x - odometry->x, ey = motion.y - odometry->y;
+    const double et = wrapAngle(motion.theta - odometry->theta);
+    const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
+    if (d2 > o_.disagreement_sigmas * o_.disagreement_sigmas) {
+      dxy = std::hypot(ex, ey);
+      dth = std::abs(et);
+    }
+  }
+  PoseGraphEdge e;
+  e.a = prev;
+  e.b = prev + 1;
+  e.z = motion;
+  const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * std::hypot(motion.x, motion.y) + dxy;
+  const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + dth;
+  e.sqrt_information = sqrtInformationOfSigmas(sxy, sxy, st);
+  return e;
+}
+
+void LoopCloser::adoptFilterPath() {
+  if (!filter_path_) return;
+  const std::vector<Pose2> path = filter_path_();
+  if (path.size() != nodes_.size()) return;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const auto change = frame_changes_.find(k);
+    const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
+    const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
+    graph_.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
+  }
+  // Without a closure the graph is the filter's path itself.
+  if (closures_.empty())
+    for (std::size_t k = 0; k < path.size(); ++k) graph_.setPose(k, path[k]);
+}
+
+Eigen::Matrix3d LoopCloser::closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
+                                                   const Pose2& x, double dtheta) const {
+  // The match's log-likelihood: the query's points each count as ln p = refined value (a Gaussian of width
+  // refine_sigma around the submap's points, ≈ 1 − d²/2σ² near them), divided by the information gain for the
+  // correlation between neighbouring points. Its curvature at the match, fitted over a 3 × 3 × 3 grid of poses one
+  // cell and two angular steps apart, is the information (Olson 2009: the covariance of a correlative match from
+  // the shape of its score); flat directions (a corridor's axis) carry none.
+  const double dxy = grid.resolution(), dth = std::max(2.0 * dtheta, 1e-3);
+  std::vector<Pose2> poses;
+  std::vector<double> ll;
+  const double k = static_cast<double>(query.size()) / o_.information_gain;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int t = -1; t <= 1; ++t) {
+        const Pose2 p{x.x + i * dxy, x.y + j * dxy, wrapAngle(x.theta + t * dth)};
+        poses.push_back(p);
+        ll.push_back(k * refinementScore(grid, query, p));
+      }
+  const LocalQuadratic q = fitLocalQuadratic(poses, ll, x, dxy, dth, 2.0);
+  if (!q.ok) return sqrtInformationOfSigmas(o_.loop_sigma_xy, o_.loop_sigma_xy, o_.loop_sigma_theta);
+  // The deviations floored at loop_sigma_* along every direction, in coordinates where the heading is scaled by
+  // lever = loop_sigma_xy / loop_sigma_theta (so that one floor serves both).
+  const double lever = o_.loop_sigma_xy / o_.loop_sigma_theta;
+  const Eigen::Vector3d s(1.0, 1.0, 1.0 / lever);  // P in scaled coordinates: S⁻¹ P S⁻¹ with S = diag(1, 1, lever)
+  const Eigen::Matrix3d Pu = s.asDiagonal() * q.P * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (Pu + Pu.transpose()));
+  Eigen::Vector3d root;
+  for (int i = 0; i < 3; ++i) {
+    const double lambda = es.eigenvalues()(i);
+    const double variance = (lambda > 1e-12 ? 1.0 / lambda : 1e12) + o_.loop_sigma_xy * o_.loop_sigma_xy;
+    root(i) = 1.0 / std::sqrt(variance);
+  }
+  // residual = root ⊙ Eᵀ (S e): ‖·‖² = eᵀ S E diag(1/v) Eᵀ S e.
+  const Eigen::Vector3d S(1.0, 1.0, lever);
+  return root.asDiagonal() * es.eigenvectors().transpose() * S.asDiagonal();
 }
 
 std::vector<Point2> LoopCloser::queryOf(std::size_t node) const {
@@ -141,7 +224,7 @@ const CorrelationGrid& LoopCloser::gridOf(std::size_t s) {
     for (const Point2& p : nodes_[j].points) pts.push_back(transform(rel, p));
   }
   thinInPlace(pts, o_.resolution);
-  cache_.emplace_back(s, std::make_unique<CorrelationGrid>(pts, o_.resolution, o_.field_sigma, o_.depth));
+  cache_.emplace_back(s, std::make_unique<CorrelationGrid>(pts, o_.resolution, o_.field_sigma, o_.depth, o_.refine_sigma));
   while (cache_.size() > static_cast<std::size_t>(o_.grid_cache)) cache_.pop_front();
   return *cache_.back().second;
 }
@@ -196,9 +279,14 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     w.xy = wxy;
     w.theta = wth;
     ++step.searches;
+    ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
     if (!found) continue;
-    const CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
+    // The refinement climbs the sharp value from the search's best cell and from the estimate itself; the higher
+    // sharp score wins (the wide search value can favour a pose a few cells off when structures blur together).
+    CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
+    const CorrelativeMatch from_estimate = refineMatch(grid, query, w.center, dtheta);
+    if (refinementScore(grid, query, from_estimate.pose) > refinementScore(grid, query, m.pose)) m = from_estimate;
     if (m.score < o_.min_score) continue;
     // Refuse look-alikes: a distinct pose of the window that scores nearly as well.
     const Point2 at{m.pose.x, m.pose.y};
@@ -208,6 +296,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
                                               o_.ambiguity_distance);
       if (other) {
         ++step.refused_ambiguous;
+        ++ambiguous_;
         continue;
       }
     }
@@ -215,10 +304,10 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     e.a = sm.first;
     e.b = i;
     e.z = m.pose;
-    e.sqrt_information = sqrtInformationOfSigmas(o_.loop_sigma_xy, o_.loop_sigma_xy, o_.loop_sigma_theta);
+    e.sqrt_information = closureSqrtInformation(grid, query, m.pose, dtheta);
     e.robust = true;
-    graph_.addEdge(e);
     LoopClosureRecord rec;
+    rec.edge = graph_.addEdge(e);
     rec.node = i;
     rec.scan_index = cur.scan_index;
     rec.timestamp = cur.timestamp;
@@ -240,10 +329,27 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t i = nodes_.size() - 1;
   const Pose2 before = graph_.pose(i);
+  adoptFilterPath();
   PoseGraphSolveOptions so;
   so.huber_scale = o_.huber_scale;
   so.max_iterations = o_.max_iterations;
   graph_.optimize(so);
+  ++optimizations_;
+  // The new closures that still disagree with everything else are look-alikes: out, and optimise again.
+  bool rejected = false;
+  for (std::size_t k = pending_from_; k < closures_.size(); ++k) {
+    LoopClosureRecord& c = closures_[k];
+    c.residual = graph_.residual(graph_.edges()[c.edge]).norm();
+    if (o_.outlier_sigmas > 0.0 && c.residual > o_.outlier_sigmas) {
+      c.rejected = true;
+      graph_.deactivateEdge(c.edge);
+      rejected = true;
+    }
+  }
+  if (rejected) {
+    graph_.optimize(so);
+    ++optimizations_;
+  }
   const Pose2 after = graph_.pose(i);
   const Pose2 d = relative(before, after);
   for (std::size_t k = pending_from_; k < closures_.size(); ++k) {
@@ -260,15 +366,34 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   optimize_s_ += secondsSince(t0);
 }
 
-std::string closuresText(const std::vector<LoopClosureRecord>& closures) {
+LoopClosureCounts LoopCloser::counts() const {
+  LoopClosureCounts c;
+  c.nodes = nodes_.size();
+  c.searches = searches_;
+  c.ambiguous = ambiguous_;
+  c.suspect_steps = suspect_;
+  c.optimizations = optimizations_;
+  c.search_s = search_s_;
+  c.optimize_s = optimize_s_;
+  for (const LoopClosureRecord& r : closures_) (r.rejected ? c.rejected : c.accepted) += 1;
+  return c;
+}
+
+std::string closuresText(const std::vector<LoopClosureRecord>& closures, const LoopClosureCounts& n,
+                         std::size_t feedbacks, double feedback_s) {
   std::ostringstream out;
   out << "# closures: node scan_index timestamp submap_node score window_xy offset_xy offset_theta correction_xy "
-         "correction_theta\n";
+         "correction_theta residual rejected\n";
   out << std::setprecision(10);
   for (const LoopClosureRecord& c : closures)
     out << "# closure " << c.node << ' ' << c.scan_index << ' ' << c.timestamp << ' ' << c.submap_node << ' '
         << std::setprecision(4) << c.score << ' ' << c.window_xy << ' ' << c.offset_xy << ' ' << c.offset_theta
-        << ' ' << c.correction_xy << ' ' << c.correction_theta << std::setprecision(10) << '\n';
+        << ' ' << c.correction_xy << ' ' << c.correction_theta << ' ' << c.residual << ' ' << (c.rejected ? 1 : 0)
+        << std::setprecision(10) << '\n';
+  out << std::setprecision(4) << "# loop_closure: nodes " << n.nodes << " searches " << n.searches << " closures "
+      << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " suspect_steps "
+      << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks << " search_s "
+      << n.search_s << " optimize_s " << n.optimize_s << " feedback_s " << feedback_s << '\n';
   return out.str();
 }
 

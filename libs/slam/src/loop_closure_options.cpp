@@ -14,6 +14,7 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
           .add("query_voxel", &O::query_voxel, R::above(0), "m", "the query is thinned to a point per voxel")
           .add("resolution", &O::resolution, R::closed(0.005, 1), "m", "cell of the correlation grids")
           .add("field_sigma", &O::field_sigma, R::above(0), "m", "width of the grid's value around a hit")
+          .add("refine_sigma", &O::refine_sigma, R::above(0), "m", "width of the refinement's value around a hit")
           .add("depth", &O::depth, R::closed(0, 12), "", "branch-and-bound levels (coarsest: 2^depth cells)")
           .add("grid_cache", &O::grid_cache, R::closed(1, 10000), "", "correlation grids kept in memory")
           .add("search_every", &O::search_every, R::closed(1, 100000), "", "search at every n-th processed scan")
@@ -29,14 +30,20 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
           .add("ambiguity_ratio", &O::ambiguity_ratio, R::leftOpen(0, 1), "",
                "refuse a match when another pose scores this fraction of it (1: never refuse)")
           .add("ambiguity_distance", &O::ambiguity_distance, R::above(0), "m", "how far that other pose must be")
-          .add("loop_sigma_xy", &O::loop_sigma_xy, R::above(0), "m", "deviation of a closure's translation")
-          .add("loop_sigma_theta", &O::loop_sigma_theta, R::above(0), "rad", "deviation of a closure's heading")
+          .add("information_gain", &O::information_gain, R::above(0), "",
+               "a closure's information: its score's curvature over the query's points divided by this")
+          .add("loop_sigma_xy", &O::loop_sigma_xy, R::above(0), "m", "floor of a closure's translation deviation")
+          .add("loop_sigma_theta", &O::loop_sigma_theta, R::above(0), "rad", "floor of a closure's heading deviation")
           .add("odometry_sigma_xy", &O::odometry_sigma_xy, R::above(0), "m", "floor of a motion edge's deviation")
           .add("odometry_sigma_xy_per_m", &O::odometry_sigma_xy_per_m, R::atLeast(0), "m/m", "its growth with the motion")
           .add("odometry_sigma_theta", &O::odometry_sigma_theta, R::above(0), "rad", "heading floor")
           .add("odometry_sigma_theta_per_rad", &O::odometry_sigma_theta_per_rad, R::atLeast(0), "rad/rad",
                "its growth with the rotation")
           .add("huber_scale", &O::huber_scale, R::above(0), "sigma", "closures' Huber loss scale")
+          .add("outlier_sigmas", &O::outlier_sigmas, R::atLeast(0), "sigma",
+               "reject a new closure still this far off after the optimisation (0 = keep all)")
+          .add("disagreement_sigmas", &O::disagreement_sigmas, R::atLeast(0), "sigma",
+               "filter vs odometry disagreement (motion-model deviations) above which a step is suspect")
           .add("optimize_every", &O::optimize_every, R::closed(1, 1000000), "", "processed scans between optimisations")
           .add("max_iterations", &O::max_iterations, R::closed(1, 10000), "", "solver iterations per optimisation")
           .add("feedback", &O::feedback, R::any(), "", "the particles continue from the optimised poses and map")

@@ -41,7 +41,10 @@ std::size_t PoseGraph::addNode(const Pose2& initial) {
   return nodes_.size() - 1;
 }
 
-void PoseGraph::addEdge(const PoseGraphEdge& e) { edges_.push_back(e); }
+std::size_t PoseGraph::addEdge(const PoseGraphEdge& e) {
+  edges_.push_back(e);
+  return edges_.size() - 1;
+}
 
 Eigen::Vector3d PoseGraph::residual(const PoseGraphEdge& e) const {
   const Pose2 d = relative(nodes_[e.a], nodes_[e.b]);
@@ -58,6 +61,7 @@ double PoseGraph::optimize(const PoseGraphSolveOptions& o) {
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   for (const PoseGraphEdge& e : edges_) {
+    if (!e.active) continue;
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError(e.z, e.sqrt_information));
     ceres::LossFunction* loss = e.robust ? new ceres::HuberLoss(o.huber_scale) : nullptr;
     problem.AddResidualBlock(cost, loss, x[e.a].data(), x[e.b].data());

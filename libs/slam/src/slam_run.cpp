@@ -20,7 +20,7 @@ SlamRun::SlamRun(std::shared_ptr<const std::vector<ScanRecord>> scans, const Sla
   options_.validate("<options>", "slam");
   limit_ = max_scans ? std::min(max_scans, scans_->size()) : scans_->size();
   filter_ = std::make_unique<RbpfSlam>(options_);
-  if (options_.loop_closure.enabled) closer_ = std::make_unique<LoopCloser>(options_.loop_closure);
+  startLoopCloser();
 }
 
 SlamRun::SlamRun(const SlamOptions& options)
@@ -28,7 +28,7 @@ SlamRun::SlamRun(const SlamOptions& options)
   options_.validate("<options>", "slam");
   scans_ = appended_;
   filter_ = std::make_unique<RbpfSlam>(options_);
-  if (options_.loop_closure.enabled) closer_ = std::make_unique<LoopCloser>(options_.loop_closure);
+  startLoopCloser();
 }
 
 void SlamRun::requireFilter(const char* what) const {
@@ -55,6 +55,18 @@ bool SlamRun::feedNext() {
   return processed;
 }
 
+void SlamRun::startLoopCloser() {
+  if (!options_.loop_closure.enabled) return;
+  closer_ = std::make_unique<LoopCloser>(options_.loop_closure, options_.motion);
+  // The motion edges follow the best particle's path as it is at each optimisation: resampling has pruned it of
+  // the lineages that died out since (a fixed-lag smoother's view of the filter's motion).
+  closer_->setFilterPath([this] {
+    std::vector<Pose2> path;
+    for (const TrajectoryNode* n : pathOf(filter_->bestParticle().node)) path.push_back(n->estimate);
+    return path;
+  });
+}
+
 void SlamRun::closeLoops(std::size_t index) {
   const TrajectoryNodePtr& node = filter_->bestParticle().node;
   const Pose2 motion = node->parent ? relative(node->parent->estimate, node->estimate) : Pose2{};
@@ -73,8 +85,12 @@ void SlamRun::closeLoops(std::size_t index) {
   if (!step.feedback) return;
   // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
   // particle's estimate to the optimised pose, in the map of the optimised poses.
+  const auto t0 = std::chrono::steady_clock::now();
   const Pose2 correction = compose(step.newest_after, relative(node->estimate, Pose2{}));
   filter_->applyCorrection(correction, mapOfGraph());
+  closer_->noteFilterCorrection(correction);
+  ++feedbacks_;
+  feedback_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 GridMap SlamRun::mapOfGraph() const {
@@ -132,7 +148,7 @@ std::string SlamRun::statsText() const {
   std::ostringstream out;
   out << "# " << kStatsColumns << " rss_kb\n";
   for (std::size_t i = 0; i < st.size(); ++i) out << statsRow(st[i]) << ' ' << rss_kb_[i] << '\n';
-  if (closer_) out << closuresText(closer_->closures());
+  if (closer_) out << closuresText(closer_->closures(), closer_->counts(), feedbacks_, feedback_s_);
   return out.str();
 }
 

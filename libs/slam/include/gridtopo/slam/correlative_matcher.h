@@ -22,8 +22,9 @@ struct Point2 {
 class CorrelationGrid {
  public:
   /// The grid of `points` (in the submap's frame) with cell `resolution`, value width `sigma` and `depth` + 1
-  /// levels.
-  CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth);
+  /// levels; the refinement's sharper value has width `refine_sigma` (0 = sigma).
+  CorrelationGrid(const std::vector<Point2>& points, double resolution, double sigma, int depth,
+                  double refine_sigma = 0.0);
 
   double resolution() const { return res_; }
   int depth() const { return depth_; }
@@ -36,6 +37,9 @@ class CorrelationGrid {
   }
   /// The finest level interpolated bilinearly at a point of the submap's frame, in [0, 1].
   double interpolated(double x, double y) const;
+  /// The refinement's value at a point: exp(−d²/2·refine_sigma²) of the bilinearly interpolated distance d to the
+  /// nearest point, in [0, 1]. A wide search value finds a match from far; the sharp one places it precisely.
+  double refined(double x, double y) const;
   /// Cell of a coordinate on the finest lattice.
   int cellX(double x) const { return floorInt((x - x0_) / res_); }
   int cellY(double y) const { return floorInt((y - y0_) / res_); }
@@ -52,6 +56,9 @@ class CorrelationGrid {
   int pad_ = 0;                 ///< cells of margin on every side (2^depth)
   int w_ = 0, h_ = 0;           ///< stored size, margins included
   std::vector<std::vector<std::uint8_t>> levels_;
+  int w0_ = 0, h0_ = 0;        ///< the finest lattice without margins
+  double refine_k_ = 0.0;      ///< −1 / (2 refine_sigma²), in 1/m²
+  std::vector<float> dist_;    ///< distance to the nearest point (m), w0_ × h0_
 };
 
 struct SearchWindow {
@@ -73,12 +80,15 @@ std::optional<CorrelativeMatch> branchAndBoundSearch(const CorrelationGrid& grid
                                                      const Point2* exclude_center = nullptr,
                                                      double exclude_radius = 0.0);
 
-/// Local refinement of a match: hill climbing on the interpolated grid from `start` (steps of half a cell and the
-/// given angular step, halved `refinements` times).
+/// Local refinement of a match: hill climbing on the grid's refinement value (CorrelationGrid::refined) from
+/// `start` (steps of half a cell and the given angular step, halved `refinements` times); the score returned is
+/// the mean of the search value (correlationScore) at the refined pose, comparable with the search's.
 CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,
                              double theta_step, int refinements = 5);
 
 /// The mean interpolated grid value of `query` at pose `x`.
 double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x);
+/// The mean refinement value of `query` at pose `x`.
+double refinementScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x);
 
 }  // namespace gridtopo::slam

@@ -12,7 +12,10 @@
 //   4. the correction of the newest pose, which the caller may feed back into the filter (SlamRun).
 // The final trajectory and map are rebuilt from the optimised poses.
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <list>
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -20,6 +23,7 @@
 
 #include "gridtopo/slam/correlative_matcher.h"
 #include "gridtopo/slam/loop_closure_options.h"
+#include "gridtopo/slam/motion_model.h"
 #include "gridtopo/slam/pose2.h"
 #include "gridtopo/slam/pose_graph.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -39,6 +43,15 @@ struct LoopClosureRecord {
   double offset_theta = 0.0;    ///< rad
   /// How far the optimisation that took it in moved the newest pose (m, rad); set at that optimisation.
   double correction_xy = 0.0, correction_theta = 0.0;
+  double residual = 0.0;  ///< its whitened residual after that optimisation (standard deviations)
+  bool rejected = false;  ///< left out after that optimisation (residual above outlier_sigmas)
+  std::size_t edge = 0;   ///< its edge in the pose graph
+};
+
+/// What the loop closure did over a run (the summary line of stats.txt).
+struct LoopClosureCounts {
+  std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, suspect_steps = 0, optimizations = 0;
+  double search_s = 0.0, optimize_s = 0.0;
 };
 
 /// What one step of the loop closure did.
@@ -53,13 +66,21 @@ struct LoopClosureStep {
 
 class LoopCloser {
  public:
-  explicit LoopCloser(const LoopClosureOptions& options);
+  /// `motion` is the filter's motion model: the yardstick of the filter's disagreement with the odometry.
+  LoopCloser(const LoopClosureOptions& options, const MotionModelOptions& motion);
 
   /// Adds the node of processed scan `scan_index`: the first at `filter_pose`, the others joined to the previous
   /// node by `motion` (the filter's estimate of the motion since the previous processed scan, in its frame), then
   /// searches for closures and optimises when due. `odometry` is the odometry's motion over the same step (null
   /// without odometry): where the filter and the odometry disagree, one of them is wrong, so the motion edge is
   /// that much weaker and the search window that much wider.
+  /// Where the motion edges come from at each optimisation and at the end: the filter's current best path (one
+  /// pose per node so far). Without it the edges keep the motion given to addScan (the best particle's then).
+  void setFilterPath(std::function<std::vector<Pose2>()> path) { filter_path_ = std::move(path); }
+  /// The filter was moved by `correction` (x ↦ correction ⊕ x) at the newest node (feedback): its path changes
+  /// frame there, which the motion edge into that node takes into account.
+  void noteFilterCorrection(const Pose2& correction) { frame_changes_[nodes_.size() - 1] = correction; }
+
   LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                           const Pose2* odometry, const PreparedScan& scan);
   /// Optimises once more if closures were added since the last optimisation (at the end of a run).
@@ -75,6 +96,7 @@ class LoopCloser {
   /// Search and optimisation time so far (s).
   double searchSeconds() const { return search_s_; }
   double optimizeSeconds() const { return optimize_s_; }
+  LoopClosureCounts counts() const;
 
  private:
   struct Node {
@@ -82,6 +104,8 @@ class LoopCloser {
     double timestamp;
     double travelled;             ///< m along the trajectory from the first node
     std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
+    std::optional<Pose2> odometry;  ///< the odometry's motion since the previous node
+    std::size_t motion_edge = 0;    ///< the edge from the previous node (none for the first)
   };
   struct Submap {
     std::size_t first, last;  ///< node range [first, last]
@@ -90,11 +114,23 @@ class LoopCloser {
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                        const Pose2* odometry, const PreparedScan& scan);
   void searchForClosures(LoopClosureStep& step);
+  /// The square-root information of a match of `query` at `x` in `grid`, from the curvature of its score.
+  Eigen::Matrix3d closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
+                                         const Pose2& x, double dtheta) const;
+  /// The motion edge from node `prev` to the next: `motion` with a deviation widened by a disagreement with the
+  /// odometry beyond the motion model's noise.
+  PoseGraphEdge motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const;
+  /// The motion edges re-derived from the filter's current best path (filter_path_), whose history resampling
+  /// has pruned of the lineages that died out; without closures the nodes take its poses.
+  void adoptFilterPath();
   void optimizePoseGraph(LoopClosureStep& step);
   std::vector<Point2> queryOf(std::size_t node) const;
   const CorrelationGrid& gridOf(std::size_t submap);
 
   LoopClosureOptions o_;
+  OdometryMotionModel motion_;
+  std::function<std::vector<Pose2>()> filter_path_;
+  std::map<std::size_t, Pose2> frame_changes_;  ///< node -> the correction applied to the filter at it
   PoseGraph graph_;
   std::vector<Node> nodes_;
   std::vector<Submap> submaps_;
@@ -102,15 +138,18 @@ class LoopCloser {
   std::size_t pending_from_ = 0;        ///< closures_[pending_from_..] not yet optimised
   std::size_t last_optimized_node_ = 0;
   double travelled_at_closure_ = 0.0;
-  /// The newest pose dead-reckoned with the odometry (the filter's motion where there is none) from the pose of
-  /// the last closure: how far it lies from the estimate widens the search window.
+  /// The newest pose dead-reckoned from the pose of the last closure with the filter's motion, but with the
+  /// odometry's on suspect steps: how far it lies from the estimate widens the search window.
   Pose2 dead_reckoned_;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
   double search_s_ = 0.0, optimize_s_ = 0.0;
+  std::size_t searches_ = 0, ambiguous_ = 0, suspect_ = 0, optimizations_ = 0;
 };
 
-/// The text of the closures table of stats.txt ("# closures" header, one row per closure).
-std::string closuresText(const std::vector<LoopClosureRecord>& closures);
+/// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then
+/// the summary line "# loop_closure: ..." with `counts` and the feedback's count and time.
+std::string closuresText(const std::vector<LoopClosureRecord>& closures, const LoopClosureCounts& counts,
+                         std::size_t feedbacks, double feedback_s);
 
 }  // namespace gridtopo::slam

@@ -21,6 +21,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double query_voxel = 0.1;     ///< m, the query's points are thinned to one per voxel of this size
   double resolution = 0.05;     ///< m, cell of the submaps' correlation grids
   double field_sigma = 0.07;    ///< m, the grid's value falls as exp(−d²/2σ²) with the distance d to a hit
+  double refine_sigma = 0.03;   ///< m, the same for the refinement of a match (sharper: a precise pose)
   int depth = 7;                ///< levels of the branch-and-bound precomputation (the coarsest spans 2^depth cells)
   int grid_cache = 12;          ///< correlation grids kept (least recently used dropped)
 
@@ -41,13 +42,24 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double ambiguity_distance = 0.6;  ///< m
 
   // The pose graph
-  double loop_sigma_xy = 0.05;      ///< m, deviation of a closure's translation
-  double loop_sigma_theta = 0.01;   ///< rad
+  /// A closure's information is the curvature of its match's score (each query point one observation, divided by
+  /// information_gain for the correlation between neighbouring points), its deviations floored at loop_sigma_*.
+  double information_gain = 10.0;
+  double loop_sigma_xy = 0.02;      ///< m, floor of a closure's translation deviation
+  double loop_sigma_theta = 0.005;  ///< rad, floor of its heading deviation
   double odometry_sigma_xy = 0.01;  ///< m, floor of a filter motion edge's deviation (added to the proposal's)
   double odometry_sigma_xy_per_m = 0.01;  ///< m per m of the motion
   double odometry_sigma_theta = 0.002;    ///< rad, floor
   double odometry_sigma_theta_per_rad = 0.01;  ///< rad per rad of rotation
   double huber_scale = 3.0;     ///< closures' robust loss: Huber, in standard deviations
+  /// After an optimisation, a new closure whose whitened residual is still above this (standard deviations) is
+  /// rejected: it disagrees with the filter's motion and the other closures (a look-alike place), and the graph is
+  /// optimised again without it. 0 = keep every closure.
+  double outlier_sigmas = 4.0;
+  /// A step where the filter's motion and the odometry's differ by more than this many deviations of the motion
+  /// model (Mahalanobis) is suspect: its motion edge is weakened by the difference, and the search window grows by
+  /// the odometry's account of that step. Below it, the disagreement is odometry noise and the edge stays stiff.
+  double disagreement_sigmas = 3.0;
   int optimize_every = 15;      ///< processed scans between optimisations (when a closure was added since)
   int max_iterations = 30;      ///< solver iterations per optimisation
 
@@ -55,7 +67,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// After an optimisation that moves the newest pose by more than feedback_min_correction (m) or
   /// feedback_min_rotation (rad), every particle continues from the optimised poses: its map rebuilt from the
   /// graph, its pose moved by the same correction.
-  bool feedback = true;
+  bool feedback = false;
   double feedback_min_correction = 0.10;
   double feedback_min_rotation = 0.02;
 };

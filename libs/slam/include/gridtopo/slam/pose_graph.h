@@ -14,8 +14,9 @@ namespace gridtopo::slam {
 struct PoseGraphEdge {
   std::size_t a = 0, b = 0;
   Pose2 z;                                         ///< b in the frame of a
-  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Identity();  ///< upper triangular, residual = L·(ẑ − z)
+  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Identity();  ///< L with information LᵀL; residual = L·(ẑ − z)
   bool robust = false;                             ///< Huber loss (closures)
+  bool active = true;                              ///< false: left out of the optimisation (a rejected closure)
 };
 
 struct PoseGraphSolveOptions {
@@ -26,7 +27,11 @@ struct PoseGraphSolveOptions {
 class PoseGraph {
  public:
   std::size_t addNode(const Pose2& initial);
-  void addEdge(const PoseGraphEdge& e);
+  /// Adds an edge; returns its index.
+  std::size_t addEdge(const PoseGraphEdge& e);
+  void replaceEdge(std::size_t i, const PoseGraphEdge& e) { edges_[i] = e; }
+  /// Leaves an edge out of later optimisations.
+  void deactivateEdge(std::size_t i) { edges_[i].active = false; }
   std::size_t size() const { return nodes_.size(); }
   const Pose2& pose(std::size_t i) const { return nodes_[i]; }
   void setPose(std::size_t i, const Pose2& p) { nodes_[i] = p; }

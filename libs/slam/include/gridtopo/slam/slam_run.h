@@ -80,6 +80,7 @@ class SlamRun {
   bool feedNext();
   /// The loop closure's step after a processed scan, and the feedback of a large correction into the filter.
   void closeLoops(std::size_t index);
+  void startLoopCloser();
   /// Every processed scan inserted into a new map at the pose graph's poses.
   GridMap mapOfGraph() const;
   void requireFilter(const char* what) const;
@@ -89,6 +90,8 @@ class SlamRun {
   std::shared_ptr<std::vector<ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
   std::unique_ptr<RbpfSlam> filter_;
   std::unique_ptr<LoopCloser> closer_;
+  std::size_t feedbacks_ = 0;
+  double feedback_s_ = 0.0;
   std::size_t limit_ = 0;
   std::size_t fed_ = 0;
   std::vector<std::size_t> rss_kb_;  ///< per processed scan
