@@ -30,31 +30,50 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
   y0_ = miny - margin * res_;
   const int w0 = static_cast<int>(std::ceil((maxx - minx) / res_)) + 2 * margin + 1;
   const int h0 = static_cast<int>(std::ceil((maxy - miny) / res_)) + 2 * margin + 1;
-  // Distance of every cell to the nearest cell holding a point (OpenCV's exact Euclidean distance transform).
+  // Distance of every cell centre to the nearest point: OpenCV's distance transform with labels names the nearest
+  // cell holding points, and the distance is taken to the mean of that cell's points (not to its centre), so that
+  // the grid is exact to well under a cell where it matters, next to the points.
   cv::Mat seeds(h0, w0, CV_8UC1, cv::Scalar(255));
+  std::vector<double> sum_x(static_cast<std::size_t>(w0) * h0, 0.0), sum_y(sum_x.size(), 0.0);
+  std::vector<int> count(sum_x.size(), 0);
   for (const Point2& p : points) {
     const int cx = cellX(p.x), cy = cellY(p.y);
-    if (cx >= 0 && cy >= 0 && cx < w0 && cy < h0) seeds.at<std::uint8_t>(cy, cx) = 0;
+    if (cx < 0 || cy < 0 || cx >= w0 || cy >= h0) continue;
+    seeds.at<std::uint8_t>(cy, cx) = 0;
+    const std::size_t i = static_cast<std::size_t>(cy) * w0 + cx;
+    sum_x[i] += p.x;
+    sum_y[i] += p.y;
+    ++count[i];
   }
-  cv::Mat dist;
-  cv::distanceTransform(seeds, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::Mat dist, labels;
+  cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  std::vector<std::size_t> cell_of_label(static_cast<std::size_t>(w0) * h0 + 1, 0);
+  for (int y = 0; y < h0; ++y)
+    for (int x = 0; x < w0; ++x)
+      if (seeds.at<std::uint8_t>(y, x) == 0)
+        cell_of_label[static_cast<std::size_t>(labels.at<int>(y, x))] = static_cast<std::size_t>(y) * w0 + x;
   w0_ = w0;
   h0_ = h0;
-  dist_.resize(static_cast<std::size_t>(w0) * h0);
-  for (int y = 0; y < h0; ++y) {
-    const float* d = dist.ptr<float>(y);
-    for (int x = 0; x < w0; ++x) dist_[static_cast<std::size_t>(y) * w0 + x] = static_cast<float>(d[x] * res_);
-  }
+  nearest_.assign(static_cast<std::size_t>(w0) * h0, {1e6f, 1e6f});
+  std::vector<float> dist_m(nearest_.size(), 1e3f);
+  if (!points.empty())
+    for (int y = 0; y < h0; ++y)
+      for (int x = 0; x < w0; ++x) {
+        const std::size_t c = cell_of_label[static_cast<std::size_t>(labels.at<int>(y, x))];
+        const double mx = sum_x[c] / count[c], my = sum_y[c] / count[c];
+        const std::size_t i = static_cast<std::size_t>(y) * w0 + x;
+        nearest_[i] = {static_cast<float>(mx), static_cast<float>(my)};
+        dist_m[i] = static_cast<float>(std::hypot(x0_ + (x + 0.5) * res_ - mx, y0_ + (y + 0.5) * res_ - my));
+      }
   w_ = w0 + 2 * pad_;
   h_ = h0 + 2 * pad_;
   levels_.assign(static_cast<std::size_t>(depth_) + 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w_) * h_, 0));
   std::vector<std::uint8_t>& base = levels_[0];
-  const double k = -0.5 * (res_ * res_) / (sigma * sigma);
+  const double k = -0.5 / (sigma * sigma);
   for (int y = 0; y < h0; ++y) {
-    const float* d = dist.ptr<float>(y);
     std::uint8_t* row = &base[static_cast<std::size_t>(y + pad_) * w_ + pad_];
     for (int x = 0; x < w0; ++x) {
-      const double dd = static_cast<double>(d[x]);
+      const double dd = dist_m[static_cast<std::size_t>(y) * w0 + x];
       row[x] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(k * dd * dd)));
     }
   }
@@ -83,18 +102,15 @@ double CorrelationGrid::interpolated(double x, double y) const {
 }
 
 double CorrelationGrid::refined(double x, double y) const {
-  const double gx = (x - x0_) / res_ - 0.5, gy = (y - y0_) / res_ - 0.5;
-  const int ix = floorInt(gx), iy = floorInt(gy);
-  if (ix < 0 || iy < 0 || ix + 1 >= w0_ || iy + 1 >= h0_) return 0.0;
-  const double fx = gx - ix, fy = gy - iy;
-  const std::size_t i = static_cast<std::size_t>(iy) * w0_ + ix;
-  const double d = (1 - fy) * ((1 - fx) * dist_[i] + fx * dist_[i + 1]) +
-                   fy * ((1 - fx) * dist_[i + w0_] + fx * dist_[i + w0_ + 1]);
-  return std::exp(refine_k_ * d * d);
+  const int ix = cellX(x), iy = cellY(y);
+  if (ix < 0 || iy < 0 || ix >= w0_ || iy >= h0_) return 0.0;
+  const auto& p = nearest_[static_cast<std::size_t>(iy) * w0_ + ix];
+  const double dx = x - p.first, dy = y - p.second;
+  return std::exp(refine_k_ * (dx * dx + dy * dy));
 }
 
 std::size_t CorrelationGrid::bytes() const {
-  std::size_t b = sizeof(*this) + dist_.capacity() * sizeof(float);
+  std::size_t b = sizeof(*this) + nearest_.capacity() * sizeof(nearest_[0]);
   for (const auto& l : levels_) b += l.capacity();
   return b;
 }

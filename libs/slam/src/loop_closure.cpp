@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 #include <unordered_set>
@@ -240,7 +242,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const double off_xy = std::hypot(dead_reckoned_.x - x.x, dead_reckoned_.y - x.y);
   const double off_th = std::abs(wrapAngle(dead_reckoned_.theta - x.theta));
   const double wxy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * since + off_xy);
-  const double wth = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * since + off_th);
   // Candidates: complete submaps left at least min_travel ago, one of whose poses lies within the window (plus
   // the reach of a view) of the current estimate; nearest first.
   const double reach = wxy + 0.5 * o_.point_range;
@@ -276,12 +277,31 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     const CorrelationGrid& grid = gridOf(s);
     SearchWindow w;
     w.center = relative(graph_.pose(sm.first), x);
-    w.xy = wxy;
-    w.theta = wth;
+    // The window for this submap: the uncertainty since the last closure, but no more than what the chain of
+    // motions since the submap's last scan can have gathered (a submap a few metres back is close in the graph).
+    const double chain = cur.travelled - nodes_[sm.last].travelled;
+    const double d = std::min(since, chain);
+    w.xy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * d + off_xy);
+    w.theta = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d + off_th);
     ++step.searches;
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
+    static const bool debug = std::getenv("GRIDTOPO_LC_DEBUG") != nullptr;
+    if (debug)
+      std::fprintf(stderr, "node %zu submap %zu window %.2f %.3f: %s %.3f at %+.3f %+.3f %+.4f\n", i, sm.first, w.xy,
+                   w.theta, found ? "found" : "none", found ? found->score : 0.0,
+                   found ? found->pose.x - w.center.x : 0.0, found ? found->pose.y - w.center.y : 0.0,
+                   found ? wrapAngle(found->pose.theta - w.center.theta) : 0.0);
     if (!found) continue;
+    // A best pose near the window's border may only be the foot of a better one outside it (a corridor that goes
+    // on past the submap's end): no closure. The margin is four cells and four angular steps.
+    const double margin_xy = 4.0 * grid.resolution(), margin_th = 4.0 * dtheta;
+    if (std::abs(found->pose.x - w.center.x) > w.xy - margin_xy ||
+        std::abs(found->pose.y - w.center.y) > w.xy - margin_xy ||
+        (w.theta > margin_th && std::abs(wrapAngle(found->pose.theta - w.center.theta)) > w.theta - margin_th)) {
+      ++border_;
+      continue;
+    }
     // The refinement climbs the sharp value from the search's best cell and from the estimate itself; the higher
     // sharp score wins (the wide search value can favour a pose a few cells off when structures blur together).
     CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
@@ -314,12 +334,14 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     rec.submap_node = sm.first;
     rec.score = m.score;
     rec.second_score = second;
-    rec.window_xy = wxy;
+    rec.window_xy = w.xy;
     rec.offset_xy = std::hypot(m.pose.x - w.center.x, m.pose.y - w.center.y);
     rec.offset_theta = std::abs(wrapAngle(m.pose.theta - w.center.theta));
     closures_.push_back(rec);
     ++step.accepted;
-    travelled_at_closure_ = cur.travelled;
+    // Only a closure across a long stretch of the trajectory says that the estimate agrees with the older map:
+    // one with the last few metres says nothing about the drift since the start of a loop.
+    if (cur.travelled - nodes_[sm.last].travelled >= o_.window_reset_travel) travelled_at_closure_ = cur.travelled;
     dead_reckoned_ = compose(graph_.pose(sm.first), m.pose);
   }
   search_s_ += secondsSince(t0);
@@ -371,6 +393,7 @@ LoopClosureCounts LoopCloser::counts() const {
   c.nodes = nodes_.size();
   c.searches = searches_;
   c.ambiguous = ambiguous_;
+  c.on_border = border_;
   c.suspect_steps = suspect_;
   c.optimizations = optimizations_;
   c.search_s = search_s_;
@@ -391,7 +414,7 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
         << ' ' << c.correction_xy << ' ' << c.correction_theta << ' ' << c.residual << ' ' << (c.rejected ? 1 : 0)
         << std::setprecision(10) << '\n';
   out << std::setprecision(4) << "# loop_closure: nodes " << n.nodes << " searches " << n.searches << " closures "
-      << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " suspect_steps "
+      << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " on_border " << n.on_border << " suspect_steps "
       << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks << " search_s "
       << n.search_s << " optimize_s " << n.optimize_s << " feedback_s " << feedback_s << '\n';
   return out.str();

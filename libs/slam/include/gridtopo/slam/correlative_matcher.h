@@ -9,6 +9,7 @@
 // grid.
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "gridtopo/slam/pose2.h"
@@ -37,8 +38,8 @@ class CorrelationGrid {
   }
   /// The finest level interpolated bilinearly at a point of the submap's frame, in [0, 1].
   double interpolated(double x, double y) const;
-  /// The refinement's value at a point: exp(−d²/2·refine_sigma²) of the bilinearly interpolated distance d to the
-  /// nearest point, in [0, 1]. A wide search value finds a match from far; the sharp one places it precisely.
+  /// The refinement's value at a point: exp(−d²/2·refine_sigma²) of the exact distance d to the submap point
+  /// nearest to its cell, in [0, 1] (continuous within a cell, unlike the quantised search value). A wide search value finds a match from far; the sharp one places it precisely.
   double refined(double x, double y) const;
   /// Cell of a coordinate on the finest lattice.
   int cellX(double x) const { return floorInt((x - x0_) / res_); }
@@ -58,7 +59,8 @@ class CorrelationGrid {
   std::vector<std::vector<std::uint8_t>> levels_;
   int w0_ = 0, h0_ = 0;        ///< the finest lattice without margins
   double refine_k_ = 0.0;      ///< −1 / (2 refine_sigma²), in 1/m²
-  std::vector<float> dist_;    ///< distance to the nearest point (m), w0_ × h0_
+  /// Per finest cell, the nearest of the submap's points (the mean of the points of the nearest cell holding any).
+  std::vector<std::pair<float, float>> nearest_;
 };
 
 struct SearchWindow {

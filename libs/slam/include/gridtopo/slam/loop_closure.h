@@ -50,7 +50,8 @@ struct LoopClosureRecord {
 
 /// What the loop closure did over a run (the summary line of stats.txt).
 struct LoopClosureCounts {
-  std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, suspect_steps = 0, optimizations = 0;
+  std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, on_border = 0, suspect_steps = 0,
+              optimizations = 0;
   double search_s = 0.0, optimize_s = 0.0;
 };
 
@@ -144,7 +145,7 @@ class LoopCloser {
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
   double search_s_ = 0.0, optimize_s_ = 0.0;
-  std::size_t searches_ = 0, ambiguous_ = 0, suspect_ = 0, optimizations_ = 0;
+  std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;
 };
 
 /// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then

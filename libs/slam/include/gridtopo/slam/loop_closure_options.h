@@ -29,6 +29,8 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   int search_every = 2;         ///< search at every n-th processed scan
   double min_travel = 5.0;      ///< m travelled since a submap's last scan before it is a candidate
   int max_candidates = 3;       ///< submaps searched per search, nearest first
+  /// A closure restarts the window's growth only when its submap lies at least this far back along the trajectory.
+  double window_reset_travel = 30.0;
   double window_xy_min = 1.0;   ///< m, search half-width right after a closure
   double window_xy_per_m = 0.05;    ///< m of half-width per m travelled since the last closure
   double window_xy_max = 8.0;       ///< m
