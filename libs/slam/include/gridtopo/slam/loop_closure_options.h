@@ -46,7 +46,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   // The pose graph
   /// A closure's information is the curvature of its match's score (each query point one observation, divided by
   /// information_gain for the correlation between neighbouring points), its deviations floored at loop_sigma_*.
-  double information_gain = 10.0;
+  double information_gain = 1.0;
   double loop_sigma_xy = 0.02;      ///< m, floor of a closure's translation deviation
   double loop_sigma_theta = 0.005;  ///< rad, floor of its heading deviation
   double odometry_sigma_xy = 0.01;  ///< m, floor of a filter motion edge's deviation (added to the proposal's)
