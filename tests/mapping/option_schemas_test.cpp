@@ -161,8 +161,9 @@ bool loads(const Subject& s, const mrpt::config::CConfigFileMemory& cfg) {
 TEST(OptionSchemas, DocumentedIniFilesHoldExactlyTheTablesKeys) {
   // The option files: every key, with its default.
   const IniFile slam_ini = IniFile::read(kIni + "slam.ini");
-  EXPECT_EQ(slam_ini.sections(), std::vector<std::string>{"slam"});
+  EXPECT_EQ(slam_ini.sections(), (std::vector<std::string>{"slam", slam::LoopClosureOptions::kSection}));
   EXPECT_EQ(keySet(slam_ini.keys("slam")), keySet(slam::slamOptionSchema().keys()));
+  EXPECT_EQ(keySet(slam_ini.keys(slam::LoopClosureOptions::kSection)), keySet(slam::loopClosureOptionSchema().keys()));
   const IniFile topo_ini = IniFile::read(kIni + "topology.ini");
   EXPECT_EQ(topo_ini.sections(), (std::vector<std::string>{"topology", "relaxation", "correction"}));
   for (const auto& s : topology::describeTopologyOptions({}))

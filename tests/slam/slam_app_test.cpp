@@ -160,7 +160,7 @@ TEST(SlamApp, RunIniErrorsNameFileLineSectionAndKey) {
   expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\nmax_scans = ten\n",
               ":4: [slam_run] max_scans: cannot parse 'ten' as a non-negative integer");
   expectError("[slam_run]\ninput = " + kIntel + "\n[slma]\nparticles = 3\n",
-              ":3: [slma]: unknown section (expected slam_run, slam)");
+              ":3: [slma]: unknown section (expected slam_run, slam, loop_closure)");
   expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticle = 3\n",
               ":5: [slam] particle: unknown key");
   expectError("[slam_run]\ninput = " + kIntel + "\noutput = " + f.out.string() + "\n[slam]\nparticles = 0\n",

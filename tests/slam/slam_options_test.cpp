@@ -105,4 +105,34 @@ TEST(SlamOptions, DefaultIniDocumentsEveryKeyWithTheCodeDefaults) {
   std::vector<std::string> keys;
   saved.getAllKeys("slam", keys);
   for (const auto& k : keys) EXPECT_TRUE(ini.keyExists("slam", k)) << k << " is not documented in slam.ini";
+  for (const auto& k : slam::loopClosureOptionSchema().keys())
+    EXPECT_TRUE(ini.keyExists("loop_closure", k)) << k << " is not documented in slam.ini's [loop_closure]";
+}
+
+TEST(SlamOptions, LoopClosureKeysLoadFromTheirOwnSectionAndBadValuesNameIt) {
+  mrpt::config::CConfigFileMemory ini;
+  ini.write("slam", "particles", "7");
+  ini.write("loop_closure", "enabled", "false");
+  ini.write("loop_closure", "window_xy_max", "5");
+  slam::SlamOptions o;
+  o.loadFromConfigFile(ini, "slam");
+  EXPECT_EQ(o.particles, 7);
+  EXPECT_FALSE(o.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(o.loop_closure.window_xy_max, 5.0);
+  // Saved back beside [slam], and loaded again to the same options.
+  mrpt::config::CConfigFileMemory saved;
+  o.saveToConfigFile(saved, "slam");
+  slam::SlamOptions again;
+  again.loadFromConfigFile(saved, "slam");
+  EXPECT_FALSE(again.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(again.loop_closure.window_xy_max, 5.0);
+  mrpt::config::CConfigFileMemory bad;
+  bad.write("loop_closure", "min_score", "1.5");
+  try {
+    slam::SlamOptions b;
+    b.loadFromConfigFile(bad, "slam");
+    FAIL() << "min_score 1.5 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("[loop_closure] min_score"), std::string::npos) << e.what();
+  }
 }

@@ -65,7 +65,11 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
   EXPECT_TRUE(run.atEnd());
   EXPECT_EQ(run.scansFed(), kScans);
   ASSERT_EQ(run.filter().stepsProcessed(), kSteps);
-  const auto rows = lines(run.statsText());
+  auto rows = lines(run.statsText());
+  // After the step rows, the loop closure's table and summary ('#' lines).
+  ASSERT_GT(rows.size(), kSteps + 1);
+  EXPECT_EQ(rows.back().rfind("# loop_closure: nodes " + std::to_string(kSteps) + " ", 0), 0u) << rows.back();
+  while (rows.size() > kSteps + 1 && rows.back().rfind("# ", 0) == 0) rows.pop_back();
   ASSERT_EQ(rows.size(), kSteps + 1);
   EXPECT_EQ(rows[0], std::string("# ") + slam::kStatsColumns + " rss_kb");
   const auto& stats = run.filter().stats();

@@ -100,7 +100,11 @@ void SlamRunner::notifyListener(bool idle) {
   if (steps == 0 || steps == listener_steps_ || filter.particles().empty()) return;
   if (!idle && (listener_every_ == 0 || steps % listener_every_ != 0)) return;
   listener_steps_ = steps;
-  listener_(filter.particles()[filter.bestParticleIndex()].map, steps, run_->scansFed());
+  // At the end of the log, the run's result (with loop closure: the map of the optimised poses).
+  if (run_->atEnd())
+    listener_(run_->resultMap(), steps, run_->scansFed());
+  else
+    listener_(filter.particles()[filter.bestParticleIndex()].map, steps, run_->scansFed());
 }
 
 std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {
@@ -136,8 +140,10 @@ void SlamRunner::publish(bool with_trajectory) {
     s->best_map = ps[s->best].map;  // shares tiles
     s->last_scan_pose = ps[s->best].pose;
   }
+  // At the end of the log the map and the trajectory are the run's result (with loop closure: optimised).
+  if (fed == limit_ && !ps.empty() && run_->loopCloser()) s->best_map = run_->resultMap();
   if (with_trajectory || fed == limit_) {
-    last_trajectory_poses_ = filter.trajectory();
+    last_trajectory_poses_ = run_->trajectory();
     last_trajectory_scans_ = fed;
     last_trajectory_ = std::chrono::steady_clock::now();
   }

@@ -66,13 +66,29 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
   return step;
 }
 
-void LoopCloser::finish() {
-  LoopClosureStep step;
-  if (!closures_.empty()) {
-    optimizePoseGraph(step);
-  } else {
-    adoptFilterPath();
+std::vector<Pose2> LoopCloser::finalPoses() const {
+  PoseGraph g = graph_;
+  if (filter_path_) {
+    const std::vector<Pose2> path = filter_path_();
+    if (path.size() == nodes_.size()) {
+      if (closures_.empty()) return path;
+      for (std::size_t k = 1; k < path.size(); ++k) {
+        const auto change = frame_changes_.find(k);
+        const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
+        const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
+        g.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
+      }
+    }
   }
+  if (!closures_.empty()) {
+    PoseGraphSolveOptions so;
+    so.huber_scale = o_.huber_scale;
+    so.max_iterations = o_.max_iterations;
+    g.optimize(so);
+  }
+  std::vector<Pose2> p(g.size());
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = g.pose(i);
+  return p;
 }
 
 std::vector<Pose2> LoopCloser::poses() const {
@@ -403,7 +419,7 @@ LoopClosureCounts LoopCloser::counts() const {
 }
 
 std::string closuresText(const std::vector<LoopClosureRecord>& closures, const LoopClosureCounts& n,
-                         std::size_t feedbacks, double feedback_s) {
+                         std::size_t feedbacks) {
   std::ostringstream out;
   out << "# closures: node scan_index timestamp submap_node score window_xy offset_xy offset_theta correction_xy "
          "correction_theta residual rejected\n";
@@ -414,9 +430,9 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
         << ' ' << c.correction_xy << ' ' << c.correction_theta << ' ' << c.residual << ' ' << (c.rejected ? 1 : 0)
         << std::setprecision(10) << '\n';
   out << std::setprecision(4) << "# loop_closure: nodes " << n.nodes << " searches " << n.searches << " closures "
-      << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " on_border " << n.on_border << " suspect_steps "
-      << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks << " search_s "
-      << n.search_s << " optimize_s " << n.optimize_s << " feedback_s " << feedback_s << '\n';
+      << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " on_border " << n.on_border
+      << " suspect_steps " << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks
+      << '\n';
   return out.str();
 }
 

@@ -102,7 +102,8 @@ const mrpt::maps::CMultiMetricMap* CMetricMapBuilderGridRbpf::getCurrentlyBuiltM
   metric_map_.maps.clear();
   const RbpfSlam& filter = run_->filter();
   if (!filter.particles().empty()) {
-    auto grid = std::make_shared<mrpt::maps::COccupancyGridMap2D>(toOccupancyGrid(filter.bestParticle().map));
+    // The run's map: with loop closure the map of the optimised poses.
+    auto grid = std::make_shared<mrpt::maps::COccupancyGridMap2D>(toOccupancyGrid(run_->resultMap()));
     metric_map_.maps.push_back(grid);
   }
   return &metric_map_;
@@ -111,8 +112,8 @@ const mrpt::maps::CMultiMetricMap* CMetricMapBuilderGridRbpf::getCurrentlyBuiltM
 void CMetricMapBuilderGridRbpf::saveCurrentEstimationToImage(const std::string& file, bool /*formatEMF_BMP*/) {
   const RbpfSlam& filter = run_->filter();
   if (filter.particles().empty()) throw std::runtime_error("saveCurrentEstimationToImage: no map yet");
-  const auto grid = toOccupancyGrid(filter.bestParticle().map);
-  if (!cv::imwrite(file, renderMap(grid, filter.trajectory())))
+  const auto grid = toOccupancyGrid(run_->resultMap());
+  if (!cv::imwrite(file, renderMap(grid, run_->trajectory())))
     throw std::runtime_error("saveCurrentEstimationToImage: cannot write " + file);
 }
 

@@ -85,17 +85,16 @@ void SlamRun::closeLoops(std::size_t index) {
   if (!step.feedback) return;
   // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
   // particle's estimate to the optimised pose, in the map of the optimised poses.
-  const auto t0 = std::chrono::steady_clock::now();
   const Pose2 correction = compose(step.newest_after, relative(node->estimate, Pose2{}));
   filter_->applyCorrection(correction, mapOfGraph());
   closer_->noteFilterCorrection(correction);
   ++feedbacks_;
-  feedback_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-GridMap SlamRun::mapOfGraph() const {
+GridMap SlamRun::mapOfGraph() const { return mapAt(closer_->poses()); }
+
+GridMap SlamRun::mapAt(const std::vector<Pose2>& poses) const {
   GridMap map(options_.resolution);
-  const std::vector<Pose2> poses = closer_->poses();
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const PreparedScan ps = prepareScan((*scans_)[closer_->scanIndexOf(k)].scan, options_.beams, options_.resolution);
     map.insertScan(poses[k], ps.sensor, ps.map_beams, options_.map);
@@ -105,12 +104,14 @@ GridMap SlamRun::mapOfGraph() const {
 
 std::vector<TimedPose> SlamRun::trajectory() const {
   requireFilter("trajectory");
-  return closer_ ? filter_->trajectoryThrough(closer_->poses()) : filter_->trajectory();
+  if (!closer_ || filter_->particles().empty()) return filter_->trajectory();
+  return filter_->trajectoryThrough(closer_->finalPoses());
 }
 
 GridMap SlamRun::resultMap() const {
   requireFilter("resultMap");
-  return closer_ ? mapOfGraph() : filter_->bestParticle().map;
+  if (filter_->particles().empty()) return GridMap(options_.resolution);
+  return closedLoops() ? mapAt(closer_->finalPoses()) : filter_->bestParticle().map;
 }
 
 bool SlamRun::step() {
@@ -148,27 +149,38 @@ std::string SlamRun::statsText() const {
   std::ostringstream out;
   out << "# " << kStatsColumns << " rss_kb\n";
   for (std::size_t i = 0; i < st.size(); ++i) out << statsRow(st[i]) << ' ' << rss_kb_[i] << '\n';
-  if (closer_) out << closuresText(closer_->closures(), closer_->counts(), feedbacks_, feedback_s_);
+  if (closer_) out << closuresText(closer_->closures(), closer_->counts(), feedbacks_);
   return out.str();
+}
+
+std::vector<std::size_t> SlamRun::processedScanIndices() const {
+  std::vector<std::size_t> idx(closer_ ? closer_->nodes() : 0);
+  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = closer_->scanIndexOf(k);
+  return idx;
 }
 
 mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
   requireFilter("simpleMap");
   if (filter_->particles().empty()) return {};
   if (!closer_) return simpleMapOf(filter_->bestParticle().node, *scans_);
-  std::vector<std::size_t> idx(closer_->nodes());
-  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = closer_->scanIndexOf(k);
-  return simpleMapAt(idx, closer_->poses(), *scans_);
+  return simpleMapAt(processedScanIndices(), closer_->finalPoses(), *scans_);
 }
 
 SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
   requireFilter("outputs");
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
-  o.grid = toOccupancyGrid(resultMap());
-  o.trajectory = trajectory();
+  if (closer_) {
+    const std::vector<Pose2> poses = closer_->finalPoses();
+    o.grid = toOccupancyGrid(closedLoops() ? mapAt(poses) : filter_->bestParticle().map);
+    o.trajectory = filter_->trajectoryThrough(poses);
+    o.simplemap = simpleMapAt(processedScanIndices(), poses, *scans_);
+  } else {
+    o.grid = toOccupancyGrid(filter_->bestParticle().map);
+    o.trajectory = filter_->trajectory();
+    o.simplemap = simpleMap();
+  }
   o.trajectory_header = trajectory_header;
-  o.simplemap = simpleMap();
   o.stats = statsText();
   o.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
   return o;
@@ -178,14 +190,14 @@ SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, c
   requireFilter("finish");
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
-  if (closer_) closer_->finish();
-  o.trajectory = trajectory();
+  const std::vector<Pose2> poses = closer_ ? closer_->finalPoses() : std::vector<Pose2>{};
+  o.trajectory = closer_ ? filter_->trajectoryThrough(poses) : filter_->trajectory();
   o.stats = statsText();
-  o.simplemap = simpleMap();
+  o.simplemap = closer_ ? simpleMapAt(processedScanIndices(), poses, *scans_) : simpleMap();
   // The export needs only the result's map: the particles' maps are freed before the map (and its pictures,
   // 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
   o.grid = [&] {
-    const GridMap map = closer_ ? mapOfGraph() : filter_->bestParticle().map;  // the best one shares the tiles
+    const GridMap map = closedLoops() ? mapAt(poses) : filter_->bestParticle().map;  // the best one shares the tiles
     filter_.reset();
     releaseFreedMemory();
     return toOccupancyGrid(map);

@@ -84,8 +84,10 @@ class LoopCloser {
 
   LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                           const Pose2* odometry, const PreparedScan& scan);
-  /// Optimises once more if closures were added since the last optimisation (at the end of a run).
-  void finish();
+  /// The poses of the result: the graph with its motion edges re-derived from the filter's path and optimised
+  /// once more (on a copy: the loop closure goes on as it was, and asking twice gives the same poses). Without a
+  /// closure, the filter's path itself.
+  std::vector<Pose2> finalPoses() const;
 
   std::size_t nodes() const { return nodes_.size(); }
   /// The optimised pose of every node, in processing order.
@@ -149,8 +151,9 @@ class LoopCloser {
 };
 
 /// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then
-/// the summary line "# loop_closure: ..." with `counts` and the feedback's count and time.
+/// the summary line "# loop_closure: ..." with `counts` and the number of feedbacks (no times: stats.txt's other
+/// lines are the same for a seed whatever the machine, but for their time and RSS columns).
 std::string closuresText(const std::vector<LoopClosureRecord>& closures, const LoopClosureCounts& counts,
-                         std::size_t feedbacks, double feedback_s);
+                         std::size_t feedbacks);
 
 }  // namespace gridtopo::slam

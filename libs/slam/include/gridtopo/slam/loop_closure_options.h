@@ -12,7 +12,7 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema();
 
 struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSchema> {
   static constexpr const char* kSection = "loop_closure";
-  bool enabled = true;  ///< false: the filter alone (its best particle's trajectory and map)
+  bool enabled = false; ///< false: the filter alone (its best particle's trajectory and map)
 
   // Submaps and the query
   int submap_nodes = 20;        ///< consecutive processed scans per submap

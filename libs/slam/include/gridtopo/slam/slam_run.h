@@ -54,8 +54,8 @@ class SlamRun {
   /// The trajectory of every scan fed so far: through the pose graph's optimised poses with loop closure, else
   /// the filter's (RbpfSlam::trajectory).
   std::vector<TimedPose> trajectory() const;
-  /// The map of the result: with loop closure every processed scan inserted at its optimised pose, else the best
-  /// particle's map.
+  /// The map of the result: once the loop closure has closed a loop, every processed scan inserted at its optimised
+  /// pose; before (or without loop closure) the best particle's map.
   GridMap resultMap() const;
 
   /// The text of stats.txt: "# " kStatsColumns " rss_kb", then one row per processed scan with the process's
@@ -81,8 +81,13 @@ class SlamRun {
   /// The loop closure's step after a processed scan, and the feedback of a large correction into the filter.
   void closeLoops(std::size_t index);
   void startLoopCloser();
-  /// Every processed scan inserted into a new map at the pose graph's poses.
+  /// Every processed scan inserted into a new map at the pose graph's current poses (feedback), or at `poses`.
   GridMap mapOfGraph() const;
+  GridMap mapAt(const std::vector<Pose2>& poses) const;
+  /// The loop closure has accepted a closure: the result is the pose graph's, not the best particle's.
+  bool closedLoops() const { return closer_ && !closer_->closures().empty(); }
+  /// The scan index of every node of the loop closure.
+  std::vector<std::size_t> processedScanIndices() const;
   void requireFilter(const char* what) const;
 
   SlamOptions options_;
@@ -91,7 +96,7 @@ class SlamRun {
   std::unique_ptr<RbpfSlam> filter_;
   std::unique_ptr<LoopCloser> closer_;
   std::size_t feedbacks_ = 0;
-  double feedback_s_ = 0.0;
+
   std::size_t limit_ = 0;
   std::size_t fed_ = 0;
   std::vector<std::size_t> rss_kb_;  ///< per processed scan
