@@ -66,9 +66,7 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
   EXPECT_EQ(run.scansFed(), kScans);
   ASSERT_EQ(run.filter().stepsProcessed(), kSteps);
   auto rows = lines(run.statsText());
-  // After the step rows, the loop closure's table and summary ('#' lines).
-  ASSERT_GT(rows.size(), kSteps + 1);
-  EXPECT_EQ(rows.back().rfind("# loop_closure: nodes " + std::to_string(kSteps) + " ", 0), 0u) << rows.back();
+  // After the step rows, with loop closure, its table and summary ('#' lines).
   while (rows.size() > kSteps + 1 && rows.back().rfind("# ", 0) == 0) rows.pop_back();
   ASSERT_EQ(rows.size(), kSteps + 1);
   EXPECT_EQ(rows[0], std::string("# ") + slam::kStatsColumns + " rss_kb");
