@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/odometry_error.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/rbpf_slam.h"
@@ -69,25 +70,6 @@ std::vector<mrpt::math::TPose2D> corridorLoopWaypoints() {
   return {{kStartX, 1, 0}, {43, 1, 0}, {43, 13, 0}, {1, 13, 0}, {1, 1, 0}, {43, 1, 0}, {43, 8, 0}};
 }
 
-// A systematic translation scale error on the odometry: every increment's translation times (1 + scale_error).
-void scaleOdometry(sim::SimLog& log, double scale_error) {
-  slam::Pose2 prev_in{}, out{};
-  for (std::size_t i = 0; i < log.records.size(); ++i) {
-    auto& o = log.records[i].odometry;
-    const slam::Pose2 in{o.x, o.y, o.phi};
-    if (i == 0) {
-      out = in;
-    } else {
-      slam::Pose2 u = slam::relative(prev_in, in);
-      u.x *= 1 + scale_error;
-      u.y *= 1 + scale_error;
-      out = slam::compose(out, u);
-    }
-    prev_in = in;
-    o = {out.x, out.y, out.theta};
-  }
-}
-
 struct Result {
   double closure_xy = 0, closure_th = 0;  ///< max error against the truth from the closure to the end
   double closure_mean_th = 0;             ///< mean heading error from the closure to the end
@@ -119,7 +101,7 @@ Result runCorridorLoop(std::uint64_t seed, double scale_error, const slam::SlamO
   so.odo_drift_theta = 0.004;  // rad per m: about 0.5 rad over the 124 m
   so.seed = seed;
   auto log = sim::simulate(plan, corridorLoopWaypoints(), so);
-  scaleOdometry(log, scale_error);
+  testing_scene::scaleOdometry(log, scale_error);
 
   const auto& truth = log.truth;
   // On the second pass along the long corridor: `mid`, 26 m into the featureless stretch (the end wall is 16 m

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/odometry_error.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/correlative_matcher.h"
 #include "gridtopo/slam/map_export.h"
@@ -71,25 +72,6 @@ std::vector<mrpt::math::TPose2D> largeLoopWaypoints() {
   return {{2.0, 1.25, 0}, {58.75, 1.25, 0}, {58.75, 22.75, 0}, {1.25, 22.75, 0}, {1.25, 1.25, 0}, {20, 1.25, 0}};
 }
 
-// Every odometry increment's translation times (1 + scale_error).
-void scaleOdometry(sim::SimLog& log, double scale_error) {
-  slam::Pose2 prev_in{}, out{};
-  for (std::size_t i = 0; i < log.records.size(); ++i) {
-    auto& o = log.records[i].odometry;
-    const slam::Pose2 in{o.x, o.y, o.phi};
-    if (i == 0) {
-      out = in;
-    } else {
-      slam::Pose2 u = slam::relative(prev_in, in);
-      u.x *= 1 + scale_error;
-      u.y *= 1 + scale_error;
-      out = slam::compose(out, u);
-    }
-    prev_in = in;
-    o = {out.x, out.y, out.theta};
-  }
-}
-
 sim::SimLog largeLoopLog() {
   sim::SimOptions so;
   so.max_range = 10.0;
@@ -100,7 +82,7 @@ sim::SimLog largeLoopLog() {
   so.odo_drift_theta = 0.002;
   so.seed = 11;
   sim::SimLog log = sim::simulate(largeLoopPlan(), largeLoopWaypoints(), so);
-  scaleOdometry(log, 0.06);
+  testing_scene::scaleOdometry(log, 0.06);
   return log;
 }
 

@@ -115,20 +115,24 @@ std::size_t CorrelationGrid::bytes() const {
   return b;
 }
 
-double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x) {
+namespace {
+/// The mean of value(x, y) over the query's points moved to pose x.
+template <class Value>
+double meanOverQuery(const std::vector<Point2>& query, const Pose2& x, Value value) {
   if (query.empty()) return 0.0;
   const double c = std::cos(x.theta), s = std::sin(x.theta);
   double sum = 0.0;
-  for (const Point2& q : query) sum += grid.interpolated(x.x + c * q.x - s * q.y, x.y + s * q.x + c * q.y);
+  for (const Point2& q : query) sum += value(x.x + c * q.x - s * q.y, x.y + s * q.x + c * q.y);
   return sum / static_cast<double>(query.size());
+}
+}  // namespace
+
+double correlationScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x) {
+  return meanOverQuery(query, x, [&](double px, double py) { return grid.interpolated(px, py); });
 }
 
 double refinementScore(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& x) {
-  if (query.empty()) return 0.0;
-  const double c = std::cos(x.theta), s = std::sin(x.theta);
-  double sum = 0.0;
-  for (const Point2& q : query) sum += grid.refined(x.x + c * q.x - s * q.y, x.y + s * q.x + c * q.y);
-  return sum / static_cast<double>(query.size());
+  return meanOverQuery(query, x, [&](double px, double py) { return grid.refined(px, py); });
 }
 
 CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,

@@ -3,11 +3,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 #include <unordered_set>
@@ -17,10 +14,6 @@
 namespace gridtopo::slam {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::uint64_t cellKey(double x, double y, double size) {
   const auto ix = static_cast<std::int64_t>(std::floor(x / size));
@@ -72,23 +65,29 @@ std::vector<Pose2> LoopCloser::finalPoses() const {
     const std::vector<Pose2> path = filter_path_();
     if (path.size() == nodes_.size()) {
       if (closures_.empty()) return path;
-      for (std::size_t k = 1; k < path.size(); ++k) {
-        const auto change = frame_changes_.find(k);
-        const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
-        const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
-        g.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
-      }
+      setMotionEdges(path, g);
     }
   }
-  if (!closures_.empty()) {
-    PoseGraphSolveOptions so;
-    so.huber_scale = o_.huber_scale;
-    so.max_iterations = o_.max_iterations;
-    g.optimize(so);
-  }
+  if (!closures_.empty()) g.optimize(solveOptions());
   std::vector<Pose2> p(g.size());
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = g.pose(i);
   return p;
+}
+
+PoseGraphSolveOptions LoopCloser::solveOptions() const {
+  PoseGraphSolveOptions so;
+  so.huber_scale = o_.huber_scale;
+  so.max_iterations = o_.max_iterations;
+  return so;
+}
+
+void LoopCloser::setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const {
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const auto change = frame_changes_.find(k);
+    const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
+    const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
+    g.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
+  }
 }
 
 std::vector<Pose2> LoopCloser::poses() const {
@@ -103,8 +102,7 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   if (odometry) n.odometry = *odometry;
   n.scan_index = scan_index;
   n.timestamp = timestamp;
-  const double dist = std::hypot(motion.x, motion.y);
-  n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + dist;
+  n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);
   const double r2 = o_.point_range * o_.point_range;
   for (const MapBeam& b : scan.map_beams) {
     if (!b.hit) continue;
@@ -120,10 +118,8 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   } else {
     const std::size_t prev = nodes_.size() - 1;
     graph_.addNode(compose(graph_.pose(prev), motion));
-    const PoseGraphEdge e = motionEdge(prev, motion, odometry ? &*odometry : nullptr);
-    const bool suspect = e.sqrt_information(0, 0) < 1.0 / (o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * dist) ||
-                         e.sqrt_information(2, 2) <
-                             1.0 / (o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta));
+    const PoseGraphEdge e = motionEdge(prev, motion, odometry);
+    const bool suspect = odometry && suspectStep(motion, *odometry);
     suspect_ += suspect;
     dead_reckoned_ = compose(dead_reckoned_, suspect ? *odometry : motion);
     n.motion_edge = graph_.addEdge(e);
@@ -137,20 +133,22 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
     submaps_.back().last = i;
 }
 
+bool LoopCloser::suspectStep(const Pose2& motion, const Pose2& odometry) const {
+  const OdometryMotionModel::Sigmas sg = motion_.sigmas(odometry, true);
+  const double ex = motion.x - odometry.x, ey = motion.y - odometry.y;
+  const double et = wrapAngle(motion.theta - odometry.theta);
+  const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
+  return d2 > o_.disagreement_sigmas * o_.disagreement_sigmas;
+}
+
 PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const {
   // A step where the filter and the odometry disagree beyond the motion model's noise is suspect: one of them is
   // wrong (a filter that followed something moving with the robot, or an odometry that slipped). Its edge is
   // weakened by the difference, so that a closure can bend it (and the window follows the odometry there).
   double dxy = 0.0, dth = 0.0;
-  if (odometry) {
-    const OdometryMotionModel::Sigmas sg = motion_.sigmas(*odometry, true);
-    const double ex = motion.x - odometry->x, ey = motion.y - odometry->y;
-    const double et = wrapAngle(motion.theta - odometry->theta);
-    const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
-    if (d2 > o_.disagreement_sigmas * o_.disagreement_sigmas) {
-      dxy = std::hypot(ex, ey);
-      dth = std::abs(et);
-    }
+  if (odometry && suspectStep(motion, *odometry)) {
+    dxy = std::hypot(motion.x - odometry->x, motion.y - odometry->y);
+    dth = std::abs(wrapAngle(motion.theta - odometry->theta));
   }
   PoseGraphEdge e;
   e.a = prev;
@@ -166,12 +164,7 @@ void LoopCloser::adoptFilterPath() {
   if (!filter_path_) return;
   const std::vector<Pose2> path = filter_path_();
   if (path.size() != nodes_.size()) return;
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const auto change = frame_changes_.find(k);
-    const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
-    const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
-    graph_.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
-  }
+  setMotionEdges(path, graph_);
   // Without a closure the graph is the filter's path itself.
   if (closures_.empty())
     for (std::size_t k = 0; k < path.size(); ++k) graph_.setPose(k, path[k]);
@@ -250,7 +243,6 @@ const CorrelationGrid& LoopCloser::gridOf(std::size_t s) {
 void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const std::size_t i = nodes_.size() - 1;
   if (i + 1 < static_cast<std::size_t>(o_.query_nodes)) return;
-  const auto t0 = std::chrono::steady_clock::now();
   const Node& cur = nodes_[i];
   const Pose2& x = graph_.pose(i);
   const double since = cur.travelled - travelled_at_closure_;
@@ -275,15 +267,9 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   }
   std::sort(cand.begin(), cand.end());
   if (cand.size() > static_cast<std::size_t>(o_.max_candidates)) cand.resize(static_cast<std::size_t>(o_.max_candidates));
-  if (cand.empty()) {
-    search_s_ += secondsSince(t0);
-    return;
-  }
+  if (cand.empty()) return;
   const std::vector<Point2> query = queryOf(i);
-  if (query.size() < 20) {
-    search_s_ += secondsSince(t0);
-    return;
-  }
+  if (query.size() < 20) return;
   double d_max = o_.resolution;
   for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
   const double dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
@@ -299,15 +285,8 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     const double d = std::min(since, chain);
     w.xy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * d + off_xy);
     w.theta = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d + off_th);
-    ++step.searches;
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
-    static const bool debug = std::getenv("GRIDTOPO_LC_DEBUG") != nullptr;
-    if (debug)
-      std::fprintf(stderr, "node %zu submap %zu window %.2f %.3f: %s %.3f at %+.3f %+.3f %+.4f\n", i, sm.first, w.xy,
-                   w.theta, found ? "found" : "none", found ? found->score : 0.0,
-                   found ? found->pose.x - w.center.x : 0.0, found ? found->pose.y - w.center.y : 0.0,
-                   found ? wrapAngle(found->pose.theta - w.center.theta) : 0.0);
     if (!found) continue;
     // A best pose near the window's border may only be the foot of a better one outside it (a corridor that goes
     // on past the submap's end): no closure. The margin is four cells and four angular steps.
@@ -326,12 +305,10 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     if (m.score < o_.min_score) continue;
     // Refuse look-alikes: a distinct pose of the window that scores nearly as well.
     const Point2 at{m.pose.x, m.pose.y};
-    double second = 0.0;
     if (o_.ambiguity_ratio < 1.0) {
       const auto other = branchAndBoundSearch(grid, query, w, std::max(o_.min_score, o_.ambiguity_ratio * m.score), &at,
                                               o_.ambiguity_distance);
       if (other) {
-        ++step.refused_ambiguous;
         ++ambiguous_;
         continue;
       }
@@ -349,7 +326,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     rec.timestamp = cur.timestamp;
     rec.submap_node = sm.first;
     rec.score = m.score;
-    rec.second_score = second;
     rec.window_xy = w.xy;
     rec.offset_xy = std::hypot(m.pose.x - w.center.x, m.pose.y - w.center.y);
     rec.offset_theta = std::abs(wrapAngle(m.pose.theta - w.center.theta));
@@ -360,17 +336,13 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     if (cur.travelled - nodes_[sm.last].travelled >= o_.window_reset_travel) travelled_at_closure_ = cur.travelled;
     dead_reckoned_ = compose(graph_.pose(sm.first), m.pose);
   }
-  search_s_ += secondsSince(t0);
 }
 
 void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
-  const auto t0 = std::chrono::steady_clock::now();
   const std::size_t i = nodes_.size() - 1;
   const Pose2 before = graph_.pose(i);
   adoptFilterPath();
-  PoseGraphSolveOptions so;
-  so.huber_scale = o_.huber_scale;
-  so.max_iterations = o_.max_iterations;
+  const PoseGraphSolveOptions so = solveOptions();
   graph_.optimize(so);
   ++optimizations_;
   // The new closures that still disagree with everything else are look-alikes: out, and optimise again.
@@ -401,7 +373,6 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   step.newest_after = after;
   step.feedback = o_.feedback && (std::hypot(after.x - before.x, after.y - before.y) > o_.feedback_min_correction ||
                                   std::abs(d.theta) > o_.feedback_min_rotation);
-  optimize_s_ += secondsSince(t0);
 }
 
 LoopClosureCounts LoopCloser::counts() const {
@@ -412,8 +383,6 @@ LoopClosureCounts LoopCloser::counts() const {
   c.on_border = border_;
   c.suspect_steps = suspect_;
   c.optimizations = optimizations_;
-  c.search_s = search_s_;
-  c.optimize_s = optimize_s_;
   for (const LoopClosureRecord& r : closures_) (r.rejected ? c.rejected : c.accepted) += 1;
   return c;
 }

@@ -37,7 +37,6 @@ struct LoopClosureRecord {
   double timestamp = 0.0;
   std::size_t submap_node = 0;  ///< the submap's first node (the edge's other end)
   double score = 0.0;           ///< mean correlation over the query's points
-  double second_score = 0.0;    ///< best distinct alternative (0: none above the threshold)
   double window_xy = 0.0;       ///< m, the search's half-width
   double offset_xy = 0.0;       ///< m, how far the match lies from the estimate it started from
   double offset_theta = 0.0;    ///< rad
@@ -52,14 +51,11 @@ struct LoopClosureRecord {
 struct LoopClosureCounts {
   std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, on_border = 0, suspect_steps = 0,
               optimizations = 0;
-  double search_s = 0.0, optimize_s = 0.0;
 };
 
 /// What one step of the loop closure did.
 struct LoopClosureStep {
-  int searches = 0;        ///< submaps searched
   int accepted = 0;        ///< closures added
-  int refused_ambiguous = 0;
   bool optimized = false;
   Pose2 newest_before, newest_after;  ///< the newest node before and after the optimisation
   bool feedback = false;   ///< the correction is large enough to feed back into the filter
@@ -96,9 +92,6 @@ class LoopCloser {
   const std::vector<LoopClosureRecord>& closures() const { return closures_; }
   const PoseGraph& graph() const { return graph_; }
   const LoopClosureOptions& options() const { return o_; }
-  /// Search and optimisation time so far (s).
-  double searchSeconds() const { return search_s_; }
-  double optimizeSeconds() const { return optimize_s_; }
   LoopClosureCounts counts() const;
 
  private:
@@ -126,6 +119,11 @@ class LoopCloser {
   /// The motion edges re-derived from the filter's current best path (filter_path_), whose history resampling
   /// has pruned of the lineages that died out; without closures the nodes take its poses.
   void adoptFilterPath();
+  /// The motion edges of `g` from the filter path `path` (one pose per node; frame changes of feedback applied).
+  void setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const;
+  /// The filter's motion and the odometry's differ by more than disagreement_sigmas motion-model deviations.
+  bool suspectStep(const Pose2& motion, const Pose2& odometry) const;
+  PoseGraphSolveOptions solveOptions() const;
   void optimizePoseGraph(LoopClosureStep& step);
   std::vector<Point2> queryOf(std::size_t node) const;
   const CorrelationGrid& gridOf(std::size_t submap);
@@ -146,7 +144,6 @@ class LoopCloser {
   Pose2 dead_reckoned_;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
-  double search_s_ = 0.0, optimize_s_ = 0.0;
   std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;
 };
 
