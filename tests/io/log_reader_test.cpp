@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/scan_conversion.h"
 #include "synthetic_scans.h"
 
 namespace fs = std::filesystem;
@@ -141,6 +142,29 @@ TEST(LogReader, IntelThroughBothRawlogLayoutsGivesTheSameStream) {
     EXPECT_LT(worst_beam, 1e-9);
     EXPECT_LT(worst_odo, 1e-9);
   }
+}
+
+// A CARMEN log's scans come with the geometry that MRPT's observation holds exactly (useMrptScanGeometry): the
+// MRPT map builder, fed the same log as CObservation2DRangeScans, sees the very same numbers.
+TEST(LogReader, CarmenScansHoldTheGeometryOfTheirMrptObservationBitForBit) {
+  std::size_t differ = 0;
+  for (const auto& log : {kIntel, kAces}) {
+    const auto scans = log == kIntel ? intel() : readScanLog(log);
+    for (const ScanRecord& r : scans) {
+      const LaserScan back = fromMrptScan(*toMrptScan(r.scan));
+      differ += back.timestamp != r.scan.timestamp || back.start_angle != r.scan.start_angle ||
+                back.angle_increment != r.scan.angle_increment || back.max_range != r.scan.max_range ||
+                back.sensor_pose.x != r.scan.sensor_pose.x || back.sensor_pose.y != r.scan.sensor_pose.y ||
+                back.sensor_pose.phi != r.scan.sensor_pose.phi || back.ranges != r.scan.ranges;
+    }
+  }
+  EXPECT_EQ(differ, 0u);
+  // The FLASER fan of 180 beams from -90 deg: its centre, -0.5 deg, is in the laser's yaw now, and the beams
+  // are symmetric about it; every beam points where it did.
+  const LaserScan& s = intel().front().scan;
+  EXPECT_NEAR(s.sensor_pose.phi, -0.5 * M_PI / 180.0, 1e-12);
+  EXPECT_DOUBLE_EQ(s.start_angle, -89.5 * M_PI / 180.0);
+  EXPECT_NEAR(s.sensor_pose.phi + s.beamAngle(0), -M_PI / 2, 1e-12);
 }
 
 TEST(LogReader, SniffsContentNotExtension) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 using namespace gridtopo;
 using namespace gridtopo::io;
@@ -178,6 +179,33 @@ TEST(ScanConversion, TimestampsKeepMicrosecondsExactly) {
   EXPECT_LE(std::llabs(a - b), 1);
   EXPECT_NEAR(mrpt::Clock::toDouble(toMrptTime(t)), t, 2e-7);
   EXPECT_THROW(toMrptTime(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+TEST(ScanConversion, MrptGeometryKeepsTheBeamsAndMakesTheRoundTripExact) {
+  for (const auto& [n, start, inc] : {std::tuple<std::size_t, double, double>{180, -90, 1}, {361, -90, 0.5},
+                                      {181, 90, -1}, {1081, -135, 0.25}, {682, -119.8828, 0.3515625}}) {
+    SCOPED_TRACE(n);
+    const LaserScan raw = makeScan(n, start, inc, {0.12, -0.03, 0.4});
+    LaserScan s = raw;
+    useMrptScanGeometry(s);
+    EXPECT_LT(maxEndpointError(raw, s), 1e-9);
+    EXPECT_EQ(s.ranges, raw.ranges);
+    EXPECT_EQ(s.valid, raw.valid);
+    const LaserScan back = fromMrptScan(*toMrptScan(s));
+    EXPECT_EQ(back.start_angle, s.start_angle);
+    EXPECT_EQ(back.angle_increment, s.angle_increment);
+    EXPECT_EQ(back.sensor_pose.phi, s.sensor_pose.phi);
+    EXPECT_EQ(back.max_range, s.max_range);
+    EXPECT_EQ(back.timestamp, s.timestamp);
+    LaserScan again = s;  // idempotent
+    useMrptScanGeometry(again);
+    EXPECT_EQ(again.start_angle, s.start_angle);
+    EXPECT_EQ(again.sensor_pose.phi, s.sensor_pose.phi);
+  }
+  // A scan MRPT cannot hold is left as it is.
+  LaserScan one = makeScan(1, 0, 1);
+  useMrptScanGeometry(one);
+  EXPECT_EQ(one.start_angle, 0.0);
 }
 
 TEST(ScanConversion, RejectsScansMrptCannotHold) {

@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/rawlog_io.h"
+#include "gridtopo/io/scan_conversion.h"
 
 namespace gridtopo::io {
 namespace {
@@ -131,6 +132,8 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
   info.notes = std::move(log.notes);
   if (options.odometry == OdometrySource::OdomLines)
     info.odometry_fallbacks = interpolateOdometry(log.scans, log.odometry);
+  // The geometry an MRPT rawlog of this log would hold (a rawlog's scans come through fromMrptScan already).
+  for (ScanRecord& r : log.scans) useMrptScanGeometry(r.scan);
   return std::move(log.scans);
 }
 

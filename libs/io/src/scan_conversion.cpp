@@ -131,6 +131,31 @@ LaserScan fromMrptScan(const mrpt::obs::CObservation2DRangeScan& obs) {
   return s;
 }
 
+void useMrptScanGeometry(LaserScan& scan) {
+  const std::size_t n = scan.ranges.size();
+  if (n < 2 || scan.valid.size() != n || !std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 ||
+      !std::isfinite(scan.start_angle) || !std::isfinite(scan.sensor_pose.x) || !std::isfinite(scan.sensor_pose.y) ||
+      !std::isfinite(scan.sensor_pose.phi) || !std::isfinite(scan.timestamp) || !(scan.max_range > 0.0) ||
+      !std::isfinite(scan.max_range))
+    return;
+  // The round trip itself on a two-beam stand-in of the scan (the geometry does not depend on the readings but
+  // through their number, which the aperture carries): whatever MRPT does to the pose's yaw, it is done here too.
+  LaserScan probe;
+  probe.timestamp = scan.timestamp;
+  probe.max_range = scan.max_range;
+  probe.sensor_pose = scan.sensor_pose;
+  probe.start_angle = scan.start_angle;
+  probe.angle_increment = scan.angle_increment;
+  probe.ranges.assign(n, 0.0f);
+  probe.valid.assign(n, 0);
+  const LaserScan back = fromMrptScan(*toMrptScan(probe));
+  scan.timestamp = back.timestamp;
+  scan.max_range = back.max_range;
+  scan.sensor_pose = back.sensor_pose;
+  scan.start_angle = back.start_angle;
+  scan.angle_increment = back.angle_increment;
+}
+
 mrpt::math::TPoint2D beamEndpointInRobotFrame(const LaserScan& scan, std::size_t k) {
   const double a = scan.sensor_pose.phi + scan.beamAngle(k);
   const double r = scan.ranges[k];

@@ -45,7 +45,6 @@ void CMetricMapBuilderGridRbpf::feed(const mrpt::obs::CObservation& obs) {
   if (!scan) return;
   ScanRecord r;
   r.scan = io::fromMrptScan(*scan);
-  r.scan.timestamp = mrpt::Clock::toDouble(scan->timestamp);
   r.has_odometry = has_odometry_;
   r.odometry = odometry_;
   r.source_index = run_->scansFed();

@@ -47,6 +47,15 @@ mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const 
 /// fewer than 2 beams.
 LaserScan fromMrptScan(const mrpt::obs::CObservation2DRangeScan& obs);
 
+/// The scan's geometry in the form an MRPT CObservation2DRangeScan holds it, its readings untouched: the laser's
+/// yaw, the first beam's angle, the increment, the max range and the timestamp become those of
+/// fromMrptScan(toMrptScan(scan)) (the fan's centre folded into the yaw, the beams symmetric about it, the max
+/// range a float, the time in 100 ns ticks). Every beam points where it pointed, to within rounding; but the same
+/// log read from a CARMEN file or fed to the MRPT map builder (gridtopo-map) then gives the filter bit-identical
+/// numbers, which the loop closure's discrete decisions need for gridtopo-map to reproduce gridtopo-slam. A scan
+/// toMrptScan refuses is left as it is.
+void useMrptScanGeometry(LaserScan& scan);
+
 /// End point of beam k in the robot frame (the scan's sensor_pose applied to range k along its beam).
 mrpt::math::TPoint2D beamEndpointInRobotFrame(const LaserScan& scan, std::size_t k);
 
