@@ -11,6 +11,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/carmen_log.h"
+#include "gridtopo/io/scan_conversion.h"
 
 using namespace gridtopo;
 using namespace gridtopo::io;
@@ -251,14 +252,15 @@ TEST(CarmenMaxRange, DeclaredMaxContradictedByTheReadings) {
 }
 
 TEST(CarmenMaxRange, ReadingsAtMaxRangeAreNoReturns) {
-  // ROBOTLASER1 max 81.9 (Freiburg): 81.91 and 81.9 are no-returns, 81.83 a real return; FLASER with the
-  // default 50 m: 50.00 (ACES's no-return) is a no-return, 49.99 a real return.
+  // ROBOTLASER1 max 81.9 (Freiburg): 81.91 and 81.9 are no-returns, a lone 81.83 (no spike of them: see
+  // NoReturnCodeBelowTheDeclaredMax) a real return; FLASER with the default 50 m: 50.00 (ACES's no-return) is
+  // a no-return, a lone 49.99 a real return.
   const std::vector<std::string> r = {"81.91", "81.9", "81.83", "5.0"};
   const CarmenLog log = parse(
       robotlaser(-M_PI / 2, 181, [&](std::size_t k) { return r[std::min<std::size_t>(k, 3)]; }, 81.9, "0 0 0",
                  "0 0 0", "1", "1") +
-      flaser(180, [](std::size_t k) { return k == 0 ? std::string("50.00") : std::string("49.99"); }, "0 0 0",
-             "0 0 0", "2", "2"));
+      flaser(180, [](std::size_t k) { return k == 0 ? std::string("50.00") : std::string(k == 1 ? "49.99" : "5.0"); },
+             "0 0 0", "0 0 0", "2", "2"));
   const LaserScan& a = log.scans.at(0).scan;
   EXPECT_TRUE(a.isNoReturn(0));
   EXPECT_TRUE(a.isNoReturn(1));
@@ -269,6 +271,110 @@ TEST(CarmenMaxRange, ReadingsAtMaxRangeAreNoReturns) {
   EXPECT_TRUE(b.isNoReturn(0));
   EXPECT_FALSE(b.valid[0]);
   EXPECT_TRUE(b.valid[1]);
+}
+
+namespace {
+/// 20 ROBOTLASER1 scans of 181 beams declaring `declared`: beams 0..149 real hits from 0.5 m to 45 m, beams
+/// 150..159 real hits near the top, spread over values (73.2 m to 81.2 m, a different one per beam and scan),
+/// beams 160..171 the no-return code `code`, beams 172..180 `above` (another code beyond the declaration, as
+/// the hospital's 81.91) unless empty.
+std::string codeBelowMaxScans(double declared, const std::string& code, const std::string& above = "") {
+  std::string t;
+  for (int i = 0; i < 20; ++i)
+    t += robotlaser(
+        -M_PI / 2, 181,
+        [&](std::size_t k) {
+          if (k >= 172 && !above.empty()) return above;
+          if (k >= 160) return code;
+          if (k >= 150) return fixed(73.2 + 0.85 * static_cast<double>(k - 150) + 0.019 * i, 2);
+          return fixed(0.5 + 0.3 * static_cast<double>(k) + 0.01 * i, 2);
+        },
+        declared, "0 0 0", "0 0 0", std::to_string(10 + i), std::to_string(i));
+  return t;
+}
+}  // namespace
+
+TEST(CarmenMaxRange, NoReturnCodeBelowTheDeclaredMax) {
+  // MIT CSAIL's ROBOTLASER1 layout: the lines declare 81.92 m and write 81.91 for no return. The old reader
+  // read those as hits (free space out to 81.9 m and an obstacle there).
+  CarmenLog log = parse(codeBelowMaxScans(81.92, "81.91", "81.91"));
+  ASSERT_EQ(log.scans.size(), 20u);
+  for (const ScanRecord& r : log.scans) {
+    const LaserScan& s = r.scan;
+    EXPECT_EQ(s.max_range, static_cast<double>(81.91f));
+    for (std::size_t k = 0; k < 160; ++k) EXPECT_TRUE(s.valid[k]) << k << " " << s.ranges[k];
+    for (std::size_t k = 160; k < 181; ++k) EXPECT_TRUE(s.isNoReturn(k)) << k;
+  }
+  EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
+  EXPECT_TRUE(contains(log.notes, "420 readings of 81.91 m (11.6 %) lie below the max_range field of the "
+                                  "ROBOTLASER1 lines = 81.92 m: the no-return code"))
+      << joined(log.notes);
+
+  // The Freiburg hospital: declared 81.9 m, 81.91 beyond it (a no-return already) and a second code, 81.83,
+  // below it: both are no-returns, the spread readings below them stay hits.
+  log = parse(codeBelowMaxScans(81.9, "81.83", "81.91"));
+  for (const ScanRecord& r : log.scans) {
+    const LaserScan& s = r.scan;
+    EXPECT_EQ(s.max_range, static_cast<double>(81.83f));
+    EXPECT_TRUE(s.valid[159]);  // up to 81.2 m
+    for (std::size_t k = 160; k < 181; ++k) EXPECT_TRUE(s.isNoReturn(k)) << k;
+  }
+  EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
+  EXPECT_TRUE(contains(log.notes, "240 readings of 81.83 m (6.6 %) lie below the max_range field of the "
+                                  "ROBOTLASER1 lines = 81.9 m: the no-return code"))
+      << joined(log.notes);
+
+  // The max range is the float the readings hold: it survives the float round trip the log reader applies
+  // (useMrptScanGeometry, MRPT's observation stores a float max range), and every code reading, stored as a
+  // float, still compares >= it as prepareScan compares it (in double) and as MRPT does (in float).
+  for (ScanRecord& r : log.scans) {
+    LaserScan& s = r.scan;
+    useMrptScanGeometry(s);
+    EXPECT_EQ(s.max_range, static_cast<double>(81.83f));
+    for (std::size_t k = 160; k < 172; ++k) {
+      EXPECT_GE(static_cast<double>(s.ranges[k]), s.max_range);
+      EXPECT_GE(s.ranges[k], static_cast<float>(s.max_range));
+    }
+    EXPECT_LT(static_cast<double>(s.ranges[159]), s.max_range);
+    const auto obs = toMrptScan(s);
+    EXPECT_EQ(obs->maxRange, 81.83f);
+    EXPECT_FALSE(obs->getScanRangeValidity(165));
+    EXPECT_TRUE(obs->getScanRangeValidity(159));
+  }
+  // A declared 81.83 (the double) sits a hair below the float 81.83 the readings hold: the readings are at or
+  // above it either way, and the code search leaves such a max range alone (nothing lies below it).
+  EXPECT_LT(81.83, static_cast<double>(81.83f));
+}
+
+TEST(CarmenMaxRange, TopReadingsSpreadOverValuesAreHits) {
+  // Real hits near the declared max, spread over neighbouring values as surfaces are (no spike), and a
+  // repeated value among them only a few times as frequent as its neighbours: the declaration stands and
+  // every one of them is a hit.
+  std::string t;
+  for (int i = 0; i < 20; ++i)
+    t += robotlaser(
+        -M_PI / 2, 181,
+        [&](std::size_t k) {
+          if (k >= 170) return std::string("78.40");  // 220 readings of one value...
+          if (k >= 120) return fixed(77.9 + 0.02 * static_cast<double>(k - 120) + 0.001 * i, 3);  // ...1000 around it
+          return fixed(0.5 + 0.3 * static_cast<double>(k) + 0.01 * i, 2);
+        },
+        81.92, "0 0 0", "0 0 0", std::to_string(10 + i), std::to_string(i));
+  const CarmenLog log = parse(t);
+  for (const ScanRecord& r : log.scans) {
+    EXPECT_EQ(r.scan.max_range, 81.92);
+    for (std::size_t k = 0; k < 181; ++k) EXPECT_TRUE(r.scan.valid[k]) << k;
+  }
+  EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
+  EXPECT_TRUE(log.notes.empty()) << joined(log.notes);
+  // Fewer than 20 readings of a value are no code either, however lonely.
+  std::string few;
+  for (int i = 0; i < 3; ++i)
+    few += robotlaser(-M_PI / 2, 181, [&](std::size_t k) { return k < 5 ? std::string("81.5") : std::string("3.0"); },
+                      81.92, "0 0 0", "0 0 0", std::to_string(10 + i), std::to_string(i));
+  const CarmenLog lonely = parse(few);
+  EXPECT_TRUE(lonely.scans[0].scan.valid[0]);
+  EXPECT_EQ(lonely.scans[0].scan.max_range, 81.92);
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -492,12 +598,18 @@ TEST(CarmenFlaser, Flaser361BeamsSpanMinus90ToPlus90Inclusive) {
 // The bundled logs that exercise these variants (datasets/slam; skipped when a checkout lacks them)
 
 namespace {
-std::string dataPath(const std::string& rel) { return std::string(GRIDTOPO_DATA_DIR) + "/" + rel; }
+/// The repository's datasets folder, else the shared datasets beside the checkout (../shared/datasets, where
+/// the logs too large for the repository live, e.g. slam/mit-csail-robotlaser.clf.gz); "" when neither has it.
+std::string dataPath(const std::string& rel) {
+  for (const std::string dir : {std::string(GRIDTOPO_DATA_DIR), std::string(GRIDTOPO_SOURCE_DIR) + "/../shared/datasets"})
+    if (std::filesystem::exists(dir + "/" + rel)) return dir + "/" + rel;
+  return "";
+}
 }  // namespace
 
 TEST(CarmenBundledLogs, MitCsailFlaser361WithoutOdometry) {
   const std::string path = dataPath("slam/mit-csail.clf.gz");
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+  if (path.empty()) GTEST_SKIP() << "slam/mit-csail.clf.gz not present";
   const CarmenLog log = readCarmenLog(path);
   ASSERT_EQ(log.scans.size(), 1988u);
   EXPECT_TRUE(log.odometry.empty());
@@ -521,7 +633,7 @@ TEST(CarmenBundledLogs, MitCsailFlaser361WithoutOdometry) {
 
 TEST(CarmenBundledLogs, FreiburgClinicRobotLaserOnlyInterlaced) {
   const std::string path = dataPath("slam/fr-clinic.clf.gz");
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+  if (path.empty()) GTEST_SKIP() << "slam/fr-clinic.clf.gz not present";
   const CarmenLog log = readCarmenLog(path);
   ASSERT_EQ(log.scans.size(), 6917u);
   EXPECT_TRUE(log.odometry.empty());
@@ -532,7 +644,7 @@ TEST(CarmenBundledLogs, FreiburgClinicRobotLaserOnlyInterlaced) {
   EXPECT_EQ(first.scan.size(), 181u);
   EXPECT_NEAR(first.scan.start_angle, -1.570796, 1e-12);
   EXPECT_NEAR(first.scan.sensor_pose.x, 0.22, 1e-9);
-  EXPECT_EQ(first.scan.max_range, 81.9);
+  EXPECT_EQ(first.scan.max_range, static_cast<double>(81.83f));  // the no-return code below the declared 81.9
   EXPECT_NEAR(log.scans[1].scan.start_angle, -1.566433, 1e-12);
   std::map<double, std::size_t> starts;
   std::size_t beams181 = 0, no_return = 0;
@@ -544,5 +656,44 @@ TEST(CarmenBundledLogs, FreiburgClinicRobotLaserOnlyInterlaced) {
   }
   EXPECT_EQ(starts.size(), 4u);
   EXPECT_EQ(beams181, 1748u);
-  EXPECT_EQ(no_return, 150066u);  // the 81.91 readings; 81.83 ones are real returns
+  // The 150 066 readings of 81.91 (beyond the declared 81.9) and the 5 849 of 81.83, the second no-return code,
+  // just below it.
+  EXPECT_EQ(no_return, 155915u);
+  EXPECT_TRUE(contains(log.notes, "5849 readings of 81.83 m (0.5 %) lie below the max_range field of the "
+                                  "ROBOTLASER1 lines = 81.9 m: the no-return code"))
+      << joined(log.notes);
+}
+
+TEST(CarmenBundledLogs, MitCsailBothLayoutsGiveTheSameNoReturns) {
+  // The same run in its original ROBOTLASER1 layout (declared max 81.92 m, no-return code 81.91 below it) and
+  // converted to FLASER (no declaration: the default 50 m, the code above it): the same readings are
+  // no-returns, beam for beam.
+  const std::string flaser_path = dataPath("slam/mit-csail.clf.gz");
+  const std::string robot_path = dataPath("slam/mit-csail-robotlaser.clf.gz");
+  if (flaser_path.empty() || robot_path.empty()) GTEST_SKIP() << "a CSAIL layout is not present";
+  const CarmenLog flaser_log = readCarmenLog(flaser_path);
+  const CarmenLog robot_log = readCarmenLog(robot_path);
+  ASSERT_EQ(flaser_log.scans.size(), 1988u);
+  ASSERT_EQ(robot_log.scans.size(), flaser_log.scans.size());
+  EXPECT_TRUE(robot_log.warnings.empty()) << joined(robot_log.warnings);
+  EXPECT_TRUE(contains(robot_log.notes, "23711 readings of 81.91 m (3.3 %) lie below the max_range field of the "
+                                        "ROBOTLASER1 lines = 81.92 m: the no-return code"))
+      << joined(robot_log.notes);
+  std::size_t flaser_no_return = 0, robot_no_return = 0, robot_hits = 0, differ = 0;
+  for (std::size_t i = 0; i < flaser_log.scans.size(); ++i) {
+    const LaserScan& a = flaser_log.scans[i].scan;
+    const LaserScan& b = robot_log.scans[i].scan;
+    ASSERT_EQ(a.size(), b.size()) << i;
+    EXPECT_EQ(b.max_range, static_cast<double>(81.91f)) << i;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      flaser_no_return += a.isNoReturn(k);
+      robot_no_return += b.isNoReturn(k);
+      robot_hits += b.valid[k];
+      differ += a.isNoReturn(k) != b.isNoReturn(k) || a.valid[k] != b.valid[k];
+    }
+  }
+  EXPECT_EQ(flaser_no_return, 23711u);
+  EXPECT_EQ(robot_no_return, 23711u);
+  EXPECT_EQ(robot_hits, 1988u * 361u - 23711u);
+  EXPECT_EQ(differ, 0u);
 }
