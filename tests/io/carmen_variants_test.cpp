@@ -366,7 +366,7 @@ TEST(CarmenMaxRange, TopReadingsSpreadOverValuesAreHits) {
     for (std::size_t k = 0; k < 181; ++k) EXPECT_TRUE(r.scan.valid[k]) << k;
   }
   EXPECT_TRUE(log.warnings.empty()) << joined(log.warnings);
-  EXPECT_TRUE(log.notes.empty()) << joined(log.notes);
+  EXPECT_FALSE(contains(log.notes, "no-return code")) << joined(log.notes);
   // Fewer than 20 readings of a value are no code either, however lonely.
   std::string few;
   for (int i = 0; i < 3; ++i)
@@ -601,7 +601,7 @@ namespace {
 /// The repository's datasets folder, else the shared datasets beside the checkout (../shared/datasets, where
 /// the logs too large for the repository live, e.g. slam/mit-csail-robotlaser.clf.gz); "" when neither has it.
 std::string dataPath(const std::string& rel) {
-  for (const std::string dir : {std::string(GRIDTOPO_DATA_DIR), std::string(GRIDTOPO_SOURCE_DIR) + "/../shared/datasets"})
+  for (const std::string& dir : {std::string(GRIDTOPO_DATA_DIR), std::string(GRIDTOPO_SOURCE_DIR) + "/../shared/datasets"})
     if (std::filesystem::exists(dir + "/" + rel)) return dir + "/" + rel;
   return "";
 }
