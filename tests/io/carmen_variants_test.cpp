@@ -1,13 +1,16 @@
 // CARMEN reader on the variants real logs come in: both PARAM layouts, fov / resolution PARAMs in radians, a
-// declared max range the readings contradict, degenerate timestamps (too few digits, all zero, wrapping),
-// the CARMEN message table (used, skipped and counted, unknown), ROBOTLASER-only and 361-beam FLASER logs,
-// and the bundled MIT CSAIL and Freiburg hospital logs when they are present.
+// declared max range the readings contradict, a no-return code below the declared max, degenerate timestamps
+// (too few digits, all zero, wrapping), the CARMEN message table (used, skipped and counted, unknown),
+// ROBOTLASER-only and 361-beam FLASER logs, and the bundled MIT CSAIL (both layouts), Freiburg hospital,
+// Intel, ACES and FR079 logs when they are present.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/carmen_log.h"
@@ -601,7 +604,8 @@ namespace {
 /// The repository's datasets folder, else the shared datasets beside the checkout (../shared/datasets, where
 /// the logs too large for the repository live, e.g. slam/mit-csail-robotlaser.clf.gz); "" when neither has it.
 std::string dataPath(const std::string& rel) {
-  for (const std::string& dir : {std::string(GRIDTOPO_DATA_DIR), std::string(GRIDTOPO_SOURCE_DIR) + "/../shared/datasets"})
+  const std::string dirs[] = {GRIDTOPO_DATA_DIR, std::string(GRIDTOPO_SOURCE_DIR) + "/../shared/datasets"};
+  for (const std::string& dir : dirs)
     if (std::filesystem::exists(dir + "/" + rel)) return dir + "/" + rel;
   return "";
 }
@@ -662,6 +666,26 @@ TEST(CarmenBundledLogs, FreiburgClinicRobotLaserOnlyInterlaced) {
   EXPECT_TRUE(contains(log.notes, "5849 readings of 81.83 m (0.5 %) lie below the max_range field of the "
                                   "ROBOTLASER1 lines = 81.9 m: the no-return code"))
       << joined(log.notes);
+}
+
+TEST(CarmenBundledLogs, LogsWhoseTopReadingsAreHitsKeepTheirMaxRange) {
+  // Intel and FR079 (codes 81.83 and 81.91 above their max of 50 and 80.99 m, real readings ending far below
+  // it) and ACES (1 169 real readings in [45, 50) m spread over 112 values, its code 50.00 at the max): no code
+  // is found below the max range, every scan keeps it.
+  const std::vector<std::pair<std::string, double>> logs = {
+      {"slam/intel.clf.gz", 50.0}, {"slam/aces.clf.gz", 50.0}, {"slam/fr079.clf.gz", 80.99}};
+  std::size_t read = 0;
+  for (const auto& [rel, max_range] : logs) {
+    const std::string path = dataPath(rel);
+    if (path.empty()) continue;
+    ++read;
+    const CarmenLog log = readCarmenLog(path);
+    EXPECT_FALSE(contains(log.notes, "no-return code")) << rel << "\n" << joined(log.notes);
+    std::size_t other = 0;
+    for (const auto& r : log.scans) other += r.scan.max_range != max_range;
+    EXPECT_EQ(other, 0u) << rel;
+  }
+  if (read == 0) GTEST_SKIP() << "none of the logs is present";
 }
 
 TEST(CarmenBundledLogs, MitCsailBothLayoutsGiveTheSameNoReturns) {

@@ -852,11 +852,11 @@ class Parser {
         for (auto it = beyond.begin(); it != top; ++it) most_other = std::max(most_other, it->second);
         const bool code = top->second >= 3 && top->second >= most_other;
         const std::size_t between = above - (code ? top->second : 0);
-        if (between == 0) {
-        } else if (between < std::max<std::size_t>(10, (positive + 99) / 100)) {
+        const bool contradicted = between >= std::max<std::size_t>(10, (positive + 99) / 100);
+        if (between > 0 && !contradicted) {
           log_.notes.push_back(std::to_string(between) + " readings lie beyond " + what + " (" +
                                percent(between, positive) + "): kept as no-returns");
-        } else {
+        } else if (contradicted) {
           double largest_real = 0;
           for (auto it = beyond.begin(); it != beyond.end(); ++it)
             if (!(code && it == top)) largest_real = it->first;
@@ -885,9 +885,9 @@ class Parser {
   /// neighbouring values: ACES's most frequent value in its band (45.76 m) has 100 readings against 261 around
   /// it, and the top readings of Intel, FR079 and the FLASER CSAIL log, which lie far below their max range,
   /// stay under 0.2 times their neighbours; the codes are 27 (81.83 m in the hospital) and 23 711 (81.91 m in
-  /// CSAIL, nothing around it) times theirs. Then max_range
-  /// becomes the code (the float reading itself, so a float round trip of the max range, as MRPT's observation
-  /// does, keeps it equal to the readings), and the readings at or above it are no-returns.
+  /// CSAIL, nothing around it) times theirs. Then max_range becomes the code (the float reading itself, so a
+  /// float round trip of the max range, as MRPT's observation does, keeps it equal to the readings), and the
+  /// readings at or above it are no-returns.
   void noReturnCodeBelow(const std::vector<PendingScan>& scans, const std::vector<std::size_t>& members,
                          std::size_t positive, const std::string& what, double& max_range) {
     constexpr double kCodeBand = 0.1, kCodeNeighbourhood = 0.01, kCodeSpike = 10.0, kCodeShare = 0.001;
@@ -920,7 +920,8 @@ class Parser {
         num(100 * kCodeBand) + " % of the range, " + std::to_string(code->second) + " against " +
         std::to_string(neighbours) + " readings within " + num(w, 2) + " m of it); max range set to " +
         num(value, 6) + " m, readings at or above it are no-returns" +
-        (between ? " (" + std::to_string(between) + " readings between it and the declaration too)" : ""));
+        (between ? " (so are the " + std::to_string(between) + " readings between it and " + num(max_range, 6) + " m)"
+                 : ""));
     max_range = value;
   }
 
