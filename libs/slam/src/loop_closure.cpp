@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstdint>
 #include <iomanip>
 #include <sstream>
@@ -207,34 +209,49 @@ Eigen::Matrix3d LoopCloser::closureSqrtInformation(const CorrelationGrid& grid, 
   return root.asDiagonal() * es.eigenvectors().transpose() * S.asDiagonal();
 }
 
-std::vector<Point2> LoopCloser::queryOf(std::size_t node) const {
+std::vector<Pose2> LoopCloser::localGeometry() const {
+  // With feedback the filter's path changes frame at the corrected nodes: the graph's poses then.
+  if (filter_path_ && frame_changes_.empty()) {
+    std::vector<Pose2> path = filter_path_();
+    if (path.size() == nodes_.size()) return path;
+  }
+  return poses();
+}
+
+std::vector<Point2> LoopCloser::queryOf(std::size_t node, const std::vector<Pose2>& geometry) const {
   std::vector<Point2> q;
   const std::size_t n = std::min(nodes_.size(), static_cast<std::size_t>(o_.query_nodes));
-  const Pose2& ref = graph_.pose(node);
+  const Pose2& ref = geometry[node];
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t j = node - k;  // newest first, so the thinning keeps the newest scan's points
-    const Pose2 rel = relative(ref, graph_.pose(j));
+    const Pose2 rel = relative(ref, geometry[j]);
     for (const Point2& p : nodes_[j].points) q.push_back(transform(rel, p));
   }
   thinInPlace(q, o_.query_voxel);
   return q;
 }
 
-const CorrelationGrid& LoopCloser::gridOf(std::size_t s) {
+const CorrelationGrid& LoopCloser::gridOf(std::size_t s, const std::vector<Pose2>& geometry) {
   for (auto it = cache_.begin(); it != cache_.end(); ++it)
     if (it->first == s) {
       cache_.splice(cache_.end(), cache_, it);
       return *cache_.back().second;
     }
-  // The submap's points in the frame of its first node, at the current poses (then kept rigid).
-  const Submap& sm = submaps_[s];
-  const Pose2& anchor = graph_.pose(sm.first);
-  std::vector<Point2> pts;
-  for (std::size_t j = sm.first; j <= sm.last; ++j) {
-    const Pose2 rel = relative(anchor, graph_.pose(j));
-    for (const Point2& p : nodes_[j].points) pts.push_back(transform(rel, p));
+  // The submap's points in the frame of its first node, placed by the filter's path as it is when the submap is
+  // first searched (then kept rigid): the submap is at least min_travel old, so the particles share that part of
+  // their history.
+  Submap& sm = submaps_[s];
+  if (!sm.frozen) {
+    const Pose2& anchor = geometry[sm.first];
+    for (std::size_t j = sm.first; j <= sm.last; ++j) {
+      const Pose2 rel = relative(anchor, geometry[j]);
+      for (const Point2& p : nodes_[j].points) sm.points.push_back(transform(rel, p));
+    }
+    thinInPlace(sm.points, o_.resolution);
+    sm.points.shrink_to_fit();
+    sm.frozen = true;
   }
-  thinInPlace(pts, o_.resolution);
+  const std::vector<Point2>& pts = sm.points;
   cache_.emplace_back(s, std::make_unique<CorrelationGrid>(pts, o_.resolution, o_.field_sigma, o_.depth, o_.refine_sigma));
   while (cache_.size() > static_cast<std::size_t>(o_.grid_cache)) cache_.pop_front();
   return *cache_.back().second;
@@ -268,7 +285,8 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   std::sort(cand.begin(), cand.end());
   if (cand.size() > static_cast<std::size_t>(o_.max_candidates)) cand.resize(static_cast<std::size_t>(o_.max_candidates));
   if (cand.empty()) return;
-  const std::vector<Point2> query = queryOf(i);
+  const std::vector<Pose2> geometry = localGeometry();
+  const std::vector<Point2> query = queryOf(i, geometry);
   if (query.size() < 20) return;
   double d_max = o_.resolution;
   for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
@@ -276,7 +294,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   for (const auto& [dist, s] : cand) {
     (void)dist;
     const Submap& sm = submaps_[s];
-    const CorrelationGrid& grid = gridOf(s);
+    const CorrelationGrid& grid = gridOf(s, geometry);
     SearchWindow w;
     w.center = relative(graph_.pose(sm.first), x);
     // The window for this submap: the uncertainty since the last closure, but no more than what the chain of
@@ -284,9 +302,14 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     const double chain = cur.travelled - nodes_[sm.last].travelled;
     const double d = std::min(since, chain);
     w.xy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * d + off_xy);
-    w.theta = std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d + off_th);
+    // The dead-reckoned heading offset widens the window beyond its largest growth: after a stretch where the
+    // filter turned and the odometry did not (FR079: a crowd walking with the robot), the odometry's hypothesis
+    // can lie 40 degrees away, and only a closure brings the estimate back to it.
+    w.theta = std::min(0.5 * M_PI, std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d) + off_th);
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
+    static const bool dbg = std::getenv("GT_LC_TRACE") != nullptr;
+    if (dbg) std::fprintf(stderr, "TRACE t %.1f node %zu sm %zu wxy %.2f wth %.3f offxy %.2f offth %.3f found %s %.3f\n", cur.timestamp, i, sm.first, w.xy, w.theta, off_xy, off_th, found ? "y" : "n", found ? found->score : 0.0);
     if (!found) continue;
     // A best pose near the window's border may only be the foot of a better one outside it (a corridor that goes
     // on past the submap's end): no closure. The margin is four cells and four angular steps.

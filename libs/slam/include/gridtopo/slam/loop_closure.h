@@ -105,6 +105,10 @@ class LoopCloser {
   };
   struct Submap {
     std::size_t first, last;  ///< node range [first, last]
+    /// Its points in the frame of its first node, fixed when it is first searched (then rigid): the grid is
+    /// rebuilt from them whenever the cache dropped it, so the cache's size changes the memory, not the result.
+    std::vector<Point2> points;
+    bool frozen = false;
   };
 
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
@@ -125,8 +129,12 @@ class LoopCloser {
   bool suspectStep(const Pose2& motion, const Pose2& odometry) const;
   PoseGraphSolveOptions solveOptions() const;
   void optimizePoseGraph(LoopClosureStep& step);
-  std::vector<Point2> queryOf(std::size_t node) const;
-  const CorrelationGrid& gridOf(std::size_t submap);
+  /// The poses that place the scans of a query or a submap relative to each other: the filter's current best
+  /// path when there is one (one particle's history, consistent step after step), else the graph's poses (whose
+  /// newest steps were added from whichever particle was best at the time).
+  std::vector<Pose2> localGeometry() const;
+  std::vector<Point2> queryOf(std::size_t node, const std::vector<Pose2>& geometry) const;
+  const CorrelationGrid& gridOf(std::size_t submap, const std::vector<Pose2>& geometry);
 
   LoopClosureOptions o_;
   OdometryMotionModel motion_;

@@ -12,7 +12,7 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema();
 
 struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSchema> {
   static constexpr const char* kSection = "loop_closure";
-  bool enabled = false; ///< false: the filter alone (its best particle's trajectory and map)
+  bool enabled = true; ///< false: the filter alone (its best particle's trajectory and map)
 
   // Submaps and the query
   int submap_nodes = 20;        ///< consecutive processed scans per submap
@@ -23,7 +23,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double field_sigma = 0.07;    ///< m, the grid's value falls as exp(−d²/2σ²) with the distance d to a hit
   double refine_sigma = 0.03;   ///< m, the same for the refinement of a match (sharper: a precise pose)
   int depth = 7;                ///< levels of the branch-and-bound precomputation (the coarsest spans 2^depth cells)
-  int grid_cache = 12;          ///< correlation grids kept (least recently used dropped)
+  int grid_cache = 6;           ///< correlation grids kept (least recently used dropped)
 
   // When and where to search
   int search_every = 2;         ///< search at every n-th processed scan
@@ -47,12 +47,12 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// A closure's information is the curvature of its match's score (each query point one observation, divided by
   /// information_gain for the correlation between neighbouring points), its deviations floored at loop_sigma_*.
   double information_gain = 1.0;
-  double loop_sigma_xy = 0.02;      ///< m, floor of a closure's translation deviation
-  double loop_sigma_theta = 0.005;  ///< rad, floor of its heading deviation
-  double odometry_sigma_xy = 0.01;  ///< m, floor of a filter motion edge's deviation (added to the proposal's)
-  double odometry_sigma_xy_per_m = 0.01;  ///< m per m of the motion
-  double odometry_sigma_theta = 0.002;    ///< rad, floor
-  double odometry_sigma_theta_per_rad = 0.01;  ///< rad per rad of rotation
+  double loop_sigma_xy = 0.05;      ///< m, floor of a closure's translation deviation
+  double loop_sigma_theta = 0.0125;  ///< rad, floor of its heading deviation
+  double odometry_sigma_xy = 0.003;  ///< m, floor of a filter motion edge's deviation (added to the proposal's)
+  double odometry_sigma_xy_per_m = 0.005;  ///< m per m of the motion
+  double odometry_sigma_theta = 0.0007;   ///< rad, floor
+  double odometry_sigma_theta_per_rad = 0.005;  ///< rad per rad of rotation
   double huber_scale = 3.0;     ///< closures' robust loss: Huber, in standard deviations
   /// After an optimisation, a new closure whose whitened residual is still above this (standard deviations) is
   /// rejected: it disagrees with the filter's motion and the other closures (a look-alike place), and the graph is
