@@ -140,15 +140,31 @@ void SlamRunner::publish(bool with_trajectory) {
     s->best_map = ps[s->best].map;  // shares tiles
     s->last_scan_pose = ps[s->best].pose;
   }
-  // At the end of the log the map and the trajectory are the run's result (with loop closure: optimised).
-  if (fed == limit_ && !ps.empty() && run_->loopCloser()) s->best_map = run_->resultMap();
+  const slam::LoopCloser* closer = run_->loopCloser();
+  s->loop_closure = closer != nullptr;
+  if (closer) {
+    // The closures' ends are read from the graph node by node, not through LoopCloser::poses(), which copies every
+    // node: a few closures cost nothing, so every snapshot has them at the poses of the latest optimisation.
+    const auto& graph = closer->graph();
+    for (const auto& c : closer->closures())
+      s->closures.push_back({c.node, c.submap_node, graph.pose(c.node), graph.pose(c.submap_node), c.rejected});
+  }
   if (with_trajectory || fed == limit_) {
     last_trajectory_poses_ = run_->trajectory();
     last_trajectory_scans_ = fed;
+    // The optimised map re-inserts every processed scan, so it is made as seldom as the trajectory (which also
+    // goes through the optimised poses). SlamRun::resultMap is the best particle's map until a loop is closed:
+    // the snapshot has best_map for that.
+    if (closer && !closer->closures().empty() && !ps.empty()) {
+      last_optimised_map_ = std::make_shared<const slam::GridMap>(run_->resultMap());
+      last_optimised_map_scans_ = fed;
+    }
     last_trajectory_ = std::chrono::steady_clock::now();
   }
   s->trajectory = last_trajectory_poses_;
   s->trajectory_scans = last_trajectory_scans_;
+  s->optimised_map = last_optimised_map_;
+  s->optimised_map_scans = last_optimised_map_scans_;
   s->stats = filter.stats();
   s->wall_seconds = run_->filterSeconds();
   if (s->wall_seconds > 0 && fed > 0) {
