@@ -64,8 +64,8 @@ struct SlamSnapshot {
   bool loop_closure = false;           ///< the run has the loop closure ([loop_closure] enabled)
   std::vector<ClosureView> closures;   ///< every closure found so far, rejected ones too, in the order found
   /// Once the loop closure has closed a loop: every processed scan inserted at its optimised pose
-  /// (SlamRun::resultMap), computed with `trajectory` (when the run pauses, ends, and at most every
-  /// trajectory_interval while running: it re-inserts every scan); null before.
+  /// (SlamRun::resultMap), computed with `trajectory` when the run pauses or ends, and while running at most every
+  /// trajectory_interval and no more than a tenth of the time (it re-inserts every scan); null before.
   std::shared_ptr<const slam::GridMap> optimised_map;
   std::size_t optimised_map_scans = 0;  ///< scans_fed when `optimised_map` was computed
 
@@ -134,7 +134,8 @@ class SlamRunner {
  private:
   void notifyListener(bool idle);  // worker only
   void run();
-  void publish(bool with_trajectory);
+  /// `idle`: the run is paused or over (not a snapshot taken while running).
+  void publish(bool with_trajectory, bool idle = true);
   bool idle() const;  // requires mu_
 
   std::shared_ptr<const std::vector<ScanRecord>> scans_;
@@ -159,6 +160,8 @@ class SlamRunner {
   std::size_t last_trajectory_scans_ = 0;
   std::shared_ptr<const slam::GridMap> last_optimised_map_;
   std::size_t last_optimised_map_scans_ = 0;
+  std::chrono::steady_clock::time_point last_optimised_map_time_{};
+  double last_optimised_map_seconds_ = 0.0;  ///< how long the last one took
   std::string error_;
   std::mutex listener_mu_;  // held while the listener runs
   BestMapListener listener_;
