@@ -232,7 +232,11 @@ void Session::tileMap(int cols, int rows) {
 // ---------------------------------------------------------------- SLAM
 
 OptionTable Session::slamOptionTable() const {
-  return OptionTable::fromSections({{"slam", slam::slamOptionSchema().describe(slam_options_)}});
+  // [loop_closure] too: setSlamOptions rebuilds the options from the table alone, so a section left out of it would
+  // fall back to its defaults at the next run (the loop closure of a loaded INI silently off).
+  return OptionTable::fromSections(
+      {{"slam", slam::slamOptionSchema().describe(slam_options_)},
+       {"loop_closure", slam::loopClosureOptionSchema().describe(slam_options_.loop_closure)}});
 }
 
 void Session::setSlamOptions(const OptionTable& table) {

@@ -120,7 +120,8 @@ class Session {
   // ---- SLAM
   slam::SlamOptions& slamOptions() { return slam_options_; }
   const std::string& slamIniPath() const { return slam_ini_path_; }
-  /// The options as a property-grid table (from slam::slamOptionSchema: type, default, range, unit, help).
+  /// The options as a property-grid table, sections [slam] and [loop_closure] (from slam::slamOptionSchema and
+  /// slam::loopClosureOptionSchema: type, default, range, unit, help).
   OptionTable slamOptionTable() const;
   /// Applies an edited table (validated; throws InputError naming the key, options unchanged on error).
   void setSlamOptions(const OptionTable& table);
