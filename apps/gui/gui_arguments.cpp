@@ -50,6 +50,8 @@ GuiArguments parseGuiArguments(int argc, char** argv) {
                                          false, "", "dir", cmd);
   TCLAP::SwitchArg show_options("", "show-options", "show the SLAM options tab", cmd);
   TCLAP::SwitchArg paths("", "particle-paths", "show every particle's trajectory", cmd);
+  TCLAP::SwitchArg particle_map("", "particle-map",
+                                "show the best particle's map even once the loop closure has an optimised one", cmd);
   TCLAP::SwitchArg click_particle("", "click-particle", "click the best particle with the mouse simulator", cmd);
   TCLAP::ValueArg<std::string> labels("", "labels", "open a labelled image (77/115/179/0) in the label painter",
                                       false, "", "file", cmd);
@@ -94,6 +96,7 @@ GuiArguments parseGuiArguments(int argc, char** argv) {
   a.bench_frames = bench.getValue();
   a.bench_out = bench_out.getValue();
   a.particle_paths = paths.getValue();
+  a.particle_map = particle_map.getValue();
   a.show_options = show_options.getValue();
   a.save_slam = save_slam.getValue();
   a.click_particle = click_particle.getValue();

@@ -16,7 +16,7 @@ struct GuiArguments {
   int width = 1280, height = 860;
   int bench_frames = 0;
   int tile_cols = 0, tile_rows = 0;
-  bool particle_paths = false, click_particle = false, show_options = false;
+  bool particle_paths = false, particle_map = false, click_particle = false, show_options = false;
   std::string labels, save_slam;
 };
 

@@ -96,6 +96,8 @@ void startGui(MainFrame* f, const GuiArguments& a) {
     }
   }
   f->canvas()->layers().particle_paths = g_opt->particle_paths;
+  f->canvas()->layers().optimised_map = !g_opt->particle_map;
+  f->syncLayerMenu();
   if (!g_opt->labels.empty()) {
     try {
       f->session().openLabelImage(g_opt->labels);

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -35,10 +36,35 @@ enum Id {
   kLabelsStart, kLabelsOpen, kToolNone, kToolBrush, kToolFill, kCodeRoom, kCodeCorridor, kCodeDoorway, kCodeErase,
   kBrushBigger, kBrushSmaller, kUndo,
   kViewSlam, kViewTopology, kViewLabels, kFit,
-  kLayerParticles, kLayerPaths, kLayerBest, kLayerOdometry, kLayerScan, kLayerTrajectories, kLayerLabels,
-  kLayerRegions, kLayerGraph, kLayerScale,
+  kLayerFirst,  // the View menu's layer toggles: kLayerFirst + their index in kLayerToggles
   kRecentFirst = wxID_HIGHEST + 200,
 };
+// The View menu's layer toggles, in menu order. The one table gives the items, their initial check marks (the
+// defaults of session::Layers) and the flag each one switches, so a new layer is one line here.
+struct LayerToggle {
+  const char* label;
+  const char* help;
+  bool session::Layers::*flag;
+};
+const LayerToggle kLayerToggles[] = {
+    {"Particles", "", &session::Layers::particles},
+    {"Every particle's trajectory", "", &session::Layers::particle_paths},
+    {"Best particle's path", "", &session::Layers::best_path},
+    {"Odometry-only path", "", &session::Layers::odometry},
+    {"Current scan", "", &session::Layers::scan},
+    {"Loop closures", "the loop closure's edges as they are found (magenta; rejected ones dashed grey)",
+     &session::Layers::closures},
+    {"Optimised map (loop closure)",
+     "once a loop is closed, the map at the pose graph's optimised poses; off: the best particle's map",
+     &session::Layers::optimised_map},
+    {"Opened trajectories", "", &session::Layers::trajectories},
+    {"Label overlay", "", &session::Layers::labels},
+    {"Region ids", "", &session::Layers::region_ids},
+    {"Topological graph", "", &session::Layers::graph},
+    {"Scale bar", "", &session::Layers::scale_bar},
+};
+constexpr int kLayerCount = static_cast<int>(std::size(kLayerToggles));
+static_assert(kLayerFirst + kLayerCount < kRecentFirst, "the layer ids run into the recent-file ids");
 std::string fmtTime(double s) {
   if (!(s >= 0)) return "-";
   char b[32];
@@ -109,7 +135,7 @@ void MainFrame::buildMenus() {
                         "recompute the labels and the graph of the best map while the SLAM runs (SLAM view)");
   slam->Append(kSlamLiveEvery, "Live topology &every...", "every how many SLAM updates ([topology_builder] update_every)");
   slam->AppendSeparator();
-  slam->Append(kSlamUseMap, "Send &map to topology / labels", "use the best particle's map as the session map");
+  slam->Append(kSlamUseMap, "Send &map to topology / labels", "use the SLAM map as the session map (the optimised one once a loop is closed)");
   slam->Append(kSlamLoadIni, "&Load INI...");
   slam->Append(kSlamSaveIni, "Save options as &INI...");
 
@@ -146,13 +172,8 @@ void MainFrame::buildMenus() {
   view->AppendRadioItem(kViewLabels, "&Label painter\tCtrl+3");
   view->Append(kFit, "&Fit to map\tHome");
   view->AppendSeparator();
-  const std::pair<int, const char*> toggles[] = {
-      {kLayerParticles, "Particles"},           {kLayerPaths, "Every particle's trajectory"},
-      {kLayerBest, "Best particle's path"},     {kLayerOdometry, "Odometry-only path"},
-      {kLayerScan, "Current scan"},             {kLayerTrajectories, "Opened trajectories"},
-      {kLayerLabels, "Label overlay"},          {kLayerRegions, "Region ids"},
-      {kLayerGraph, "Topological graph"},       {kLayerScale, "Scale bar"}};
-  for (const auto& t : toggles) view->AppendCheckItem(t.first, t.second);
+  for (int i = 0; i < kLayerCount; ++i)
+    view->AppendCheckItem(kLayerFirst + i, kLayerToggles[i].label, kLayerToggles[i].help);
 
   menubar_ = new wxMenuBar;
   menubar_->Append(file, "&File");
@@ -306,12 +327,9 @@ void MainFrame::buildMenus() {
   }, kViewSlam, kViewLabels);
   Bind(wxEVT_MENU, [this](wxCommandEvent&) { canvas_->fit(); }, kFit);
   Bind(wxEVT_MENU, [this](wxCommandEvent& e) {
-    auto& l = canvas_->layers();
-    bool* flags[] = {&l.particles, &l.particle_paths, &l.best_path, &l.odometry, &l.scan,
-                     &l.trajectories, &l.labels, &l.region_ids, &l.graph, &l.scale_bar};
-    *flags[e.GetId() - kLayerParticles] = e.IsChecked();
+    canvas_->layers().*kLayerToggles[e.GetId() - kLayerFirst].flag = e.IsChecked();
     canvas_->Refresh(false);
-  }, kLayerParticles, kLayerScale);
+  }, kLayerFirst, kLayerFirst + kLayerCount - 1);
 }
 
 void MainFrame::buildPanels() {
@@ -362,10 +380,12 @@ void MainFrame::buildPanels() {
     inspector_->SetValue(s_.selection().text);
     notebook_->SetSelection(0);
   };
-  auto& l = canvas_->layers();
-  const bool init[] = {l.particles, l.particle_paths, l.best_path, l.odometry, l.scan,
-                       l.trajectories, l.labels, l.region_ids, l.graph, l.scale_bar};
-  for (int i = 0; i < 10; ++i) menubar_->Check(kLayerParticles + i, init[i]);
+  syncLayerMenu();
+}
+
+void MainFrame::syncLayerMenu() {
+  const auto& l = canvas_->layers();
+  for (int i = 0; i < kLayerCount; ++i) menubar_->Check(kLayerFirst + i, l.*kLayerToggles[i].flag);
 }
 
 void MainFrame::rebuildOptionGrid() {

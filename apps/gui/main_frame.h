@@ -45,6 +45,8 @@ class MainFrame : public wxFrame {
   void refreshNow();
   /// Shows the session's SLAM and topology options in their grids.
   void rebuildOptionGrid();
+  /// Sets the View menu's layer check marks from the canvas's layers (after changing them in code).
+  void syncLayerMenu();
   void showOptionsTab();
   /// Opens the place model the project ships (session::Session::openDefaultModel) and shows which model is loaded.
   void openDefaultModel();

@@ -1,7 +1,7 @@
 // Smoke test of the real gridtopo-gui binary under Xvfb: a short slice of Intel run through the test hooks
 // (--run-steps, --screenshot, --quit), the same with the live topology over the SLAM map (--live-topology), the
 // topology view on a floor plan with a scripted mouse click on a cell (wxUIActionSimulator through XTest), and a bad
-// file. Screenshots are checked for map pixels, particles, the
+// file, and a run with the loop closure on. Screenshots are checked for map pixels, particles, the
 // trajectory and the label overlay (not a blank or black window).
 #include <gtest/gtest.h>
 
@@ -109,6 +109,36 @@ TEST(GuiSmoke, LiveTopologyDrawsLabelsAndGraphOnTheGrowingSlamMap) {
   EXPECT_GT(countColour(view, {220, 120, 40}, 0), 20);  // room nodes (labelColour(0)), drawn opaque
   EXPECT_GT(countColour(view, {0, 0, 230}, 0), 30);     // the best particle's path is still drawn on top
   EXPECT_FALSE(cv::imread(tmp / "shot.png", cv::IMREAD_COLOR).empty());
+}
+
+// A SLAM INI that turns the loop closure on reaches the run (through the option grid the GUI applies before each
+// run), and the closures are drawn as they are found: magenta lines where the robot comes back (Intel's first 1500
+// scans, 8 particles, seed 1: 2 closures). --particle-map shows the map before the optimisation.
+TEST(GuiSmoke, LoopClosuresAreDrawnAndTheMapBeforeOptimisationCanBeShown) {
+  guitest::TempDir tmp;
+  std::ofstream(tmp / "lc.ini") << "[slam]\nparticles = 8\nseed = 1\nthreads = 2\n[loop_closure]\nenabled = true\n";
+  for (const std::string map : {"optimised", "particle"}) {
+    const std::string view = tmp / (map + ".png");
+    const int rc = runGui("--ini " + (tmp / "lc.ini") + " --max-scans 1500 --run-to-end --size 1100x800" +
+                              (map == "particle" ? " --particle-map" : "") + " --export-view " + view +
+                              " --quit " GRIDTOPO_DATA_DIR "/slam/intel.clf.gz",
+                          tmp / "log.txt");
+    ASSERT_EQ(rc, 0) << slurp(tmp / "log.txt");
+    EXPECT_NE(slurp(tmp / "log.txt").find("1500 scans"), std::string::npos) << slurp(tmp / "log.txt");
+  }
+  const cv::Mat after = cv::imread(tmp / "optimised.png", cv::IMREAD_COLOR);
+  const cv::Mat before = cv::imread(tmp / "particle.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(after.empty());
+  ASSERT_FALSE(before.empty());
+  const int closure_px = countColour(after, {255, 0, 255}, 0);  // session::kClosureColour
+  std::cerr << "closure pixels " << closure_px << "\n";
+  EXPECT_GT(closure_px, 30);
+  EXPECT_GT(countColour(before, {255, 0, 255}, 0), 30);
+  // Same run, same layers: only the map under them differs.
+  ASSERT_EQ(after.size(), before.size());
+  cv::Mat diff;
+  cv::absdiff(after, before, diff);
+  EXPECT_GT(cv::countNonZero(diff.reshape(1)), 100) << "the optimised map should differ from the best particle's";
 }
 
 TEST(GuiSmoke, TopologyViewAndAClickedCellShowItsLabel) {

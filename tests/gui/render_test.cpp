@@ -278,3 +278,45 @@ TEST(Render, PathAndPoseAreDrawnAtTheirScreenPositions) {
   session::drawPose(off, v, 100, 100, 0, green);
   EXPECT_EQ(cv::countNonZero(off.reshape(1) != cv::Mat(screen(60, 60)).reshape(1)), 0);
 }
+
+namespace {
+int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
+  cv::Mat mask;
+  cv::inRange(img, c, c, mask);
+  return cv::countNonZero(mask);
+}
+}  // namespace
+
+TEST(Render, ClosureIsALineWithDotsDashedWhenRejected) {
+  ViewTransform v;
+  v.x0 = 0, v.y0 = 5, v.ppm = 10;
+  cv::Mat s = screen(80, 60);
+  session::drawClosure(s, v, {1, 1}, {6, 1}, false);  // screen (10, 40) -> (60, 40)
+  // Solid: every pixel along the line, exactly the closure colour (no anti-aliasing), and a dot at each end.
+  for (int x = 10; x <= 60; ++x) EXPECT_EQ(s.at<cv::Vec3b>(40, x), cv::Vec3b(255, 0, 255)) << x;
+  EXPECT_EQ(s.at<cv::Vec3b>(37, 10), cv::Vec3b(255, 0, 255));  // the dot reaches 3 px above the end
+  EXPECT_EQ(s.at<cv::Vec3b>(37, 35), kBackground);             // the line itself is 2 px wide
+  EXPECT_EQ(s.at<cv::Vec3b>(30, 35), kBackground);
+  EXPECT_EQ(pixelsOf(s, session::kRejectedClosureColour), 0);
+
+  cv::Mat r = screen(80, 60);
+  session::drawClosure(r, v, {1, 1}, {6, 1}, true);
+  EXPECT_EQ(pixelsOf(r, session::kClosureColour), 0);
+  int on = 0, gaps = 0;
+  for (int x = 14; x <= 56; ++x) {  // between the dots
+    const bool drawn = r.at<cv::Vec3b>(40, x) == cv::Vec3b(170, 170, 170);
+    on += drawn;
+    gaps += !drawn && r.at<cv::Vec3b>(40, x - 1) == cv::Vec3b(170, 170, 170);
+  }
+  EXPECT_GT(on, 20);
+  EXPECT_GE(gaps, 3);  // dashed: the line breaks several times
+  EXPECT_LT(pixelsOf(r, session::kRejectedClosureColour), pixelsOf(s, session::kClosureColour));
+
+  // Ends far off screen: the part in view only (clipped), no dots; wholly out of view: nothing.
+  cv::Mat far = screen(80, 60);
+  session::drawClosure(far, v, {-1e7, 1}, {1e7, 1}, true);
+  EXPECT_GT(pixelsOf(far, session::kRejectedClosureColour), 40);
+  cv::Mat off = screen(80, 60);
+  session::drawClosure(off, v, {100, 100}, {200, 100}, false);
+  EXPECT_EQ(pixelsOf(off, session::kClosureColour), 0);
+}

@@ -135,7 +135,7 @@ TEST(SessionFiles, SlamOptionTableEditsGoThroughTheOptionStruct) {
   EXPECT_EQ(t.find("slam", "proposal")->type, session::OptionEntry::Type::Choice);
   EXPECT_EQ(t.find("slam", "proposal")->words,
             (std::vector<std::string>{"informed", "mode-only", "hahnel", "odometry"}));
-  EXPECT_EQ(t.entries().size(), slam::slamOptionSchema().keys().size());
+  EXPECT_EQ(t.entries().size(), slam::slamOptionSchema().keys().size() + slam::loopClosureOptionSchema().keys().size());
   for (const auto& e : t.entries()) EXPECT_FALSE(e.help.empty()) << e.key << " has no help in its key table";
   ASSERT_TRUE(t.set("slam", "particles", "12"));
   ASSERT_TRUE(t.set("slam", "proposal", "odometry"));
@@ -278,4 +278,32 @@ TEST(SessionFiles, TopologyOptionTableEditsGoThroughTheOptionStruct) {
   { std::ofstream(tmp / "topology.ini") << t.toIni(); }
   const auto loaded = topology::loadTopologyOptions(tmp / "topology.ini");
   EXPECT_EQ(topology::topologyOptionsIni(loaded), topology::topologyOptionsIni(s.topologyOptions()));
+}
+
+// The loop closure's section is in the grid: an INI that turns it on keeps it on through the grid's edits (the
+// GUI applies the grid before every run), and it can be turned on from the grid.
+TEST(SessionFiles, SlamOptionTableKeepsTheLoopClosureSection) {
+  guitest::TempDir tmp;
+  { std::ofstream(tmp / "lc.ini") << "[slam]\nparticles = 9\n[loop_closure]\nenabled = true\nsubmap_nodes = 15\n"; }
+  session::Session s;
+  s.openSlamIni(tmp / "lc.ini");
+  ASSERT_TRUE(s.slamOptions().loop_closure.enabled);
+  auto t = s.slamOptionTable();
+  ASSERT_NE(t.find("loop_closure", "enabled"), nullptr);
+  EXPECT_EQ(t.find("loop_closure", "enabled")->type, session::OptionEntry::Type::Bool);
+  EXPECT_EQ(t.find("loop_closure", "submap_nodes")->value, "15");
+  s.setSlamOptions(t);
+  EXPECT_TRUE(s.slamOptions().loop_closure.enabled);
+  EXPECT_EQ(s.slamOptions().loop_closure.submap_nodes, 15);
+  EXPECT_EQ(s.slamOptions().particles, 9);
+  t.set("loop_closure", "enabled", "false");
+  s.setSlamOptions(t);
+  EXPECT_FALSE(s.slamOptions().loop_closure.enabled);
+  // Saved from the grid and loaded back like the CLI loads it.
+  t.set("loop_closure", "enabled", "true");
+  { std::ofstream(tmp / "saved.ini") << t.toIni(); }
+  session::Session s2;
+  s2.openSlamIni(tmp / "saved.ini");
+  EXPECT_TRUE(s2.slamOptions().loop_closure.enabled);
+  EXPECT_EQ(s2.slamOptions().loop_closure.submap_nodes, 15);
 }

@@ -278,3 +278,116 @@ TEST(SessionSlam, RelationsErrorUsesOnlyRelationsInsideTheProcessedPart) {
   EXPECT_GT(inside, 5u);
   EXPECT_LT(err->translational.mean, 0.2);  // 250 scans of Intel: no loop yet, small local errors
 }
+
+namespace {
+// Loop closure on the first 1500 scans of Intel with 8 particles: the robot comes back twice (2 closures), as in
+// MapApp.LoopClosureRunMatchesGridtopoSlam.
+constexpr std::size_t kLoopScans = 1500;
+slam::SlamOptions loopOptions() {
+  slam::SlamOptions o;
+  o.particles = 8;
+  o.seed = 1;
+  o.threads = 2;
+  o.loop_closure.enabled = true;
+  return o;
+}
+int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
+  cv::Mat mask;
+  cv::inRange(img, c, c, mask);
+  return cv::countNonZero(mask);
+}
+}  // namespace
+
+// The loop closure's edges reach the GUI through the snapshot (at the pose graph's poses) and are drawn in their
+// layer; the optimised map is the run's result, the best particle's map stays beside it for the "before" view.
+TEST(SessionSlam, LoopClosuresAndTheOptimisedMapReachTheSnapshotAndTheView) {
+  session::Session s;
+  s.openLog(kIntel, kLoopScans);
+  s.slamOptions() = loopOptions();
+  s.startSlam();
+  auto before = s.slamSnapshot();
+  EXPECT_TRUE(before->loop_closure);
+  EXPECT_TRUE(before->closures.empty());
+  EXPECT_FALSE(before->optimised_map);
+  s.runner()->play();
+  ASSERT_TRUE(s.runner()->waitIdle(120s));
+  const auto snap = s.slamSnapshot();
+  ASSERT_EQ(snap->state, session::RunState::Finished);
+
+  // The same run without the runner: its pose graph is the reference.
+  auto scans = io::readScanLog(kIntel);
+  scans.resize(kLoopScans);
+  slam::SlamRun direct(std::make_shared<const std::vector<ScanRecord>>(std::move(scans)), loopOptions());
+  direct.runToEnd();
+  const auto& closer = *direct.loopCloser();
+  ASSERT_EQ(closer.closures().size(), 2u);
+  ASSERT_EQ(snap->closures.size(), 2u);
+  const auto graph = closer.poses();
+  for (std::size_t i = 0; i < snap->closures.size(); ++i) {
+    const auto& c = snap->closures[i];
+    EXPECT_EQ(c.node, closer.closures()[i].node);
+    EXPECT_EQ(c.submap_node, closer.closures()[i].submap_node);
+    EXPECT_FALSE(c.rejected);
+    EXPECT_LT(c.submap_node, c.node);
+    for (const slam::Pose2& p : {c.newest, c.submap}) EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
+    EXPECT_EQ(c.newest.x, graph[c.node].x);
+    EXPECT_EQ(c.newest.y, graph[c.node].y);
+    EXPECT_EQ(c.submap.x, graph[c.submap_node].x);
+    EXPECT_EQ(c.submap.y, graph[c.submap_node].y);
+    // A revisit: the whole submap (submap_nodes processed scans from its first node) lies before the closing scan.
+    EXPECT_GT(c.node - c.submap_node, static_cast<std::size_t>(loopOptions().loop_closure.submap_nodes));
+  }
+  // The optimised map is the run's result map, and what Send map to topology takes.
+  ASSERT_TRUE(snap->optimised_map);
+  EXPECT_EQ(snap->optimised_map_scans, kLoopScans);
+  const cv::Mat optimised = io::gridToImage(slam::toOccupancyGrid(*snap->optimised_map));
+  const cv::Mat expected = io::gridToImage(slam::toOccupancyGrid(direct.resultMap()));
+  ASSERT_EQ(optimised.size(), expected.size());
+  EXPECT_EQ(cv::countNonZero(optimised != expected), 0);
+  const cv::Mat particle = io::gridToImage(slam::toOccupancyGrid(snap->best_map));
+  EXPECT_TRUE(particle.size() != optimised.size() || cv::countNonZero(particle != optimised) > 0)
+      << "the best particle's map should differ from the optimised one";
+  s.useSlamMap();
+  EXPECT_EQ(s.map().cols(), optimised.cols);
+  EXPECT_EQ(cv::countNonZero(s.map().grey != optimised), 0);
+
+  // The view: the closures' layer draws pixels of their colour, and only it does.
+  session::ViewTransform v;
+  double x0, y0, x1, y1;
+  ASSERT_TRUE(s.bounds(session::ViewMode::Slam, x0, y0, x1, y1));
+  v.fit(x0, y0, x1, y1, 600, 500);
+  session::Layers only;
+  only.map = only.particles = only.best_path = only.odometry = only.scan = only.scale_bar = false;
+  cv::Mat screen(500, 600, CV_8UC3);
+  s.render(screen, session::ViewMode::Slam, v, only);
+  EXPECT_GT(pixelsOf(screen, session::kClosureColour), 20);
+  for (const auto& c : snap->closures) {  // a dot at each end
+    const cv::Point2d q = v.toScreen(c.submap.x, c.submap.y);
+    EXPECT_EQ(screen.at<cv::Vec3b>(static_cast<int>(std::lround(q.y)), static_cast<int>(std::lround(q.x))),
+              cv::Vec3b(255, 0, 255));
+  }
+  only.closures = false;
+  s.render(screen, session::ViewMode::Slam, v, only);
+  EXPECT_EQ(pixelsOf(screen, session::kClosureColour), 0);
+  // The map before and after: the optimised-map toggle switches the map drawn at once.
+  session::Layers maps = only;
+  maps.map = true;
+  cv::Mat after(500, 600, CV_8UC3), before_view(500, 600, CV_8UC3);
+  s.render(after, session::ViewMode::Slam, v, maps);
+  maps.optimised_map = false;
+  s.render(before_view, session::ViewMode::Slam, v, maps);
+  EXPECT_GT(cv::countNonZero(cv::Mat(after != before_view).reshape(1)), 100);
+}
+
+TEST(SlamRunner, WithoutTheLoopClosureTheSnapshotHasNoClosuresNorOptimisedMap) {
+  session::SlamRunner r(intelSlice(), smallOptions());
+  r.play();
+  ASSERT_TRUE(r.waitIdle(60s));
+  const auto s = r.snapshot();
+  EXPECT_FALSE(s->loop_closure);
+  EXPECT_TRUE(s->closures.empty());
+  EXPECT_FALSE(s->optimised_map);
+  EXPECT_EQ(s->optimised_map_scans, 0u);
+  // The run's map is then the best particle's.
+  EXPECT_EQ(&s->resultMap(), &s->best_map);
+}

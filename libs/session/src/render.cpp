@@ -1,5 +1,6 @@
 #include "gridtopo/session/render.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
@@ -144,6 +145,37 @@ void drawPose(cv::Mat& screen, const ViewTransform& v, double x, double y, doubl
   const cv::Point h(static_cast<int>(std::lround(q.x + (r + 4) * std::cos(theta))),
                     static_cast<int>(std::lround(q.y - (r + 4) * std::sin(theta))));
   cv::line(screen, p, h, c, 1, cv::LINE_AA);
+}
+
+void drawClosure(cv::Mat& screen, const ViewTransform& v, const cv::Point2d& a, const cv::Point2d& b,
+                 bool rejected) {
+  auto pixel = [](const cv::Point2d& q) {  // clamped: a far point must not overflow int
+    return cv::Point(static_cast<int>(std::lround(std::clamp(q.x, -1e6, 1e6))),
+                     static_cast<int>(std::lround(std::clamp(q.y, -1e6, 1e6))));
+  };
+  const cv::Point pa = pixel(v.toScreen(a.x, a.y)), pb = pixel(v.toScreen(b.x, b.y));
+  const cv::Scalar& c = rejected ? kRejectedClosureColour : kClosureColour;
+  // Clipped to the screen first, so that a dashed line zoomed far in costs the screen's length, not the line's.
+  cv::Point p = pa, q = pb;
+  if (cv::clipLine(cv::Rect(-4, -4, screen.cols + 8, screen.rows + 8), p, q)) {
+    if (!rejected) {
+      cv::line(screen, p, q, c, 2, cv::LINE_8);
+    } else {
+      const double len = std::hypot(q.x - p.x, q.y - p.y);
+      constexpr double kDash = 6.0, kGap = 4.0;
+      for (double t = 0; t < len; t += kDash + kGap) {
+        const double t1 = std::min(len, t + kDash);
+        const cv::Point d0(static_cast<int>(std::lround(p.x + (q.x - p.x) * t / len)),
+                           static_cast<int>(std::lround(p.y + (q.y - p.y) * t / len)));
+        const cv::Point d1(static_cast<int>(std::lround(p.x + (q.x - p.x) * t1 / len)),
+                           static_cast<int>(std::lround(p.y + (q.y - p.y) * t1 / len)));
+        cv::line(screen, d0, d1, c, 2, cv::LINE_8);
+      }
+    }
+  }
+  for (const cv::Point& e : {pa, pb})
+    if (e.x > -10 && e.y > -10 && e.x < screen.cols + 10 && e.y < screen.rows + 10)
+      cv::circle(screen, e, 3, c, cv::FILLED, cv::LINE_8);
 }
 
 }  // namespace gridtopo::session

@@ -232,7 +232,11 @@ void Session::tileMap(int cols, int rows) {
 // ---------------------------------------------------------------- SLAM
 
 OptionTable Session::slamOptionTable() const {
-  return OptionTable::fromSections({{"slam", slam::slamOptionSchema().describe(slam_options_)}});
+  // [loop_closure] too: setSlamOptions rebuilds the options from the table alone, so a section left out of it would
+  // fall back to its defaults at the next run (the loop closure of a loaded INI silently off).
+  return OptionTable::fromSections(
+      {{"slam", slam::slamOptionSchema().describe(slam_options_)},
+       {"loop_closure", slam::loopClosureOptionSchema().describe(slam_options_.loop_closure)}});
 }
 
 void Session::setSlamOptions(const OptionTable& table) {
@@ -270,7 +274,9 @@ void Session::attachLiveTopology() {
   runner_->setBestMapListener(live_schedule_.update_every, live_->listener());
   // Turned on while the run is paused: the map it holds now.
   const auto s = runner_->snapshot();
-  if (s && s->state != RunState::Running && s->steps > 0) live_->request(s->best_map, s->steps, s->scans_fed);
+  // The listener's map: the run's result at the end of the log, the best particle's before.
+  if (s && s->state != RunState::Running && s->steps > 0)
+    live_->request(s->scans_fed == s->scans_total ? s->resultMap() : s->best_map, s->steps, s->scans_fed);
 }
 
 std::shared_ptr<const LiveTopologyResult> Session::liveTopologyResult() const {
@@ -340,7 +346,7 @@ void Session::saveSlamOutputs(const std::string& dir) {
 void Session::useSlamMap() {
   const auto s = slamSnapshot();
   if (!s) throw std::runtime_error("no SLAM run");
-  const auto grid = slam::toOccupancyGrid(s->best_map);
+  const auto grid = slam::toOccupancyGrid(s->resultMap());
   map_ = mapLayerFromGrid(grid, "<slam map, " + std::to_string(s->scans_fed) + " scans>",
                           MapKind::ProbabilisticGrid);
   ++map_generation_;
@@ -470,6 +476,12 @@ bool Session::bounds(ViewMode mode, double& xmin, double& ymin, double& xmax, do
     if (const auto s = slamSnapshot()) {
       int x0, y0, x1, y1;
       s->best_map.cellBounds(x0, y0, x1, y1);
+      if (s->optimised_map) {  // either map may be shown: both fit
+        int ox0, oy0, ox1, oy1;
+        s->optimised_map->cellBounds(ox0, oy0, ox1, oy1);
+        if (ox1 > ox0)
+          x0 = std::min(x0, ox0), y0 = std::min(y0, oy0), x1 = std::max(x1, ox1), y1 = std::max(y1, oy1);
+      }
       if (x1 > x0) {
         const double r = s->best_map.resolution();
         xmin = x0 * r, ymin = y0 * r, xmax = x1 * r, ymax = y1 * r;
@@ -499,13 +511,16 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
     const auto s = slamSnapshot();
     if (s) {
       const auto now = std::chrono::steady_clock::now();
-      if (s->version != slam_raster_version_ &&
-          (s->state != RunState::Running || slam_raster_.empty() ||
+      const bool optimised = layers.optimised_map && s->optimised_map;
+      // A switch between the two maps is drawn at once; a newer snapshot of the same map waits for live_map_interval.
+      if ((s->version != slam_raster_version_ || optimised != slam_raster_optimised_) &&
+          (s->state != RunState::Running || slam_raster_.empty() || optimised != slam_raster_optimised_ ||
            std::chrono::duration<double>(now - slam_raster_time_).count() >= live_map_interval)) {
         slam_raster_time_ = now;
-        slam_layer_ = mapLayerFromSlam(s->best_map);
+        slam_layer_ = mapLayerFromSlam(optimised ? *s->optimised_map : s->best_map);
         slam_raster_.set(slam_layer_.empty() ? cv::Mat() : greyToBgr(slam_layer_.grey), slam_layer_);
         slam_raster_version_ = s->version;
+        slam_raster_optimised_ = optimised;
       }
       if (layers.map) slam_raster_.draw(screen, v);
       // The live topology over the growing map: the labelled map of the scan it is of, then its graph.
@@ -559,6 +574,13 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
         for (const slam::TrajectoryNode* n = s->particles[s->best].node.get(); n; n = n->parent.get())
           pts.emplace_back(n->pose.x, n->pose.y);
         drawPath(screen, v, pts, cv::Scalar(0, 0, 230), 2);
+      }
+      if (layers.closures) {
+        // Rejected ones first, so that an accepted closure between the same places stays on top.
+        for (const bool rejected : {true, false})
+          for (const auto& c : s->closures)
+            if (c.rejected == rejected)
+              drawClosure(screen, v, {c.submap.x, c.submap.y}, {c.newest.x, c.newest.y}, c.rejected);
       }
       if (layers.scan && s->scans_fed > 0 && runner_) {
         const auto& rec = runner_->scans()[s->last_scan];

@@ -112,7 +112,7 @@ std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {
   return snapshot_;
 }
 
-void SlamRunner::publish(bool with_trajectory) {
+void SlamRunner::publish(bool with_trajectory, bool idle) {
   // Called by the worker (or the constructor before the worker exists): reads the filter freely.
   const slam::RbpfSlam& filter = run_->filter();
   const std::size_t fed = run_->scansFed();
@@ -140,15 +140,40 @@ void SlamRunner::publish(bool with_trajectory) {
     s->best_map = ps[s->best].map;  // shares tiles
     s->last_scan_pose = ps[s->best].pose;
   }
-  // At the end of the log the map and the trajectory are the run's result (with loop closure: optimised).
-  if (fed == limit_ && !ps.empty() && run_->loopCloser()) s->best_map = run_->resultMap();
+  const slam::LoopCloser* closer = run_->loopCloser();
+  s->loop_closure = closer != nullptr;
+  if (closer) {
+    // Every snapshot, so that the ends follow each optimisation and a closure rejected later turns grey: read from
+    // the graph node by node (not LoopCloser::poses(), which copies every node), they cost about 2 µs a snapshot
+    // for the 251 closures of Intel's first 3000 scans.
+    const auto& graph = closer->graph();
+    for (const auto& c : closer->closures())
+      s->closures.push_back({c.node, c.submap_node, graph.pose(c.node), graph.pose(c.submap_node), c.rejected});
+  }
   if (with_trajectory || fed == limit_) {
     last_trajectory_poses_ = run_->trajectory();
     last_trajectory_scans_ = fed;
+    // The optimised map re-inserts every processed scan (Intel, 8 particles: 40 ms at 600 nodes, 3000 scans, against
+    // 2.4 s in the filter; it grows with the nodes), so it is made with the trajectory, and while running at most
+    // once per kOptimisedMapCost times its own cost: it takes at most a tenth of the worker's time on long logs.
+    // SlamRun::resultMap is the best particle's map until a loop is closed: the snapshot has best_map for that.
+    constexpr double kOptimisedMapCost = 10.0;
+    const auto now = std::chrono::steady_clock::now();
+    if (closer && !closer->closures().empty() && !ps.empty() &&
+        (idle || fed == limit_ ||
+         std::chrono::duration<double>(now - last_optimised_map_time_).count() >=
+             kOptimisedMapCost * last_optimised_map_seconds_)) {
+      last_optimised_map_ = std::make_shared<const slam::GridMap>(run_->resultMap());
+      last_optimised_map_scans_ = fed;
+      last_optimised_map_time_ = std::chrono::steady_clock::now();
+      last_optimised_map_seconds_ = std::chrono::duration<double>(last_optimised_map_time_ - now).count();
+    }
     last_trajectory_ = std::chrono::steady_clock::now();
   }
   s->trajectory = last_trajectory_poses_;
   s->trajectory_scans = last_trajectory_scans_;
+  s->optimised_map = last_optimised_map_;
+  s->optimised_map_scans = last_optimised_map_scans_;
   s->stats = filter.stats();
   s->wall_seconds = run_->filterSeconds();
   if (s->wall_seconds > 0 && fed > 0) {
@@ -210,7 +235,7 @@ void SlamRunner::run() {
     if (state_changed) {
       publish(true);
     } else if (std::chrono::duration<double>(now - last_snapshot_).count() >= ropt_.snapshot_interval) {
-      publish(std::chrono::duration<double>(now - last_trajectory_).count() >= ropt_.trajectory_interval);
+      publish(std::chrono::duration<double>(now - last_trajectory_).count() >= ropt_.trajectory_interval, false);
     }
   }
 }

@@ -54,6 +54,10 @@ struct Layers {
   LabelStage stage = LabelStage::Corrected;
   bool region_ids = true;
   bool graph = true;             ///< the topological graph (topology view; SLAM view: the live topology's)
+  bool closures = true;         ///< the loop closure's edges (accepted, and rejected ones dashed)
+  /// Once the loop closure has closed a loop, the map at the optimised poses (SlamSnapshot::optimised_map) instead
+  /// of the best particle's: the map after and before the optimisation.
+  bool optimised_map = true;
   bool inspection = true;       ///< simulated scan of the inspected cell, highlighted particle path
   bool scale_bar = true;
 };
@@ -116,7 +120,8 @@ class Session {
   // ---- SLAM
   slam::SlamOptions& slamOptions() { return slam_options_; }
   const std::string& slamIniPath() const { return slam_ini_path_; }
-  /// The options as a property-grid table (from slam::slamOptionSchema: type, default, range, unit, help).
+  /// The options as a property-grid table, sections [slam] and [loop_closure] (from slam::slamOptionSchema and
+  /// slam::loopClosureOptionSchema: type, default, range, unit, help).
   OptionTable slamOptionTable() const;
   /// Applies an edited table (validated; throws InputError naming the key, options unchanged on error).
   void setSlamOptions(const OptionTable& table);
@@ -133,8 +138,9 @@ class Session {
   /// of the run so far (it must be paused or over), through the SlamRun gridtopo-slam uses; options.ini is the
   /// RUN.ini (slam::slamRunIni) that reruns the scans fed so far with `gridtopo-slam OUT/options.ini`.
   void saveSlamOutputs(const std::string& dir);
-  /// Makes the SLAM's current best map the session map (for the topology view and the label painter), through
-  /// the same conversion as the saved map (slam::toOccupancyGrid + io::gridToImage).
+  /// Makes the SLAM's current map the session map (for the topology view and the label painter), through the same
+  /// conversion as the saved map (slam::toOccupancyGrid + io::gridToImage): the best particle's, or once the loop
+  /// closure has closed a loop the optimised one (SlamSnapshot::resultMap, as saveSlamOutputs writes it).
   void useSlamMap();
 
   // ---- live topology: the labels and the graph of the SLAM's best map while it grows (issue 14)
@@ -217,6 +223,7 @@ class Session {
   std::uint64_t relations_cache_key_ = ~0ull;
   std::optional<eval::RelationsResult> relations_cache_;
   std::uint64_t slam_raster_version_ = ~0ull;
+  bool slam_raster_optimised_ = false;  ///< slam_raster_ shows the snapshot's optimised map
   MapRaster slam_raster_;
   std::chrono::steady_clock::time_point slam_raster_time_{};
   MapLayer slam_layer_;

@@ -33,6 +33,14 @@ struct ParticleView {
   slam::TrajectoryNodePtr node;   ///< newest node of the particle's path (shared, immutable)
 };
 
+/// A loop closure of the run's pose graph (slam::LoopCloser::closures), its two ends at the graph's current poses.
+struct ClosureView {
+  std::size_t node = 0;         ///< the node whose scan closed the loop (the newest when it was found)
+  std::size_t submap_node = 0;  ///< the first node of the older submap it matched
+  slam::Pose2 newest, submap;   ///< their poses in the graph now (they move with every optimisation)
+  bool rejected = false;        ///< left out of the graph by an optimisation (an outlier)
+};
+
 struct SlamSnapshot {
   std::uint64_t version = 0;  ///< increases with every published snapshot
   RunState state = RunState::Paused;
@@ -46,12 +54,24 @@ struct SlamSnapshot {
 
   std::vector<ParticleView> particles;
   std::size_t best = 0;        ///< index of the best particle
-  slam::GridMap best_map;      ///< shares its tiles with the filter (copy-on-write)
+  slam::GridMap best_map;      ///< the best particle's; shares its tiles with the filter (copy-on-write)
   /// The pose of every scan fed so far (RbpfSlam::trajectory()); filled when the run pauses, ends, and at
   /// most every RunnerOptions::trajectory_interval seconds while running (see trajectory_scans).
   std::vector<TimedPose> trajectory;
   std::size_t trajectory_scans = 0;  ///< scans_fed when `trajectory` was computed
   std::vector<slam::StepStats> stats;  ///< one per processed scan
+
+  bool loop_closure = false;           ///< the run has the loop closure ([loop_closure] enabled)
+  std::vector<ClosureView> closures;   ///< every closure found so far, rejected ones too, in the order found
+  /// Once the loop closure has closed a loop: every processed scan inserted at its optimised pose
+  /// (SlamRun::resultMap), computed with `trajectory` when the run pauses or ends, and while running at most every
+  /// trajectory_interval and no more than a tenth of the time (it re-inserts every scan); null before.
+  std::shared_ptr<const slam::GridMap> optimised_map;
+  std::size_t optimised_map_scans = 0;  ///< scans_fed when `optimised_map` was computed
+
+  /// The run's map: the optimised one once a loop is closed, else the best particle's (what saveOutputs writes
+  /// when the run is idle).
+  const slam::GridMap& resultMap() const { return optimised_map ? *optimised_map : best_map; }
 
   std::size_t last_scan = 0;  ///< index of the last scan fed (valid when scans_fed > 0)
   slam::Pose2 last_scan_pose;  ///< best particle's pose for that scan (robot frame origin)
@@ -114,7 +134,8 @@ class SlamRunner {
  private:
   void notifyListener(bool idle);  // worker only
   void run();
-  void publish(bool with_trajectory);
+  /// `idle`: the run is paused or over (not a snapshot taken while running).
+  void publish(bool with_trajectory, bool idle = true);
   bool idle() const;  // requires mu_
 
   std::shared_ptr<const std::vector<ScanRecord>> scans_;
@@ -137,6 +158,10 @@ class SlamRunner {
   std::size_t peak_rss_ = 0;
   std::vector<TimedPose> last_trajectory_poses_;
   std::size_t last_trajectory_scans_ = 0;
+  std::shared_ptr<const slam::GridMap> last_optimised_map_;
+  std::size_t last_optimised_map_scans_ = 0;
+  std::chrono::steady_clock::time_point last_optimised_map_time_{};
+  double last_optimised_map_seconds_ = 0.0;  ///< how long the last one took
   std::string error_;
   std::mutex listener_mu_;  // held while the listener runs
   BestMapListener listener_;
