@@ -13,6 +13,7 @@
 #include "gridtopo/session/session.h"
 #include "gridtopo/session/slam_runner.h"
 #include "gridtopo/session/topology_drawing.h"
+#include "gridtopo/slam/slam_run.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_export.h"
 
@@ -117,7 +118,7 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
   EXPECT_EQ(last->scans_fed, snap->scans_fed);
 
   // Exactly what the topology map builder (gridtopo-map) computes from the final best map.
-  const auto grid = slam::toOccupancyGrid(snap->best_map);
+  const auto grid = slam::toOccupancyGrid(snap->resultMap());  // at the end: the loop closure's map
   const mapping::MapTopology ref = mapping::topologyOfSlamGrid(grid, *shippedModel(), topologyOptions(), "final");
   EXPECT_EQ(differingCells(last->data->map.grey, ref.map.grey), 0);
   EXPECT_DOUBLE_EQ(last->data->map.origin_x, ref.map.origin.x);
@@ -158,9 +159,10 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
 }
 
 TEST(LiveTopology, LeavesTheSlamUnchanged) {
-  // The filter alone, then a runner with the live topology every 10 updates: the same trajectory, pose by pose.
-  slam::RbpfSlam direct(slamOptions());
-  for (const auto& r : *officeScans()) direct.processScan(r);
+  // The SLAM run alone (filter and loop closure), then a runner with the live topology every 10 updates: the same
+  // trajectory, pose by pose.
+  slam::SlamRun direct(officeScans(), slamOptions());
+  direct.runToEnd();
   session::SlamRunner runner(officeScans(), slamOptions());
   session::LiveTopology live(shippedModel(), topologyOptions());
   runner.setBestMapListener(10, live.listener());
@@ -240,7 +242,7 @@ TEST(LiveTopology, SessionDrawsTheLabelsAndTheGraphOverTheSlamMap) {
   // The SLAM view: the live topology's labelled map and graph over the SLAM map, with its caption.
   session::Layers layers;
   layers.particles = layers.best_path = layers.odometry = layers.scan = layers.scale_bar = false;
-  layers.graph = layers.region_ids = false;
+  layers.graph = layers.region_ids = layers.closures = false;
   session::ViewTransform v;
   double x0, y0, x1, y1;
   ASSERT_TRUE(s.bounds(session::ViewMode::Slam, x0, y0, x1, y1));

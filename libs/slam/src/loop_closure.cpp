@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <cstdint>
 #include <iomanip>
 #include <sstream>
@@ -308,8 +306,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     w.theta = std::min(0.5 * M_PI, std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d) + off_th);
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
-    static const bool dbg = std::getenv("GT_LC_TRACE") != nullptr;
-    if (dbg) std::fprintf(stderr, "TRACE t %.1f node %zu sm %zu wxy %.2f wth %.3f offxy %.2f offth %.3f found %s %.3f\n", cur.timestamp, i, sm.first, w.xy, w.theta, off_xy, off_th, found ? "y" : "n", found ? found->score : 0.0);
     if (!found) continue;
     // A best pose near the window's border may only be the foot of a better one outside it (a corridor that goes
     // on past the submap's end): no closure. The margin is four cells and four angular steps.
