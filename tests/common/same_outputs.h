@@ -28,7 +28,7 @@ inline std::string withoutLine(const std::string& text, const std::string& key) 
   return out;
 }
 
-/// A stats.txt's text without its wall-time (4th) and RSS (12th) columns, which differ from run to run.
+/// A stats.txt's text without its wall-time (4th) and RSS (13th) columns, which differ from run to run.
 inline std::string statsWithoutTimeAndRss(const std::string& text) {
   std::istringstream in(text);
   std::string out;
@@ -36,7 +36,7 @@ inline std::string statsWithoutTimeAndRss(const std::string& text) {
     std::istringstream w(l);
     std::string word;
     for (int i = 0; w >> word; ++i)
-      if (l[0] == '#' || (i != 3 && i != 11)) out += word + ' ';
+      if (l[0] == '#' || (i != 3 && i != 12)) out += word + ' ';
     out += '\n';
   }
   return out;

@@ -73,13 +73,19 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
   const auto& stats = run.filter().stats();
   for (std::size_t i = 0; i < kSteps; ++i) {
     const auto w = words(rows[i + 1]);
-    ASSERT_EQ(w.size(), 12u) << rows[i + 1];
+    ASSERT_EQ(w.size(), 13u) << rows[i + 1];
     // The row is statsRow's, then the resident memory in kB (a live process holds more than a megabyte).
     EXPECT_EQ(rows[i + 1].rfind(slam::statsRow(stats[i]) + ' ', 0), 0u) << rows[i + 1];
     EXPECT_EQ(std::stoul(w[0]), i);
     EXPECT_EQ(std::stoul(w[1]), stats[i].scan_index);
     EXPECT_EQ(w[6], "6");  // particles
-    EXPECT_GT(std::stoul(w[11]), 1024u);
+    // The distinct histories 40 processed scans back: one at the start (every particle's root is the first
+    // pose), at most one per particle.
+    EXPECT_EQ(std::stoi(w[11]), stats[i].lineages);
+    EXPECT_GE(stats[i].lineages, 1);
+    EXPECT_LE(stats[i].lineages, 6);
+    if (i < slam::kLineageLag) EXPECT_EQ(stats[i].lineages, 1) << i;
+    EXPECT_GT(std::stoul(w[12]), 1024u);
   }
   EXPECT_EQ(stats.front().scan_index, 0u);
   EXPECT_GT(run.filterSeconds(), 0.0);

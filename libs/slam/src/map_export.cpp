@@ -41,7 +41,8 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map) {
   return g;
 }
 
-cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory) {
+cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory,
+                  const std::vector<ClosureLine>& closures) {
   const int w = static_cast<int>(grid.getSizeX()), h = static_cast<int>(grid.getSizeY());
   cv::Mat img(h, w, CV_8UC3);
   for (int y = 0; y < h; ++y)
@@ -55,6 +56,9 @@ cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector
   for (std::size_t i = 1; i < trajectory.size(); ++i)
     cv::line(img, toPixel(trajectory[i - 1].pose), toPixel(trajectory[i].pose), cv::Scalar(0, 0, 220), 1,
              cv::LINE_AA);
+  for (const ClosureLine& c : closures)
+    cv::line(img, toPixel({c.from.x, c.from.y, c.from.theta}), toPixel({c.to.x, c.to.y, c.to.theta}),
+             cv::Scalar(200, 0, 200), 1, cv::LINE_AA);
   if (!trajectory.empty()) cv::circle(img, toPixel(trajectory.front().pose), 4, cv::Scalar(0, 170, 0), -1);
   return img;
 }

@@ -257,6 +257,18 @@ void RbpfSlam::recordStep(StepStats& st, std::chrono::steady_clock::time_point t
   }
   st.unique_tiles = last_unique_tiles_;
   st.map_bytes = last_map_bytes_;
+  {
+    // Each particle's ancestor kLineageLag nodes up its path (a path shorter than that: its root).
+    std::vector<const TrajectoryNode*> ancestors;
+    ancestors.reserve(particles_.size());
+    for (const Particle& p : particles_) {
+      const TrajectoryNode* a = p.node.get();
+      for (std::size_t k = 0; a && a->parent && k < kLineageLag; ++k) a = a->parent.get();
+      ancestors.push_back(a);
+    }
+    std::sort(ancestors.begin(), ancestors.end());
+    st.lineages = static_cast<int>(std::unique(ancestors.begin(), ancestors.end()) - ancestors.begin());
+  }
   st.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.push_back(st);
 }

@@ -46,7 +46,7 @@ std::string statsRow(const StepStats& s) {
   std::ostringstream o;
   o << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' ' << s.neff << ' '
     << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
-    << s.unique_tiles << ' ' << s.map_bytes;
+    << s.unique_tiles << ' ' << s.map_bytes << ' ' << s.lineages;
   return o.str();
 }
 
@@ -63,7 +63,7 @@ void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o
   out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.stats); });
   out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(o.grid, p); });
   out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
-    if (!cv::imwrite(p, renderMap(o.grid, o.trajectory))) throw std::runtime_error("cannot write " + p);
+    if (!cv::imwrite(p, renderMap(o.grid, o.trajectory, o.closures))) throw std::runtime_error("cannot write " + p);
   });
   out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(o.grid, p); });
   {

@@ -159,6 +159,15 @@ std::vector<std::size_t> SlamRun::processedScanIndices() const {
   return idx;
 }
 
+std::vector<ClosureLine> SlamRun::closureLines(const std::vector<Pose2>& poses) const {
+  std::vector<ClosureLine> lines;
+  if (!closer_) return lines;
+  for (const LoopClosureRecord& c : closer_->closures())
+    if (!c.rejected && c.node < poses.size() && c.submap_node < poses.size())
+      lines.push_back({poses[c.submap_node], poses[c.node]});
+  return lines;
+}
+
 mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
   requireFilter("simpleMap");
   if (filter_->particles().empty()) return {};
@@ -174,6 +183,7 @@ SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, 
     const std::vector<Pose2> poses = closer_->finalPoses();
     o.grid = toOccupancyGrid(closedLoops() ? mapAt(poses) : filter_->bestParticle().map);
     o.trajectory = filter_->trajectoryThrough(poses);
+    o.closures = closureLines(poses);
     o.simplemap = simpleMapAt(processedScanIndices(), poses, *scans_);
   } else {
     o.grid = toOccupancyGrid(filter_->bestParticle().map);
@@ -192,6 +202,7 @@ SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, c
   SlamOutputs o;
   const std::vector<Pose2> poses = closer_ ? closer_->finalPoses() : std::vector<Pose2>{};
   o.trajectory = closer_ ? filter_->trajectoryThrough(poses) : filter_->trajectory();
+  o.closures = closureLines(poses);
   o.stats = statsText();
   o.simplemap = closer_ ? simpleMapAt(processedScanIndices(), poses, *scans_) : simpleMap();
   // The export needs only the result's map: the particles' maps are freed before the map (and its pictures,

@@ -6,6 +6,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "gridtopo/slam/pose2.h"
+
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/grid_map.h"
 
@@ -16,6 +18,12 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map);
 
 /// BGR picture of an occupancy grid (free white, occupied black, unknown grey) with `trajectory` drawn in red
 /// (and its start in green). Row 0 is the top of the map (largest y).
-cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {});
+/// A loop closure drawn on the map: the two poses it joins (the matched submap's first scan, the closing scan).
+struct ClosureLine {
+  Pose2 from, to;
+};
+/// The map (grey), the trajectory (red, its start a green dot) and the accepted loop closures (magenta lines).
+cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {},
+                  const std::vector<ClosureLine>& closures = {});
 
 }  // namespace gridtopo::slam

@@ -44,7 +44,13 @@ struct StepStats {
   double evaluations = 0.0;    ///< mean likelihood evaluations per particle
   std::size_t unique_tiles = 0;  ///< distinct map tiles over all particles (counted every 20 steps)
   std::size_t map_bytes = 0;     ///< memory of those tiles
+  /// Distinct histories the particle set still holds kLineageLag processed scans back: how many of the particles'
+  /// ancestors at that step differ (1 = every particle descends from one pose there; the issue-23 diversity curve).
+  int lineages = 0;
 };
+
+/// The lag (processed scans, about 10 m at the default 0.25 m update) at which StepStats::lineages counts ancestors.
+inline constexpr std::size_t kLineageLag = 40;
 
 class RbpfSlam {
  public:

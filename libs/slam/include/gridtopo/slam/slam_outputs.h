@@ -11,6 +11,7 @@
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
+#include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/trajectory_tree.h"
 
@@ -24,13 +25,15 @@ mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices,
 
 /// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
 inline constexpr const char* kStatsColumns =
-    "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes";
+    "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
+    "lineages";
 /// One processed step's row of stats.txt (kStatsColumns, space-separated, no newline).
 std::string statsRow(const StepStats& s);
 
 struct SlamOutputs {
   mrpt::maps::COccupancyGridMap2D grid;   ///< the best particle's map (toOccupancyGrid)
   std::vector<TimedPose> trajectory;  ///< a pose for every scan
+  std::vector<ClosureLine> closures;  ///< the accepted loop closures at the result's poses (map_trajectory.png)
   std::vector<std::string> trajectory_header;  ///< '#' lines of trajectory.txt
   mrpt::maps::CSimpleMap simplemap;       ///< simpleMapOf
   std::string stats;                      ///< the text of stats.txt

@@ -88,6 +88,8 @@ class SlamRun {
   bool closedLoops() const { return closer_ && !closer_->closures().empty(); }
   /// The scan index of every node of the loop closure.
   std::vector<std::size_t> processedScanIndices() const;
+  /// The accepted closures between the nodes' `poses`.
+  std::vector<ClosureLine> closureLines(const std::vector<Pose2>& poses) const;
   void requireFilter(const char* what) const;
 
   SlamOptions options_;
