@@ -208,9 +208,13 @@ SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, c
   // The export needs only the result's map: the particles' maps are freed before the map (and its pictures,
   // 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
   o.grid = [&] {
-    const GridMap map = closedLoops() ? mapAt(poses) : filter_->bestParticle().map;  // the best one shares the tiles
+    // The best particle's map shares its tiles (cheap to keep); the loop closure's map is built from the scans and
+    // the poses alone, so only after the particles are gone (hospital seed 1: peak RSS 428 -> 349 MB, same outputs).
+    std::optional<GridMap> best;
+    if (!closedLoops()) best = filter_->bestParticle().map;
     filter_.reset();
     releaseFreedMemory();
+    const GridMap map = best ? std::move(*best) : mapAt(poses);
     return toOccupancyGrid(map);
   }();
   releaseFreedMemory();
