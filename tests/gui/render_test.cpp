@@ -7,11 +7,13 @@
 #include <utility>
 
 #include "gridtopo/session/render.h"
+#include "test_helpers.h"
 
 using namespace gridtopo;
 using session::MapLayer;
 using session::MapRaster;
 using session::ViewTransform;
+using guitest::pixelsOf;
 
 namespace {
 const cv::Vec3b kBackground(1, 2, 3);
@@ -278,14 +280,6 @@ TEST(Render, PathAndPoseAreDrawnAtTheirScreenPositions) {
   session::drawPose(off, v, 100, 100, 0, green);
   EXPECT_EQ(cv::countNonZero(off.reshape(1) != cv::Mat(screen(60, 60)).reshape(1)), 0);
 }
-
-namespace {
-int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
-  cv::Mat mask;
-  cv::inRange(img, c, c, mask);
-  return cv::countNonZero(mask);
-}
-}  // namespace
 
 TEST(Render, ClosureIsALineWithDotsDashedWhenRejected) {
   ViewTransform v;

@@ -24,6 +24,7 @@
 
 using namespace gridtopo;
 using namespace std::chrono_literals;
+using guitest::pixelsOf;
 using testing_outputs::expectSameTrajectory;
 
 namespace {
@@ -291,11 +292,6 @@ slam::SlamOptions loopOptions() {
   o.threads = 2;
   o.loop_closure.enabled = true;
   return o;
-}
-int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
-  cv::Mat mask;
-  cv::inRange(img, c, c, mask);
-  return cv::countNonZero(mask);
 }
 }  // namespace
 

@@ -12,6 +12,13 @@
 
 namespace gridtopo::guitest {
 
+/// Pixels of exactly the colour `c` (BGR).
+inline int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
+  cv::Mat mask;
+  cv::inRange(img, c, c, mask);
+  return cv::countNonZero(mask);
+}
+
 struct TempDir {
   std::filesystem::path path;
   TempDir() {

@@ -31,6 +31,21 @@ double recoverIncrement(float aperture, std::size_t n) {
   return raw;
 }
 
+// What toMrptScan refuses in a scan, or null.
+const char* whyMrptCannotHold(const LaserScan& scan) {
+  const std::size_t n = scan.ranges.size();
+  if (n < 2) return "a scan needs at least 2 beams to be written as an MRPT scan";
+  if (scan.valid.size() != n) return "scan: ranges and validity flags differ in size";
+  if (!std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 || !std::isfinite(scan.start_angle))
+    return "scan: the angle increment must be finite and non-zero";
+  if (!std::isfinite(scan.sensor_pose.x) || !std::isfinite(scan.sensor_pose.y) || !std::isfinite(scan.sensor_pose.phi))
+    return "scan: the laser's mounting pose must be finite";
+  if (!std::isfinite(scan.timestamp)) return "scan: the timestamp must be finite";
+  if (!(scan.max_range > 0.0) || !std::isfinite(scan.max_range))
+    return "scan: max range must be a positive finite number";
+  return nullptr;
+}
+
 }  // namespace
 
 mrpt::Clock::time_point toMrptTime(double seconds) {
@@ -59,16 +74,8 @@ double fromMrptTime(mrpt::Clock::time_point t) {
 }
 
 mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const ScanConversionOptions& options) {
+  if (const char* why = whyMrptCannotHold(scan)) throw std::invalid_argument(why);
   const std::size_t n = scan.ranges.size();
-  if (n < 2) throw std::invalid_argument("a scan needs at least 2 beams to be written as an MRPT scan");
-  if (scan.valid.size() != n) throw std::invalid_argument("scan: ranges and validity flags differ in size");
-  if (!std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 || !std::isfinite(scan.start_angle))
-    throw std::invalid_argument("scan: the angle increment must be finite and non-zero");
-  if (!std::isfinite(scan.sensor_pose.x) || !std::isfinite(scan.sensor_pose.y) || !std::isfinite(scan.sensor_pose.phi))
-    throw std::invalid_argument("scan: the laser's mounting pose must be finite");
-  if (!std::isfinite(scan.timestamp)) throw std::invalid_argument("scan: the timestamp must be finite");
-  if (!(scan.max_range > 0.0) || !std::isfinite(scan.max_range))
-    throw std::invalid_argument("scan: max range must be a positive finite number");
 
   auto obs = mrpt::obs::CObservation2DRangeScan::Create();
   obs->sensorLabel = options.sensor_label;
@@ -132,23 +139,9 @@ LaserScan fromMrptScan(const mrpt::obs::CObservation2DRangeScan& obs) {
 }
 
 void useMrptScanGeometry(LaserScan& scan) {
-  const std::size_t n = scan.ranges.size();
-  if (n < 2 || scan.valid.size() != n || !std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 ||
-      !std::isfinite(scan.start_angle) || !std::isfinite(scan.sensor_pose.x) || !std::isfinite(scan.sensor_pose.y) ||
-      !std::isfinite(scan.sensor_pose.phi) || !std::isfinite(scan.timestamp) || !(scan.max_range > 0.0) ||
-      !std::isfinite(scan.max_range))
-    return;
-  // The round trip itself on a two-beam stand-in of the scan (the geometry does not depend on the readings but
-  // through their number, which the aperture carries): whatever MRPT does to the pose's yaw, it is done here too.
-  LaserScan probe;
-  probe.timestamp = scan.timestamp;
-  probe.max_range = scan.max_range;
-  probe.sensor_pose = scan.sensor_pose;
-  probe.start_angle = scan.start_angle;
-  probe.angle_increment = scan.angle_increment;
-  probe.ranges.assign(n, 0.0f);
-  probe.valid.assign(n, 0);
-  const LaserScan back = fromMrptScan(*toMrptScan(probe));
+  if (whyMrptCannotHold(scan)) return;
+  // The round trip itself: whatever MRPT does to the pose's yaw or the increment, it is done here too.
+  const LaserScan back = fromMrptScan(*toMrptScan(scan));
   scan.timestamp = back.timestamp;
   scan.max_range = back.max_range;
   scan.sensor_pose = back.sensor_pose;

@@ -59,7 +59,8 @@ bool RbpfSlam::processScan(const ScanRecord& record) {
   if (!process) return false;
 
   const auto t0 = std::chrono::steady_clock::now();
-  const PreparedScan scan = prepareScan(record.scan, o_.beams, o_.resolution);
+  last_scan_ = prepareScan(record.scan, o_.beams, o_.resolution);
+  const PreparedScan& scan = last_scan_;
   StepStats st;
   st.step = stats_.size();
   st.scan_index = index;

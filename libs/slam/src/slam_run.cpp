@@ -71,7 +71,6 @@ void SlamRun::closeLoops(std::size_t index) {
   const TrajectoryNodePtr& node = filter_->bestParticle().node;
   const Pose2 motion = node->parent ? relative(node->parent->estimate, node->estimate) : Pose2{};
   const ScanRecord& record = (*scans_)[index];
-  const PreparedScan scan = prepareScan(record.scan, options_.beams, options_.resolution);
   // The odometry over the same step (from the previous processed scan), when both scans carry it.
   std::optional<Pose2> odometry;
   if (node->parent) {
@@ -81,7 +80,7 @@ void SlamRun::closeLoops(std::size_t index) {
                           {record.odometry.x, record.odometry.y, record.odometry.phi});
   }
   const LoopClosureStep step = closer_->addScan(index, record.scan.timestamp, node->estimate, motion,
-                                                odometry ? &*odometry : nullptr, scan);
+                                                odometry ? &*odometry : nullptr, filter_->lastPreparedScan());
   if (!step.feedback) return;
   // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
   // particle's estimate to the optimised pose, in the map of the optimised poses.

@@ -87,6 +87,8 @@ class RbpfSlam {
   const SlamOptions& options() const { return o_; }
   std::size_t scansSeen() const { return scans_.size(); }
   std::size_t stepsProcessed() const { return stats_.size(); }
+  /// The last processed scan as the filter prepared it (for the loop closure beside it, which needs the same beams).
+  const PreparedScan& lastPreparedScan() const { return last_scan_; }
   /// Distinct tiles over all particles, and in `bytes` if given the bytes of the maps: every particle's block
   /// pointers, the distinct blocks, tiles and hit-mean arrays (each counted once however many share it).
   std::size_t uniqueTiles(std::size_t* bytes = nullptr) const;
@@ -149,6 +151,7 @@ class RbpfSlam {
   Pose2 initial_pose_;
   GridMap prior_map_;
   std::size_t last_processed_ = 0;  // scan index
+  PreparedScan last_scan_;          // of last_processed_
   double acc_linear_ = 0.0, acc_angular_ = 0.0;
   std::size_t last_unique_tiles_ = 0, last_map_bytes_ = 0;
 };
