@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
+#include <limits>
+#include <queue>
 #include <sstream>
 #include <unordered_set>
 
@@ -103,6 +105,14 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);
+  if (!nodes_.empty()) {
+    n.suspect_xy = nodes_.back().suspect_xy;
+    n.suspect_theta = nodes_.back().suspect_theta;
+    if (odometry && suspectStep(motion, *odometry)) {
+      n.suspect_xy += std::hypot(motion.x - odometry->x, motion.y - odometry->y);
+      n.suspect_theta += std::abs(wrapAngle(motion.theta - odometry->theta));
+    }
+  }
   const double r2 = o_.point_range * o_.point_range;
   for (const MapBeam& b : scan.map_beams) {
     if (!b.hit) continue;
@@ -255,24 +265,94 @@ const CorrelationGrid& LoopCloser::gridOf(std::size_t s, const std::vector<Pose2
   return *cache_.back().second;
 }
 
+std::vector<LoopCloser::PathDrift> LoopCloser::driftToSubmaps(std::size_t from) const {
+  // The graph reduced to its key nodes (the ends of every submap, the ends of every accepted closure and `from`):
+  // consecutive key nodes are joined by the chain of motion edges between them, a closure's ends by nothing (it
+  // ties them to a few centimetres). Each measure of drift is minimised over the paths on its own (Dijkstra):
+  // the least the motion edges can have drifted by between the two ends. A closed loop makes its far side near.
+  std::vector<std::size_t> keys;
+  keys.reserve(2 * submaps_.size() + 2 * closures_.size() + 1);
+  keys.push_back(from);
+  for (const Submap& sm : submaps_) {
+    keys.push_back(sm.first);
+    keys.push_back(sm.last);
+  }
+  for (const LoopClosureRecord& c : closures_)
+    if (!c.rejected) {
+      keys.push_back(c.node);
+      keys.push_back(c.submap_node);
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  const auto indexOf = [&](std::size_t node) {
+    return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), node) - keys.begin());
+  };
+  std::vector<std::vector<std::size_t>> links(keys.size());
+  for (const LoopClosureRecord& c : closures_)
+    if (!c.rejected) {
+      const std::size_t a = indexOf(c.node), b = indexOf(c.submap_node);
+      links[a].push_back(b);
+      links[b].push_back(a);
+    }
+  const auto shortest = [&](auto cumulative) {
+    std::vector<double> dist(keys.size(), std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, std::size_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+    dist[indexOf(from)] = 0.0;
+    open.emplace(0.0, indexOf(from));
+    while (!open.empty()) {
+      const auto [d, k] = open.top();
+      open.pop();
+      if (d > dist[k]) continue;
+      const auto relax = [&, d = d](std::size_t j, double w) {
+        if (d + w < dist[j]) {
+          dist[j] = d + w;
+          open.emplace(dist[j], j);
+        }
+      };
+      if (k > 0) relax(k - 1, cumulative(nodes_[keys[k]]) - cumulative(nodes_[keys[k - 1]]));
+      if (k + 1 < keys.size()) relax(k + 1, cumulative(nodes_[keys[k + 1]]) - cumulative(nodes_[keys[k]]));
+      for (std::size_t j : links[k]) relax(j, 0.0);
+    }
+    return dist;
+  };
+  const std::vector<double> travel = shortest([](const Node& n) { return n.travelled; });
+  const std::vector<double> sxy = shortest([](const Node& n) { return n.suspect_xy; });
+  const std::vector<double> sth = shortest([](const Node& n) { return n.suspect_theta; });
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<PathDrift> per_submap(submaps_.size(), PathDrift{inf, inf, inf});
+  for (std::size_t s = 0; s < submaps_.size(); ++s)
+    for (std::size_t k = indexOf(submaps_[s].first); k < keys.size() && keys[k] <= submaps_[s].last; ++k) {
+      PathDrift& d = per_submap[s];
+      d.travel = std::min(d.travel, travel[k]);
+      d.suspect_xy = std::min(d.suspect_xy, sxy[k]);
+      d.suspect_theta = std::min(d.suspect_theta, sth[k]);
+    }
+  return per_submap;
+}
+
 void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const std::size_t i = nodes_.size() - 1;
   if (i + 1 < static_cast<std::size_t>(o_.query_nodes)) return;
   const Node& cur = nodes_[i];
   const Pose2& x = graph_.pose(i);
-  const double since = cur.travelled - travelled_at_closure_;
-  // The window grows with the travel since the last closure and covers the odometry's dead reckoning from there.
+  // The window around the estimate grows with the travel along the graph's shortest path to the submap and covers
+  // the odometry's dead reckoning since the last closure.
   const double off_xy = std::hypot(dead_reckoned_.x - x.x, dead_reckoned_.y - x.y);
   const double off_th = std::abs(wrapAngle(dead_reckoned_.theta - x.theta));
-  const double wxy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * since + off_xy);
+  const std::vector<PathDrift> drift = driftToSubmaps(i);
+  const auto windowXy = [&](std::size_t s) {
+    return std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * drift[s].travel) +
+           std::max(off_xy, drift[s].suspect_xy);
+  };
   // Candidates: complete submaps left at least min_travel ago, one of whose poses lies within the window (plus
   // the reach of a view) of the current estimate; nearest first.
-  const double reach = wxy + 0.5 * o_.point_range;
   std::vector<std::pair<double, std::size_t>> cand;
   for (std::size_t s = 0; s < submaps_.size(); ++s) {
     const Submap& sm = submaps_[s];
     if (sm.last + 1 - sm.first < static_cast<std::size_t>(o_.submap_nodes)) continue;
     if (cur.travelled - nodes_[sm.last].travelled < o_.min_travel) continue;
+    const double reach = windowXy(s) + 0.5 * o_.point_range;
     double best = reach;
     for (std::size_t j = sm.first; j <= sm.last; ++j) {
       const Pose2& p = graph_.pose(j);
@@ -295,15 +375,14 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     const CorrelationGrid& grid = gridOf(s, geometry);
     SearchWindow w;
     w.center = relative(graph_.pose(sm.first), x);
-    // The window for this submap: the uncertainty since the last closure, but no more than what the chain of
-    // motions since the submap's last scan can have gathered (a submap a few metres back is close in the graph).
-    const double chain = cur.travelled - nodes_[sm.last].travelled;
-    const double d = std::min(since, chain);
-    w.xy = std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * d + off_xy);
+    // The window for this submap: the drift the graph's shortest path to it can have gathered.
+    const double d = drift[s].travel;
+    w.xy = windowXy(s);
     // The dead-reckoned heading offset widens the window beyond its largest growth: after a stretch where the
     // filter turned and the odometry did not (FR079: a crowd walking with the robot), the odometry's hypothesis
     // can lie 40 degrees away, and only a closure brings the estimate back to it.
-    w.theta = std::min(0.5 * M_PI, std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d) + off_th);
+    w.theta = std::min(0.5 * M_PI, std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d) +
+                                       std::max(off_th, drift[s].suspect_theta));
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
     if (!found) continue;
@@ -350,9 +429,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     rec.offset_theta = std::abs(wrapAngle(m.pose.theta - w.center.theta));
     closures_.push_back(rec);
     ++step.accepted;
-    // Only a closure across a long stretch of the trajectory says that the estimate agrees with the older map:
-    // one with the last few metres says nothing about the drift since the start of a loop.
-    if (cur.travelled - nodes_[sm.last].travelled >= o_.window_reset_travel) travelled_at_closure_ = cur.travelled;
     dead_reckoned_ = compose(graph_.pose(sm.first), m.pose);
   }
 }

@@ -20,10 +20,8 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
           .add("search_every", &O::search_every, R::closed(1, 100000), "", "search at every n-th processed scan")
           .add("min_travel", &O::min_travel, R::atLeast(0), "m", "travel since a submap before it is searched")
           .add("max_candidates", &O::max_candidates, R::closed(1, 1000), "", "submaps searched per search")
-          .add("window_reset_travel", &O::window_reset_travel, R::atLeast(0), "m",
-               "a closure restarts the window's growth only across this much trajectory")
           .add("window_xy_min", &O::window_xy_min, R::atLeast(0), "m", "search half-width after a closure")
-          .add("window_xy_per_m", &O::window_xy_per_m, R::atLeast(0), "m/m", "its growth per metre travelled")
+          .add("window_xy_per_m", &O::window_xy_per_m, R::atLeast(0), "m/m", "its growth per metre of the graph's path to the submap")
           .add("window_xy_max", &O::window_xy_max, R::atLeast(0), "m", "its largest value")
           .add("window_theta_min", &O::window_theta_min, R::closed(0, 3.14), "rad", "heading half-width after a closure")
           .add("window_theta_per_m", &O::window_theta_per_m, R::atLeast(0), "rad/m", "its growth per metre")

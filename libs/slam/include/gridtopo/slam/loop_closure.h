@@ -4,8 +4,8 @@
 // et al.'s Karto). Run incrementally, in time order, beside the filter:
 //   1. addFilterMotion: a node per processed scan, joined to the previous node by the filter's own motion;
 //   2. searchForClosures: the newest scans (the query) are matched against older submaps (runs of consecutive
-//      scans) that the current estimate places inside a search window, which grows with the distance travelled
-//      since the last closure; an exhaustive branch-and-bound search (correlative_matcher.h), a minimum score, and
+//      scans) that the current estimate places inside a search window, which grows with the travel along the
+//      graph's shortest path to the submap (accepted closures are shortcuts); an exhaustive branch-and-bound search (correlative_matcher.h), a minimum score, and
 //      a second search that refuses the match when a distinct pose scores nearly as well (look-alike corridors);
 //   3. optimizePoseGraph: Ceres with a Huber loss on the closures (pose_graph.h), every optimize_every scans
 //      while closures are pending;
@@ -99,6 +99,8 @@ class LoopCloser {
     std::size_t scan_index;
     double timestamp;
     double travelled;             ///< m along the trajectory from the first node
+    /// The filter's disagreement with the odometry summed over the suspect steps from the first node (m, rad).
+    double suspect_xy = 0.0, suspect_theta = 0.0;
     std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
     std::optional<Pose2> odometry;  ///< the odometry's motion since the previous node
     std::size_t motion_edge = 0;    ///< the edge from the previous node (none for the first)
@@ -114,6 +116,14 @@ class LoopCloser {
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                        const Pose2* odometry, const PreparedScan& scan);
   void searchForClosures(LoopClosureStep& step);
+  /// How far the graph's motion edges can have drifted between two nodes, each the least over the graph's paths
+  /// (motion edges count, accepted closures are free): the travel (m), and the filter's disagreement with the
+  /// odometry summed over the suspect steps (m, rad), where one of the two went wrong.
+  struct PathDrift {
+    double travel, suspect_xy, suspect_theta;
+  };
+  /// Per submap, the drift from node `from` to the submap's nearest node.
+  std::vector<PathDrift> driftToSubmaps(std::size_t from) const;
   /// The square-root information of a match of `query` at `x` in `grid`, from the curvature of its score.
   Eigen::Matrix3d closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
                                          const Pose2& x, double dtheta) const;
@@ -146,7 +156,6 @@ class LoopCloser {
   std::vector<LoopClosureRecord> closures_;
   std::size_t pending_from_ = 0;        ///< closures_[pending_from_..] not yet optimised
   std::size_t last_optimized_node_ = 0;
-  double travelled_at_closure_ = 0.0;
   /// The newest pose dead-reckoned from the pose of the last closure with the filter's motion, but with the
   /// odometry's on suspect steps: how far it lies from the estimate widens the search window.
   Pose2 dead_reckoned_;

@@ -29,13 +29,12 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   int search_every = 2;         ///< search at every n-th processed scan
   double min_travel = 5.0;      ///< m travelled since a submap's last scan before it is a candidate
   int max_candidates = 3;       ///< submaps searched per search, nearest first
-  /// A closure restarts the window's growth only when its submap lies at least this far back along the trajectory.
-  double window_reset_travel = 30.0;
   double window_xy_min = 1.0;   ///< m, search half-width right after a closure
-  double window_xy_per_m = 0.05;    ///< m of half-width per m travelled since the last closure
+  /// m of half-width per m of travel along the graph's shortest path to the submap (accepted closures cost nothing)
+  double window_xy_per_m = 0.05;
   double window_xy_max = 8.0;       ///< m
   double window_theta_min = 0.1;    ///< rad
-  double window_theta_per_m = 0.004;  ///< rad per m travelled since the last closure
+  double window_theta_per_m = 0.004;  ///< rad per m of the same path
   double window_theta_max = 0.5;    ///< rad
   double min_score = 0.55;      ///< mean grid value over the query's points a match must reach
   /// A match is refused as ambiguous when a pose further than ambiguity_distance from it scores at least
