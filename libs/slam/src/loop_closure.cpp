@@ -341,9 +341,12 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const double off_xy = std::hypot(dead_reckoned_.x - x.x, dead_reckoned_.y - x.y);
   const double off_th = std::abs(wrapAngle(dead_reckoned_.theta - x.theta));
   const std::vector<PathDrift> drift = driftToSubmaps(i);
+  // The suspect steps' disagreement counts in translation directly and through their heading, whose error moves
+  // every later pose by at most the heading times the travel after it (bounded by the path's travel).
   const auto windowXy = [&](std::size_t s) {
-    return std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * drift[s].travel) +
-           std::max(off_xy, drift[s].suspect_xy);
+    const PathDrift& p = drift[s];
+    return std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * p.travel +
+                                          std::max(off_xy, p.suspect_xy + p.suspect_theta * p.travel));
   };
   // Candidates: complete submaps left at least min_travel ago, one of whose poses lies within the window (plus
   // the reach of a view) of the current estimate; nearest first.
