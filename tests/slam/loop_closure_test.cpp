@@ -17,7 +17,9 @@
 #include "common/odometry_error.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/correlative_matcher.h"
+#include "gridtopo/slam/loop_closure.h"
 #include "gridtopo/slam/map_export.h"
+#include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/slam_run.h"
 #include <opencv2/imgcodecs.hpp>
 
@@ -207,6 +209,54 @@ TEST(LoopClosure, TheFilterAloneLeavesTheLargeLoopOpenAndThePoseGraphClosesIt) {
   EXPECT_GT(closed.closures, 5u);
   EXPECT_LT(closed.loop_xy, 0.05);
   EXPECT_LT(closed.loop_th, 0.01);
+}
+
+TEST(LoopClosure, AHeadingErrorWhereTheOdometryDisagreedIsFoundAtTheRevisit) {
+  // The loop closure alone (no filter) fed the true path of the large loop with two faults on the last leg (west
+  // corridor, southwards, a few metres before the start): a "crowd" where the filter turns 0.3 rad per step on two
+  // steps while the odometry is right (FR079 at t = 1515 s), then a slip where the odometry turns 0.3 rad per step
+  // on two steps while the filter is right. The filter's path comes back 0.6 rad and metres off, beyond what the
+  // loop's length alone opens the window to (window_theta_max, 0.5 rad): the suspect steps' disagreement must widen
+  // the window in heading, and through its lever in translation, for the start to be found again.
+  const sim::SimLog log = largeLoopLog();
+  const slam::SlamOptions o = testOptions();
+  slam::LoopCloser closer(o.loop_closure, o.motion);
+  const auto& truth = log.truth;
+  slam::Pose2 filter = toPose(truth.front());
+  std::size_t crowd = 0, slip = 0;
+  std::vector<slam::Pose2> filter_path;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    slam::Pose2 motion{0, 0, 0}, odometry{0, 0, 0};
+    if (k > 0) {
+      motion = odometry = slam::relative(toPose(truth[k - 1]), toPose(truth[k]));
+      const bool west_leg = truth[k].x < 2.0 && truth[k].y < 20.0 && truth[k - 1].y > truth[k].y;
+      if (west_leg && truth[k].y < 9.0 && crowd < 2) motion.theta += 0.3, ++crowd;
+      else if (west_leg && truth[k].y < 7.0 && slip < 2) odometry.theta += 0.3, ++slip;
+      filter = slam::compose(filter, motion);
+    }
+    filter_path.push_back(filter);
+    const slam::PreparedScan ps = slam::prepareScan(log.records[k].scan, o.beams, o.resolution);
+    closer.addScan(k, log.records[k].scan.timestamp, filter, motion, k > 0 ? &odometry : nullptr, ps);
+  }
+  ASSERT_EQ(crowd, 2u);
+  ASSERT_EQ(slip, 2u);
+  // The filter's own path ends rotated by the crowd's 0.6 rad.
+  const slam::Pose2 true_end = slam::relative(toPose(truth.front()), toPose(truth.back()));
+  const slam::Pose2 filter_end = slam::relative(filter_path.front(), filter_path.back());
+  EXPECT_NEAR(std::abs(slam::wrapAngle(filter_end.theta - true_end.theta)), 0.6, 1e-6);
+  // A closure that undoes it, and the optimised end within centimetres of the truth.
+  double largest = 0.0;
+  for (const auto& c : closer.closures())
+    if (!c.rejected) largest = std::max(largest, c.offset_theta);
+  const std::vector<slam::Pose2> poses = closer.finalPoses();
+  const slam::Pose2 end = slam::relative(poses.front(), poses.back());
+  const double err_xy = std::hypot(end.x - true_end.x, end.y - true_end.y);
+  const double err_th = std::abs(slam::wrapAngle(end.theta - true_end.theta));
+  std::printf("crowd and slip: %zu closures, largest heading offset %.3f rad; end %.3f m %.4f rad off\n",
+              closer.closures().size(), largest, err_xy, err_th);
+  EXPECT_GT(largest, 0.5);
+  EXPECT_LT(err_xy, 0.1);
+  EXPECT_LT(err_th, 0.01);
 }
 
 namespace {

@@ -105,13 +105,15 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);
+  const bool suspect = !nodes_.empty() && odometry && suspectStep(motion, *odometry);
   if (!nodes_.empty()) {
     n.suspect_xy = nodes_.back().suspect_xy;
     n.suspect_theta = nodes_.back().suspect_theta;
-    if (odometry && suspectStep(motion, *odometry)) {
-      n.suspect_xy += std::hypot(motion.x - odometry->x, motion.y - odometry->y);
-      n.suspect_theta += std::abs(wrapAngle(motion.theta - odometry->theta));
-    }
+  }
+  if (suspect) {
+    n.suspect_xy += std::hypot(motion.x - odometry->x, motion.y - odometry->y);
+    n.suspect_theta += std::abs(wrapAngle(motion.theta - odometry->theta));
+    ++suspect_;
   }
   const double r2 = o_.point_range * o_.point_range;
   for (const MapBeam& b : scan.map_beams) {
@@ -124,14 +126,10 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   n.points.shrink_to_fit();
   if (nodes_.empty()) {
     graph_.addNode(filter_pose);
-    dead_reckoned_ = filter_pose;
   } else {
     const std::size_t prev = nodes_.size() - 1;
     graph_.addNode(compose(graph_.pose(prev), motion));
     const PoseGraphEdge e = motionEdge(prev, motion, odometry);
-    const bool suspect = odometry && suspectStep(motion, *odometry);
-    suspect_ += suspect;
-    dead_reckoned_ = compose(dead_reckoned_, suspect ? *odometry : motion);
     n.motion_edge = graph_.addEdge(e);
   }
   nodes_.push_back(std::move(n));
@@ -336,20 +334,19 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   if (i + 1 < static_cast<std::size_t>(o_.query_nodes)) return;
   const Node& cur = nodes_[i];
   const Pose2& x = graph_.pose(i);
-  // The window around the estimate grows with the travel along the graph's shortest path to the submap and covers
-  // the odometry's dead reckoning since the last closure.
-  const double off_xy = std::hypot(dead_reckoned_.x - x.x, dead_reckoned_.y - x.y);
-  const double off_th = std::abs(wrapAngle(dead_reckoned_.theta - x.theta));
-  const std::vector<PathDrift> drift = driftToSubmaps(i);
-  // The suspect steps' disagreement counts in translation directly and through their heading, whose error moves
+  // The window around the estimate, per submap: how far the graph's least-drift path to the submap can have
+  // drifted. It grows with the path's travel, and with the filter's disagreement with the odometry on its suspect
+  // steps (where one of the two went wrong), in translation directly and through the heading, whose error moves
   // every later pose by at most the heading times the travel after it (bounded by the path's travel).
+  const std::vector<PathDrift> drift = driftToSubmaps(i);
   const auto windowXy = [&](std::size_t s) {
     const PathDrift& p = drift[s];
-    return std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * p.travel +
-                                          std::max(off_xy, p.suspect_xy + p.suspect_theta * p.travel));
+    return std::min(o_.window_xy_max, o_.window_xy_min + o_.window_xy_per_m * p.travel + p.suspect_xy +
+                                          p.suspect_theta * p.travel);
   };
   // Candidates: complete submaps left at least min_travel ago, one of whose poses lies within the window (plus
-  // the reach of a view) of the current estimate; nearest first.
+  // the reach of a view) of the current estimate; nearest first, in units of that reach (a submap far along the
+  // graph, whose window is wide, ranks with a near one whose window is narrow).
   std::vector<std::pair<double, std::size_t>> cand;
   for (std::size_t s = 0; s < submaps_.size(); ++s) {
     const Submap& sm = submaps_[s];
@@ -361,7 +358,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
       const Pose2& p = graph_.pose(j);
       best = std::min(best, std::hypot(p.x - x.x, p.y - x.y));
     }
-    if (best < reach) cand.emplace_back(best, s);
+    if (best < reach) cand.emplace_back(best / reach, s);
   }
   std::sort(cand.begin(), cand.end());
   if (cand.size() > static_cast<std::size_t>(o_.max_candidates)) cand.resize(static_cast<std::size_t>(o_.max_candidates));
@@ -381,11 +378,11 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     // The window for this submap: the drift the graph's shortest path to it can have gathered.
     const double d = drift[s].travel;
     w.xy = windowXy(s);
-    // The dead-reckoned heading offset widens the window beyond its largest growth: after a stretch where the
-    // filter turned and the odometry did not (FR079: a crowd walking with the robot), the odometry's hypothesis
-    // can lie 40 degrees away, and only a closure brings the estimate back to it.
+    // The suspect steps' heading disagreement widens the window beyond its largest growth: after a stretch where
+    // the filter turned and the odometry did not (FR079: a crowd walking with the robot), the truth can lie 40
+    // degrees away, and only a closure brings the estimate back to it.
     w.theta = std::min(0.5 * M_PI, std::min(o_.window_theta_max, o_.window_theta_min + o_.window_theta_per_m * d) +
-                                       std::max(off_th, drift[s].suspect_theta));
+                                       drift[s].suspect_theta);
     ++searches_;
     const auto found = branchAndBoundSearch(grid, query, w, o_.min_score);
     if (!found) continue;
@@ -432,7 +429,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     rec.offset_theta = std::abs(wrapAngle(m.pose.theta - w.center.theta));
     closures_.push_back(rec);
     ++step.accepted;
-    dead_reckoned_ = compose(graph_.pose(sm.first), m.pose);
   }
 }
 

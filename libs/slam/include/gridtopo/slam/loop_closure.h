@@ -156,9 +156,6 @@ class LoopCloser {
   std::vector<LoopClosureRecord> closures_;
   std::size_t pending_from_ = 0;        ///< closures_[pending_from_..] not yet optimised
   std::size_t last_optimized_node_ = 0;
-  /// The newest pose dead-reckoned from the pose of the last closure with the filter's motion, but with the
-  /// odometry's on suspect steps: how far it lies from the estimate widens the search window.
-  Pose2 dead_reckoned_;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
   std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;

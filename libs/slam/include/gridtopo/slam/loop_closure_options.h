@@ -58,8 +58,8 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// optimised again without it. 0 = keep every closure.
   double outlier_sigmas = 4.0;
   /// A step where the filter's motion and the odometry's differ by more than this many deviations of the motion
-  /// model (Mahalanobis) is suspect: its motion edge is weakened by the difference, and the search window grows by
-  /// the odometry's account of that step. Below it, the disagreement is odometry noise and the edge stays stiff.
+  /// model (Mahalanobis) is suspect: its motion edge is weakened by the difference, and the difference widens the
+  /// search window of every path through it. Below it, the disagreement is odometry noise and the edge stays stiff.
   double disagreement_sigmas = 3.0;
   int optimize_every = 15;      ///< processed scans between optimisations (when a closure was added since)
   int max_iterations = 30;      ///< solver iterations per optimisation
