@@ -133,6 +133,10 @@ class LoopCloser {
   /// The motion edges re-derived from the filter's current best path (filter_path_), whose history resampling
   /// has pruned of the lineages that died out; without closures the nodes take its poses.
   void adoptFilterPath();
+  /// The nodes added since the last optimisation placed along `path` (the filter's current best path) from the last
+  /// optimised node; all of them on it while there is no closure. The search's estimate is then one particle's
+  /// history, not a chain of the motions of whichever particle was best at each step.
+  void followFilterSinceOptimization(const std::vector<Pose2>& path);
   /// The motion edges of `g` from the filter path `path` (one pose per node; frame changes of feedback applied).
   void setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const;
   /// The filter's motion and the odometry's differ by more than disagreement_sigmas motion-model deviations.
@@ -158,6 +162,7 @@ class LoopCloser {
   std::size_t last_optimized_node_ = 0;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
+  std::size_t rotation_ = 0;  ///< which of the candidates beyond the nearest is searched next
   std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;
 };
 
