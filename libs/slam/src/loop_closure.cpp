@@ -374,14 +374,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
     if (best < reach) cand.emplace_back(best / reach, s);
   }
   std::sort(cand.begin(), cand.end());
-  // The nearest max_candidates - 1, and one of the others in turn (every submap in reach is searched now and then:
-  // where the estimate is far off, the right submap is not the nearest).
-  const std::size_t keep = static_cast<std::size_t>(o_.max_candidates);
-  if (cand.size() > keep) {
-    const std::size_t rest = cand.size() - (keep - 1);
-    std::swap(cand[keep - 1], cand[keep - 1 + rotation_++ % rest]);
-    cand.resize(keep);
-  }
+  if (cand.size() > static_cast<std::size_t>(o_.max_candidates)) cand.resize(static_cast<std::size_t>(o_.max_candidates));
   if (cand.empty()) return;
   const std::vector<Point2> query = queryOf(i, geometry);
   if (query.size() < 20) return;

@@ -162,7 +162,6 @@ class LoopCloser {
   std::size_t last_optimized_node_ = 0;
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
-  std::size_t rotation_ = 0;  ///< which of the candidates beyond the nearest is searched next
   std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;
 };
 

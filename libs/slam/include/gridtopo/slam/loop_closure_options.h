@@ -32,7 +32,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double window_xy_min = 1.0;   ///< m, search half-width right after a closure
   /// m of half-width per m of travel along the graph's shortest path to the submap (accepted closures cost nothing)
   double window_xy_per_m = 0.05;
-  double window_xy_max = 25.0;      ///< m
+  double window_xy_max = 8.0;       ///< m
   double window_theta_min = 0.1;    ///< rad
   double window_theta_per_m = 0.004;  ///< rad per m of the same path
   double window_theta_max = 0.5;    ///< rad
