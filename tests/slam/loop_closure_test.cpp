@@ -259,41 +259,6 @@ TEST(LoopClosure, AHeadingErrorWhereTheOdometryDisagreedIsFoundAtTheRevisit) {
   EXPECT_LT(err_th, 0.01);
 }
 
-TEST(LoopClosure, TheSearchEstimateIsTheFiltersPathNotAChainOfBestParticles) {
-  // The motion handed to addScan is the step of whichever particle is best at the time; chained over a long
-  // stretch without an optimisation it can drift far from every particle's history (the hospital: 122 m over 1000
-  // nodes). Here each step's motion turns 0.01 rad too much, while the filter's best path (setFilterPath) is the
-  // truth: the graph's estimate must follow the path, not the chain (which ends radians and metres off), before the
-  // first closure (the graph is the path) and after (the nodes since the last optimisation follow it from there).
-  const sim::SimLog log = largeLoopLog();
-  const slam::SlamOptions o = testOptions();
-  slam::LoopCloser closer(o.loop_closure, o.motion);
-  const std::size_t n = log.truth.size();  // once round and on past the start: closures at the revisit
-  std::vector<slam::Pose2> path;
-  closer.setFilterPath([&path] { return path; });
-  for (std::size_t k = 0; k < n; ++k) {
-    path.push_back(toPose(log.truth[k]));
-    slam::Pose2 motion{0, 0, 0};
-    if (k > 0) {
-      motion = slam::relative(path[k - 1], path[k]);
-      motion.theta += 0.01;
-    }
-    const slam::PreparedScan ps = slam::prepareScan(log.records[k].scan, o.beams, o.resolution);
-    closer.addScan(k, log.records[k].scan.timestamp, path[k], motion, nullptr, ps);
-  }
-  const std::vector<slam::Pose2> poses = closer.poses();
-  const std::size_t every = static_cast<std::size_t>(o.loop_closure.search_every);
-  const std::size_t last_search = (n - 1) / every * every;
-  double worst = 0.0;
-  for (std::size_t k = 0; k <= last_search; ++k) {
-    const slam::Pose2 e = slam::relative(poses[0], poses[k]), t = slam::relative(path[0], path[k]);
-    worst = std::max(worst, std::hypot(e.x - t.x, e.y - t.y));
-  }
-  std::printf("search estimate against the filter's path: worst %.4f m over %zu nodes, %zu closures\n", worst,
-              last_search + 1, closer.closures().size());
-  EXPECT_LT(worst, 0.05);
-}
-
 namespace {
 // Points every 5 cm along a wall y = const from x0 to x1, and a small L-shaped feature at (fx, fy).
 void addWall(std::vector<slam::Point2>& pts, double y, double x0, double x1) {

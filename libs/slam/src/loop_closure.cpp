@@ -178,17 +178,6 @@ void LoopCloser::adoptFilterPath() {
     for (std::size_t k = 0; k < path.size(); ++k) graph_.setPose(k, path[k]);
 }
 
-void LoopCloser::followFilterSinceOptimization(const std::vector<Pose2>& path) {
-  if (!filter_path_ || !frame_changes_.empty() || path.size() != nodes_.size()) return;
-  // Without a closure the graph is the filter's path itself; with closures, the nodes since the last optimisation
-  // follow the path from the last optimised node (they were chained from whichever particle was best at each step,
-  // which over a long stretch without an optimisation drifts from every particle's history: 122 m over 1300 nodes
-  // of the hospital's long excursion, enough to keep the return out of every window).
-  const std::size_t a = closures_.empty() ? 0 : last_optimized_node_;
-  const Pose2 anchor = closures_.empty() ? path[0] : graph_.pose(a);
-  for (std::size_t k = a; k < path.size(); ++k) graph_.setPose(k, compose(anchor, relative(path[a], path[k])));
-}
-
 Eigen::Matrix3d LoopCloser::closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
                                                    const Pose2& x, double dtheta) const {
   // The match's log-likelihood: the query's points each count as ln p = refined value (a Gaussian of width
@@ -344,8 +333,6 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   const std::size_t i = nodes_.size() - 1;
   if (i + 1 < static_cast<std::size_t>(o_.query_nodes)) return;
   const Node& cur = nodes_[i];
-  const std::vector<Pose2> geometry = localGeometry();
-  followFilterSinceOptimization(geometry);
   const Pose2& x = graph_.pose(i);
   // The window around the estimate, per submap: how far the graph's least-drift path to the submap can have
   // drifted. It grows with the path's travel, and with the filter's disagreement with the odometry on its suspect
@@ -376,6 +363,7 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
   std::sort(cand.begin(), cand.end());
   if (cand.size() > static_cast<std::size_t>(o_.max_candidates)) cand.resize(static_cast<std::size_t>(o_.max_candidates));
   if (cand.empty()) return;
+  const std::vector<Pose2> geometry = localGeometry();
   const std::vector<Point2> query = queryOf(i, geometry);
   if (query.size() < 20) return;
   double d_max = o_.resolution;

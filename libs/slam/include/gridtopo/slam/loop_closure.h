@@ -133,10 +133,6 @@ class LoopCloser {
   /// The motion edges re-derived from the filter's current best path (filter_path_), whose history resampling
   /// has pruned of the lineages that died out; without closures the nodes take its poses.
   void adoptFilterPath();
-  /// The nodes added since the last optimisation placed along `path` (the filter's current best path) from the last
-  /// optimised node; all of them on it while there is no closure. The search's estimate is then one particle's
-  /// history, not a chain of the motions of whichever particle was best at each step.
-  void followFilterSinceOptimization(const std::vector<Pose2>& path);
   /// The motion edges of `g` from the filter path `path` (one pose per node; frame changes of feedback applied).
   void setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const;
   /// The filter's motion and the odometry's differ by more than disagreement_sigmas motion-model deviations.
