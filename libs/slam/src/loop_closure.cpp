@@ -105,15 +105,14 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);
-  const bool suspect = !nodes_.empty() && odometry && suspectStep(motion, *odometry);
   if (!nodes_.empty()) {
     n.suspect_xy = nodes_.back().suspect_xy;
     n.suspect_theta = nodes_.back().suspect_theta;
-  }
-  if (suspect) {
-    n.suspect_xy += std::hypot(motion.x - odometry->x, motion.y - odometry->y);
-    n.suspect_theta += std::abs(wrapAngle(motion.theta - odometry->theta));
-    ++suspect_;
+    if (const auto d = suspectDisagreement(motion, odometry)) {
+      n.suspect_xy += d->xy;
+      n.suspect_theta += d->theta;
+      ++suspect_;
+    }
   }
   const double r2 = o_.point_range * o_.point_range;
   for (const MapBeam& b : scan.map_beams) {
@@ -141,29 +140,28 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
     submaps_.back().last = i;
 }
 
-bool LoopCloser::suspectStep(const Pose2& motion, const Pose2& odometry) const {
-  const OdometryMotionModel::Sigmas sg = motion_.sigmas(odometry, true);
-  const double ex = motion.x - odometry.x, ey = motion.y - odometry.y;
-  const double et = wrapAngle(motion.theta - odometry.theta);
+std::optional<LoopCloser::Disagreement> LoopCloser::suspectDisagreement(const Pose2& motion,
+                                                                          const Pose2* odometry) const {
+  if (!odometry) return std::nullopt;
+  const OdometryMotionModel::Sigmas sg = motion_.sigmas(*odometry, true);
+  const double ex = motion.x - odometry->x, ey = motion.y - odometry->y;
+  const double et = wrapAngle(motion.theta - odometry->theta);
   const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
-  return d2 > o_.disagreement_sigmas * o_.disagreement_sigmas;
+  if (d2 <= o_.disagreement_sigmas * o_.disagreement_sigmas) return std::nullopt;
+  return Disagreement{std::hypot(ex, ey), std::abs(et)};
 }
 
 PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const {
   // A step where the filter and the odometry disagree beyond the motion model's noise is suspect: one of them is
   // wrong (a filter that followed something moving with the robot, or an odometry that slipped). Its edge is
-  // weakened by the difference, so that a closure can bend it (and the window follows the odometry there).
-  double dxy = 0.0, dth = 0.0;
-  if (odometry && suspectStep(motion, *odometry)) {
-    dxy = std::hypot(motion.x - odometry->x, motion.y - odometry->y);
-    dth = std::abs(wrapAngle(motion.theta - odometry->theta));
-  }
+  // weakened by the difference, so that a closure can bend it (and the search windows of paths through it widen).
+  const Disagreement d = suspectDisagreement(motion, odometry).value_or(Disagreement{0.0, 0.0});
   PoseGraphEdge e;
   e.a = prev;
   e.b = prev + 1;
   e.z = motion;
-  const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * std::hypot(motion.x, motion.y) + dxy;
-  const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + dth;
+  const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * std::hypot(motion.x, motion.y) + d.xy;
+  const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + d.theta;
   e.sqrt_information = sqrtInformationOfSigmas(sxy, sxy, st);
   return e;
 }

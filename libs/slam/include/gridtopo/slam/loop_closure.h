@@ -4,9 +4,10 @@
 // et al.'s Karto). Run incrementally, in time order, beside the filter:
 //   1. addFilterMotion: a node per processed scan, joined to the previous node by the filter's own motion;
 //   2. searchForClosures: the newest scans (the query) are matched against older submaps (runs of consecutive
-//      scans) that the current estimate places inside a search window, which grows with the travel along the
-//      graph's shortest path to the submap (accepted closures are shortcuts); an exhaustive branch-and-bound search (correlative_matcher.h), a minimum score, and
-//      a second search that refuses the match when a distinct pose scores nearly as well (look-alike corridors);
+//      scans) that the current estimate places inside a search window, which grows with the drift the graph's
+//      least-drift path to the submap can have gathered (accepted closures are shortcuts); an exhaustive
+//      branch-and-bound search (correlative_matcher.h), a minimum score, and a second search that refuses the
+//      match when a distinct pose scores nearly as well (look-alike corridors);
 //   3. optimizePoseGraph: Ceres with a Huber loss on the closures (pose_graph.h), every optimize_every scans
 //      while closures are pending;
 //   4. the correction of the newest pose, which the caller may feed back into the filter (SlamRun).
@@ -135,8 +136,12 @@ class LoopCloser {
   void adoptFilterPath();
   /// The motion edges of `g` from the filter path `path` (one pose per node; frame changes of feedback applied).
   void setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const;
-  /// The filter's motion and the odometry's differ by more than disagreement_sigmas motion-model deviations.
-  bool suspectStep(const Pose2& motion, const Pose2& odometry) const;
+  /// How far the filter's motion and the odometry's differ (m, rad), on a suspect step: one where they differ by
+  /// more than disagreement_sigmas motion-model deviations (Mahalanobis). None on other steps or without odometry.
+  struct Disagreement {
+    double xy, theta;
+  };
+  std::optional<Disagreement> suspectDisagreement(const Pose2& motion, const Pose2* odometry) const;
   PoseGraphSolveOptions solveOptions() const;
   void optimizePoseGraph(LoopClosureStep& step);
   /// The poses that place the scans of a query or a submap relative to each other: the filter's current best

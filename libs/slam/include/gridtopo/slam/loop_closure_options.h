@@ -28,8 +28,8 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   // When and where to search
   int search_every = 2;         ///< search at every n-th processed scan
   double min_travel = 5.0;      ///< m travelled since a submap's last scan before it is a candidate
-  int max_candidates = 3;       ///< submaps searched per search, nearest first
-  double window_xy_min = 1.0;   ///< m, search half-width right after a closure
+  int max_candidates = 3;       ///< submaps searched per search, nearest first (in units of their reach)
+  double window_xy_min = 1.0;   ///< m, search half-width of a submap the graph's path reaches without drift
   /// m of half-width per m of travel along the graph's shortest path to the submap (accepted closures cost nothing)
   double window_xy_per_m = 0.05;
   double window_xy_max = 8.0;       ///< m
