@@ -31,13 +31,17 @@ int main(int argc, char** argv) {
                                 "m", cmd);
     TCLAP::ValueArg<int> threads("", "threads", "worker threads (overrides the INI)", false, 0, "n", cmd);
     TCLAP::ValueArg<std::string> out("o", "output", "output directory", false, "", "dir", cmd);
+    TCLAP::ValueArg<std::string> traj("t", "trajectory",
+                                      "the robot's trajectory in the map's frame (gridtopo-slam's trajectory.txt): "
+                                      "free space it did not see from near or cannot reach is no place",
+                                      false, "", "file", cmd);
     HelpOptionsArg help_options(cmd, topology::topologyRunOptionsHelp);
     TCLAP::SwitchArg quiet("q", "quiet", "no progress bar", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     const topology::TopologyRunSpec spec = topology::topologyRunOfCommandLine(
-        positionalArgument(map_arg), given(ini), {given(model_arg), given(out), given(res), given(threads)});
+        positionalArgument(map_arg), given(ini), {given(model_arg), given(out), given(traj), given(res), given(threads)});
     topology::runTopologyOnMapFile(spec, quiet.getValue(), std::cerr);
     return 0;
   });

@@ -3,6 +3,9 @@
 // aligns the two free spaces, then reports cell-label accuracy and room
 // segmentation precision / recall and the graph against the plan on the map's free cells, as JSON, with an
 // overlay PNG to look at. The measurement: eval/reference_comparison.h.
+// With --reference-topology MAP DIR instead of a plan, the reference is another topology of the same building (two
+// SLAM runs, one log in two layouts): labels agreement on the places both have, and the places each lacks
+// (eval/topology_agreement.h).
 #include <tclap/CmdLine.h>
 
 #include <iostream>
@@ -11,6 +14,7 @@
 #include "gridtopo/core/app_shell.h"
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/reference_comparison.h"
+#include "gridtopo/eval/topology_agreement.h"
 
 using namespace gridtopo;
 
@@ -26,14 +30,18 @@ int main(int argc, char** argv) {
                                                   true, "", "map", cmd);
     TCLAP::UnlabeledValueArg<std::string> dir_arg("topology", "gridtopo-topology output directory", true, "", "dir",
                                                   cmd);
-    TCLAP::ValueArg<std::string> ref_map("", "reference-map", "reference floor plan (free = grey > 250)", true, "",
+    TCLAP::ValueArg<std::string> ref_map("", "reference-map", "reference floor plan (free = grey > 250)", false, "",
                                          "png", cmd);
     TCLAP::ValueArg<std::string> ref_labels("", "reference-labels",
-                                            "reference labels (room 77, corridor 115, doorway 179), same frame", true,
+                                            "reference labels (room 77, corridor 115, doorway 179), same frame", false,
                                             "", "png", cmd);
     TCLAP::ValueArg<std::string> ref_seg("", "reference-segmentation",
-                                         "reference room-segmentation ground truth (rooms white), same frame", true,
+                                         "reference room-segmentation ground truth (rooms white), same frame", false,
                                          "", "png", cmd);
+    TCLAP::MultiArg<std::string> ref_topo("", "reference-topology",
+                                          "instead of a plan: another topology of the same building, given twice: "
+                                          "its map, then its gridtopo-topology output directory",
+                                          false, "path", cmd);
     TCLAP::ValueArg<std::string> ini("c", "ini", "topology INI (free thresholds of the map)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> json("j", "json", "write the scores as JSON here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> overlay("", "overlay",
@@ -44,6 +52,30 @@ int main(int argc, char** argv) {
                                         false, "", "png", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
+
+    const bool plan = ref_map.isSet() || ref_labels.isSet() || ref_seg.isSet();
+    if (ref_topo.isSet()) {
+      if (plan) throw UsageError("give a reference plan or --reference-topology, not both");
+      if (ref_topo.getValue().size() != 2)
+        throw UsageError("--reference-topology is given twice: the reference's map, then its topology directory");
+      const auto a = eval::compareTopologies({map_arg.getValue(), dir_arg.getValue()},
+                                             {ref_topo.getValue()[0], ref_topo.getValue()[1]},
+                                             topology::loadTopologyOptions(ini.getValue()));
+      if (errors.isSet()) throw UsageError("--errors needs a reference plan");
+      OutputSet outs;
+      if (!json.getValue().empty())
+        outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, eval::agreementJson(a)); });
+      if (!overlay.getValue().empty())
+        outs.write(overlay.getValue(), [&](const std::string& p) {
+          if (!cv::imwrite(p, eval::agreementOverlay(a))) throw std::runtime_error("cannot write " + p);
+        });
+      outs.commit();
+      std::cout << eval::agreementSummary(a) << "\n";
+      return 0;
+    }
+    if (!ref_map.isSet() || !ref_labels.isSet() || !ref_seg.isSet())
+      throw UsageError("name the reference plan (--reference-map, --reference-labels, --reference-segmentation) or "
+                       "--reference-topology MAP DIR");
 
     const auto c = eval::compareWithReference(map_arg.getValue(), dir_arg.getValue(),
                                               {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue()},

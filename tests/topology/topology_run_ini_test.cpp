@@ -82,16 +82,17 @@ TEST(TopologyRunIni, FlagsOverrideSingleValuesAndAreChecked) {
   topology::TopologyRunSpec spec;
   spec.model = "a.yml";
   spec.lines.keys["model"] = 3;
-  topology::overrideRun(spec, {std::string("b.yml"), std::string("/out"), 0.1, 3});
+  topology::overrideRun(spec, {std::string("b.yml"), std::string("/out"), std::string("t.txt"), 0.1, 3});
   EXPECT_EQ(spec.model, "b.yml");
+  EXPECT_EQ(spec.trajectory, "t.txt");
   EXPECT_FALSE(spec.fromIni("model"));
   EXPECT_EQ(spec.output, "/out");
   EXPECT_EQ(spec.options.resolution, 0.1);
   EXPECT_EQ(spec.options.threads, 3);
   topology::overrideRun(spec, {});
   EXPECT_EQ(spec.options.threads, 3);  // unset flags keep the values
-  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, -1.0, std::nullopt}), InputError);
-  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, std::nullopt, 0}), InputError);
+  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, std::nullopt, -1.0, std::nullopt}), InputError);
+  EXPECT_THROW(topology::overrideRun(spec, {std::nullopt, std::nullopt, std::nullopt, std::nullopt, 0}), InputError);
 }
 
 // Without -m the apps use the shipped model from any working directory: $GRIDTOPO_DATA_DIR first, then beside the

@@ -83,7 +83,8 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   // final map's with its topology, never both.
   const slam::SlamOutputs slam_out = slam_builder->finishRun(
       {"gridtopo-map " + spec.input, "one pose per laser scan, best particle"}, slam::slamRunIni(slam_spec));
-  if (!last || last->map_size != final_size) builder.updateTopologyOf(slam_out.grid, final_size);
+  if (!last || last->map_size != final_size)
+    builder.updateTopologyOf(slam_out.grid, final_size, pathOfSimpleMap(slam_out.simplemap));
   summary.topology = builder.currentTopology();
   summary.topology_updates = builder.topologyUpdates();
   summary.seconds_mapping = secondsSince(t_map);

@@ -16,11 +16,13 @@ namespace gridtopo::mapping {
 
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
                                const topology::TopologyOptions& options, const std::string& source,
-                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
+                               std::vector<cv::Point2d> path) {
   // The same calls as gridtopo-topology on a .gridmap(.gz): a SLAM grid's free threshold and opening.
   MapTopology t;
   t.source = source;
   t.map = io::mapImageOfGrid(grid, MapKind::ProbabilisticGrid, source);
+  t.map.path = std::move(path);
   topology::MapTopology run = topology::topologyOfMap(t.map, model, options, progress);
   t.occ = std::move(run.occ);
   t.labelling = std::move(run.labelling);
@@ -28,11 +30,23 @@ MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, cons
   return t;
 }
 
+std::vector<cv::Point2d> pathOfSimpleMap(const mrpt::maps::CSimpleMap& sm) {
+  std::vector<cv::Point2d> path;
+  path.reserve(sm.size());
+  for (const auto& kf : sm) {
+    if (!kf.pose) continue;
+    const auto m = kf.pose->getMeanVal();
+    path.emplace_back(m.x(), m.y());
+  }
+  return path;
+}
+
 MapTopology topologyOfBuiltMap(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size,
                                const places::PlacesModel& model, const topology::TopologyOptions& options,
-                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress) {
-  MapTopology t =
-      topologyOfSlamGrid(grid, model, options, "<slam map, " + std::to_string(map_size) + " scans>", progress);
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
+                               std::vector<cv::Point2d> path) {
+  MapTopology t = topologyOfSlamGrid(grid, model, options, "<slam map, " + std::to_string(map_size) + " scans>",
+                                     progress, std::move(path));
   t.map_size = map_size;
   return t;
 }
@@ -114,11 +128,16 @@ void CMetricMapBuilderTopology::updateTopology() {
   const mrpt::maps::CMultiMetricMap* maps = metric_->getCurrentlyBuiltMetricMap();
   const auto grid = maps ? maps->mapByClass<mrpt::maps::COccupancyGridMap2D>() : nullptr;
   if (!grid) throw InputError(source, "the metric map builder's map holds no occupancy grid (COccupancyGridMap2D)");
-  updateTopologyOf(*grid, size);
+  // Where the robot was: the poses of the metric builder's simple map (any CMetricMapBuilder gives them).
+  mrpt::maps::CSimpleMap sm;
+  metric_->getCurrentlyBuiltMap(sm);
+  updateTopologyOf(*grid, size, pathOfSimpleMap(sm));
 }
 
-void CMetricMapBuilderTopology::updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned size) {
-  auto t = std::make_shared<const MapTopology>(topologyOfBuiltMap(grid, size, *model_, topologyOptions));
+void CMetricMapBuilderTopology::updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned size,
+                                                 std::vector<cv::Point2d> path) {
+  auto t = std::make_shared<const MapTopology>(
+      topologyOfBuiltMap(grid, size, *model_, topologyOptions, {}, std::move(path)));
   {
     std::lock_guard<std::mutex> lock(topology_mutex_);
     topology_ = t;

@@ -158,7 +158,7 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
         for (int m = 0; m < n_minor; ++m) r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : 0;
       } else if (unknown_cells == BeamStop::kMaxRange) {
         for (int m = 0; m < n_minor; ++m)
-          r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : c[m] == kUnknown ? max_run : 0;
+          r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : (c[m] == kUnknown || c[m] == kSeen) ? max_run : 0;
       } else {
         for (int m = 0; m < n_minor; ++m) r[m] = c[m] != kOccupied ? std::min(r[m] + 1, max_run) : 0;
       }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "gridtopo/topology/export.h"
+
 namespace gridtopo::session {
 
 cv::Mat topologyImage(const TopologyData& t, LabelStage stage, bool with_labels) {
@@ -22,7 +24,13 @@ cv::Mat topologyImage(const TopologyData& t, LabelStage stage, bool with_labels)
         conf.at<float>(r, c) = probs.at<cv::Vec3f>(lab.lattice.blocks[static_cast<std::size_t>(b)])[l];
       }
   }
-  return labelOverlay(t.map.grey, *labels, conf);
+  cv::Mat img = labelOverlay(t.map.grey, *labels, conf);
+  // Free cells that the map preparation found to be no place, as overlay.png draws them.
+  if (t.occ.cells.size() == img.size())
+    for (int r = 0; r < img.rows; ++r)
+      for (int c = 0; c < img.cols; ++c)
+        if (t.occ.cells.at<unsigned char>(r, c) == places::kSeen) img.at<cv::Vec3b>(r, c) = topology::seenNotPlaceColour(c, r);
+  return img;
 }
 
 void drawTopologyGraph(cv::Mat& screen, const ViewTransform& v, const TopologyData& t, bool graph, bool region_ids) {

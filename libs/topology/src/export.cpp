@@ -163,8 +163,11 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   for (int y = 0; y < img.rows; ++y)
     for (int x = 0; x < img.cols; ++x) {
       const unsigned char s = occ.cells.at<unsigned char>(y, x);
-      cv::Vec3b c = s == places::kFree ? cv::Vec3b(255, 255, 255) : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
-                                                                                          : cv::Vec3b(180, 180, 180);
+      // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
+      cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
+                    : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
+                    : s == places::kSeen     ? seenNotPlaceColour(x, y)
+                                             : cv::Vec3b(180, 180, 180);
       const unsigned char l = labels.at<unsigned char>(y, x);
       if (l < places::kNumLabels) c = tint[l];
       // Region borders in dark grey.

@@ -29,6 +29,18 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "plain images: radius of the opening of the free space (0 = off)")
           .add("grid_free_opening_radius", &O::grid_free_opening_radius, R::closed(0, 1), "m",
                "ROS maps, probabilistic grids and the GUI's SLAM map: radius of the opening (0 = off)")
+          .addWords<std::string>("places_prepare", field(&O::places_prepare),
+                                 {{"maps", "maps"}, {"all", "all"}, {"off", "off"}},
+                                 "map preparation (which free cells are places) for ROS maps and probabilistic grids "
+                                 "(maps), every map (all) or none (off: every free cell is a place)")
+          .add("places_robot_radius", field(&O::preparation, &MapPreparationOptions::robot_radius), R::closed(0, 2),
+               "m", "a place lies in a free disc of this radius (0 = off)")
+          .add("places_view_range", field(&O::preparation, &MapPreparationOptions::view_range), R::closed(0, 100),
+               "m", "with the robot's path: a place was seen from at most this far (0 = off)")
+          .add("places_min_area", field(&O::preparation, &MapPreparationOptions::min_area), R::closed(0, 1000), "m^2",
+               "smaller connected groups of places (and, with the path, groups it does not enter) are none")
+          .add("places_path_step", field(&O::preparation, &MapPreparationOptions::path_step), R::closed(0.01, 10), "m",
+               "the path is sampled this far apart for the visibility test")
           .add("overlay_scale", &O::overlay_scale, R::closed(1, 8), "", "enlargement of overlay.png")
           .addWords<std::string>("segmentation", field(&O::segmentation), {{"regions", "regions"}, {"doorways", "doorways"}},
                                  "room segmentation: every room / corridor region (regions) or only doorways split")
@@ -122,7 +134,13 @@ double TopologyOptions::freeOpeningRadiusFor(MapKind kind) const {
   return kind == MapKind::PlainImage ? free_opening_radius : grid_free_opening_radius;
 }
 
-places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o) {
+MapPreparationOptions TopologyOptions::preparationFor(MapKind kind) const {
+  MapPreparationOptions p = preparation;
+  p.enabled = places_prepare == "all" || (places_prepare == "maps" && kind != MapKind::PlainImage);
+  return p;
+}
+
+places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o, PreparedMap* prepared) {
   const double opening_radius = o.freeOpeningRadiusFor(map.kind);
   places::OccupancyImage occ = places::occupancyFromMap(map, o.freeThresholdFor(map.kind));
   const std::string& source = map.source;
@@ -131,6 +149,12 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
   if (places::countFree(occ) == 0)
     throw InputError(source, "no free cell is left after the free-space opening of radius " +
                                  std::to_string(opening_radius) + " m (free_opening_radius / grid_free_opening_radius)");
+  PreparedMap p = prepareMap(occ, o.preparationFor(map.kind),
+                             pathInCells(map.path, map.origin, occ.resolution, occ.rows()));
+  if (p.place_cells == 0)
+    throw InputError(source, "no free cell is a place (places_robot_radius, places_view_range, places_min_area)");
+  occ.cells.setTo(places::kSeen, p.seen_not_place);
+  if (prepared) *prepared = std::move(p);
   return occ;
 }
 
@@ -173,7 +197,7 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
                           bool keep_scans_and_features) {
   MapTopology t;
-  t.occ = occupancyForTopology(map, o);
+  t.occ = occupancyForTopology(map, o, &t.prepared);
   t.labelling =
       places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
   if (progress) progress("regions", 0, 1);

@@ -17,7 +17,12 @@ std::string runSummary(const MapTopology& run, const std::string& source, double
   int counts[places::kNumLabels] = {0, 0, 0};
   for (const auto& n : run.topo.graph.nodes) counts[n.label]++;
   std::ostringstream o;
-  o << source << ": " << run.occ.cols() << "x" << run.occ.rows() << " cells, " << lab.lattice.samples.size()
+  const PreparedMap& p = run.prepared;
+  const double res2 = run.occ.resolution * run.occ.resolution;
+  o << source << ": " << run.occ.cols() << "x" << run.occ.rows() << " cells, places " << p.place_cells * res2
+    << " of " << p.free_cells * res2 << " m^2 free (not places: robot does not fit " << p.removed_robot_fit * res2
+    << ", seen only from afar " << p.removed_far * res2 << ", unreachable " << p.removed_unreachable * res2
+    << " m^2), " << lab.lattice.samples.size()
     << " classified, relaxation " << lab.relaxation.iterations << " iterations; " << counts[0] << " rooms, "
     << counts[1] << " corridors, " << counts[2] << " doorways, " << run.topo.graph.edges.size() << " edges, "
     << segmentCount(run.topo.segmentation) << " segments; " << seconds << " s (scans " << lab.seconds_scans

@@ -5,6 +5,7 @@
 
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/map_io.h"
+#include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/places/model.h"
 #include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/run_summary.h"
@@ -19,7 +20,9 @@ void runTopologyOnMapFile(const TopologyRunSpec& spec, bool quiet, std::ostream&
 
   io::MapReadOptions ro;
   ro.resolution = opt.resolution;
-  const MapImage map = io::readMap(spec.map, ro);
+  MapImage map = io::readMap(spec.map, ro);
+  if (!spec.trajectory.empty())
+    for (const TimedPose& p : io::readTrajectory(spec.trajectory)) map.path.emplace_back(p.pose.x, p.pose.y);
   log << resolutionWarning(map.resolution, model);
 
   ProgressBar bar(100, "topology", "%", quiet ? 0 : -1);

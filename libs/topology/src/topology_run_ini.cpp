@@ -25,7 +25,10 @@ const OptionSchema<TopologyRunSpec>& topologyRunSchema() {
           .add("map", &S::map, OptionRange::any(), "",
                "the occupancy map: .png/.pgm/.jpg (+ ROS .yaml), .yaml, .gridmap(.gz)")
           .add("model", &S::model, OptionRange::any(), "", "the place model from gridtopo-train")
-          .add("output", &S::output, OptionRange::any(), "", "the output directory");
+          .add("output", &S::output, OptionRange::any(), "", "the output directory")
+          .add("trajectory", &S::trajectory, OptionRange::any(), "",
+               "the robot's trajectory in the map's frame (gridtopo-slam's trajectory.txt; empty = unknown): the map "
+               "preparation keeps as places only cells it saw from near and can reach");
   return schema;
 }
 
@@ -72,6 +75,7 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
 void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
   spec.lines.overrideWith(f.model, spec.model, "model");
   spec.lines.overrideWith(f.output, spec.output, "output");
+  spec.lines.overrideWith(f.trajectory, spec.trajectory, "trajectory");
   if (f.resolution) {
     if (!(*f.resolution > 0)) throw InputError("--resolution", "must be > 0");
     spec.options.resolution = *f.resolution;
@@ -98,6 +102,7 @@ void checkTopologyRunSpec(const TopologyRunSpec& spec) {
   };
   requireFile(spec.map, "map");
   requireFile(spec.model, "model");
+  if (!spec.trajectory.empty()) requireFile(spec.trajectory, "trajectory");
 }
 
 TopologyRunSpec topologyRunOfCommandLine(const std::string& first, const std::optional<std::string>& options_ini,

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include <string>
+#include <vector>
 
 namespace gridtopo {
 
@@ -21,6 +22,9 @@ struct MapImage {
   cv::Point2d origin{0, 0};  ///< world (x_min, y_min): the lower-left corner of the image, metres
   MapKind kind = MapKind::PlainImage;
   std::string source;  ///< where it came from (a path, "<slam map, N scans>"), for messages only
+  /// Where the robot was while the map was built (world x, y in metres), in time order; empty when unknown (a
+  /// plan, a map file read alone). The topology's map preparation weighs it (topology/map_preparation.h).
+  std::vector<cv::Point2d> path;
 };
 
 }  // namespace gridtopo

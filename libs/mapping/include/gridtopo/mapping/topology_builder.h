@@ -47,16 +47,23 @@ struct MapTopology {
 /// free threshold and opening (TopologyOptions::freeThresholdFor / freeOpeningRadiusFor of
 /// MapKind::ProbabilisticGrid). InputError (naming `source`) for a map without free cells.
 /// `progress(stage, done, total)` as topology::topologyOfMap's.
+/// `path`: where the robot was (world metres; MapImage::path), for the map preparation; empty when unknown.
 MapTopology topologyOfSlamGrid(const mrpt::maps::COccupancyGridMap2D& grid, const places::PlacesModel& model,
                                const topology::TopologyOptions& options, const std::string& source,
-                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
+                               std::vector<cv::Point2d> path = {});
+
+/// The robot's positions of a simple map (its keyframes' mean poses, world metres): the path the map
+/// preparation weighs (CMetricMapBuilderTopology takes it from its metric builder's getCurrentlyBuiltMap).
+std::vector<cv::Point2d> pathOfSimpleMap(const mrpt::maps::CSimpleMap& simplemap);
 
 /// The builder's update step: the topology of a metric builder's map after `map_size` processed scans, named
 /// "<slam map, N scans>", with MapTopology::map_size set. CMetricMapBuilderTopology (gridtopo-map) and the GUI's
 /// live topology (session::LiveTopology) both make it with this call.
 MapTopology topologyOfBuiltMap(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size,
                                const places::PlacesModel& model, const topology::TopologyOptions& options,
-                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {});
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
+                               std::vector<cv::Point2d> path = {});
 
 class CMetricMapBuilderTopology : public mrpt::slam::CMetricMapBuilder {
  public:
@@ -97,7 +104,8 @@ class CMetricMapBuilderTopology : public mrpt::slam::CMetricMapBuilder {
   /// Recomputes it from `grid`, a map of `map_size` processed scans that the caller took from the metric builder
   /// (gridtopo-map: the final map, after the SLAM freed every particle but the best, so that the topology's memory
   /// does not add to the filter's).
-  void updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size);
+  void updateTopologyOf(const mrpt::maps::COccupancyGridMap2D& grid, unsigned map_size,
+                        std::vector<cv::Point2d> path);
   /// The last semantic and topological map (null before the first update). Safe to read from another thread: an
   /// update replaces the pointer, never the object.
   std::shared_ptr<const MapTopology> currentTopology() const;

@@ -9,8 +9,10 @@
 
 namespace gridtopo::places {
 
-/// Cell states stored in OccupancyImage::cells.
-enum CellState : unsigned char { kOccupied = 0, kUnknown = 128, kFree = 255 };
+/// Cell states stored in OccupancyImage::cells. kSeen: free in the map, but no place (the topology's map
+/// preparation, topology/map_preparation.h: free space the laser saw that no robot stood in); it takes no label,
+/// and simulated beams treat it as unknown.
+enum CellState : unsigned char { kOccupied = 0, kUnknown = 128, kSeen = 192, kFree = 255 };
 
 struct OccupancyImage {
   cv::Mat cells;            ///< CV_8UC1, one of CellState; row 0 is the top of the map image

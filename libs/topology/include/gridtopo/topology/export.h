@@ -18,7 +18,13 @@ std::string toDot(const TopologicalGraph& g);
 /// Parses back what toJson() wrote (through OpenCV's JSON reader). Throws gridtopo::InputError.
 TopologicalGraph graphFromJson(const std::string& path);
 
-/// Colour overlay: the map in grey, place labels coloured (room blue, corridor green, doorway red), region
+/// How overlay.png and the GUI draw a free cell that is no place (places::kSeen, map_preparation.h) at column x,
+/// row y: light grey crossed by a fine darker diagonal hatch (BGR).
+inline cv::Vec3b seenNotPlaceColour(int x, int y) {
+  return (x + y) % 6 < 2 ? cv::Vec3b(150, 150, 150) : cv::Vec3b(225, 225, 225);
+}
+
+/// Colour overlay: the map in grey, free cells that are no place hatched (seenNotPlaceColour), place labels coloured (room blue, corridor green, doorway red), region
 /// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image.
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
                       const TopologicalGraph& g, int scale = 2);

@@ -16,6 +16,7 @@
 #include "gridtopo/topology/corridor_split.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/graph_rules.h"
+#include "gridtopo/topology/map_preparation.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/topology/segmentation.h"
 
@@ -37,6 +38,10 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// ... and for maps that come with a ROS .yaml, .gridmap(.gz) files and the GUI's SLAM map: 0.05 m (one cell
   /// at 5 cm) closes the one-cell gaps of dotted walls and removes one-cell ray streaks.
   double grid_free_opening_radius = 0.05;
+  /// [topology] places_prepare: which maps go through the map preparation (map_preparation.h): "maps" (ROS maps and
+  /// probabilistic grids: what a robot built; drawn plans are all floor), "all", "off".
+  std::string places_prepare = "maps";
+  MapPreparationOptions preparation;     ///< [topology] places_robot_radius, places_view_range, places_min_area, ...
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
@@ -58,6 +63,9 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   /// The free-space opening radius for a map of kind `kind`: free_opening_radius for plain images,
   /// grid_free_opening_radius for ROS maps and probabilistic grids.
   double freeOpeningRadiusFor(MapKind kind) const;
+
+  /// The map preparation for a map of kind `kind`: `preparation`, disabled when places_prepare excludes the kind.
+  MapPreparationOptions preparationFor(MapKind kind) const;
 };
 
 /// The key table of [topology]: the keys TopologyOptions holds itself ([relaxation] and [correction] have their own:
@@ -89,9 +97,12 @@ struct TopologyResult {
 };
 
 /// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
-/// (o.freeThresholdFor(map.kind)), then places::openFreeSpace with o.freeOpeningRadiusFor(map.kind). Throws
-/// InputError (naming map.source) for an unusable image or a map without free cells.
-places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o);
+/// (o.freeThresholdFor(map.kind)), then places::openFreeSpace with o.freeOpeningRadiusFor(map.kind), then the map
+/// preparation (prepareMap with o.preparationFor(map.kind) and map.path): free cells that are no place become
+/// places::kSeen. `prepared`, when given, receives what the preparation found. Throws InputError (naming
+/// map.source) for an unusable image or a map without free cells or without places.
+places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o,
+                                            PreparedMap* prepared = nullptr);
 
 /// Steps 6-8 of the method, the one call every app and the GUI make after labelling: builds regions, graph and
 /// segmentation from per-cell labels (e.g. LabellingResult::labels) with the run's options (`o.correction`,
@@ -116,7 +127,8 @@ RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const T
 /// the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces), then the regions and
 /// graph (buildTopology). gridtopo-topology, the GUI and the topology map builder call this one function.
 struct MapTopology {
-  places::OccupancyImage occ;
+  places::OccupancyImage occ;  ///< free cells that are places kFree, the others the preparation left kSeen
+  PreparedMap prepared;
   places::LabellingResult labelling;
   TopologyResult topo;
 };

@@ -29,6 +29,9 @@ struct TopologyRunSpec {
   std::string map;     ///< the occupancy map; relative paths are taken from the working directory
   std::string model = kDefaultPlacesModel;  ///< the place model (gridtopo-train)
   std::string output;  ///< the output directory
+  /// The robot's trajectory while the map was built (gridtopo-slam's trajectory.txt, in the map's frame); empty when
+  /// unknown. The map preparation weighs it (which free cells the robot saw from near and can reach).
+  std::string trajectory;
   TopologyOptions options;
   std::string ini;     ///< the RUN.ini this was read from; empty when none
   KeyLines lines;      ///< where [topology_run] and its keys stand in the RUN.ini (a flag's value has no line)
@@ -56,9 +59,9 @@ std::string topologyRunOptionsHelp();
 /// unreadable file, another section, an unknown key or a bad value.
 TopologyRunSpec loadTopologyRunIni(const std::string& path);
 
-/// The command line's values over a run (gridtopo-topology -m, -o, -r, --threads); unset = keep.
+/// The command line's values over a run (gridtopo-topology -m, -o, -t, -r, --threads); unset = keep.
 struct TopologyRunFlags {
-  std::optional<std::string> model, output;
+  std::optional<std::string> model, output, trajectory;
   std::optional<double> resolution;
   std::optional<int> threads;
 };

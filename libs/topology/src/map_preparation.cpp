@@ -1,0 +1,134 @@
+#include "gridtopo/topology/map_preparation.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gridtopo::topology {
+
+namespace {
+
+using places::kFree;
+using places::kUnknown;
+
+/// Step 1: the cells covered by a disc of `radius_cells` that lies wholly in `free`. The disc's centres are the
+/// cells whose distance to the nearest non-free cell exceeds the radius; the covered cells lie within the radius
+/// of a centre (two exact Euclidean distance transforms, no kernel rounding).
+cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
+  if (radius_cells < 0.5) return free.clone();
+  cv::Mat clearance;
+  cv::distanceTransform(free, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // A cell's centre is clearance away from the nearest non-free cell's centre: the disc stays inside the free
+  // space when the clearance exceeds the radius by half a cell.
+  const cv::Mat centres = clearance > radius_cells + 0.5;
+  if (cv::countNonZero(centres) == 0) return cv::Mat::zeros(free.size(), CV_8U);
+  cv::Mat not_centre = 255 - centres, to_centre;
+  cv::distanceTransform(not_centre, to_centre, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat covered = (to_centre <= radius_cells) & free;
+  return covered;
+}
+
+/// Step 2: the cells seen along a free line of sight from a path sample at most `range_cells` away. Rays are cast
+/// from every sample over 360 degrees, close enough that neighbouring rays are a cell apart at the range, in steps
+/// of half a cell; a ray stops at the first cell that is not free in the map (glass and open doors are free: seen
+/// through them counts).
+cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells) {
+  cv::Mat seen = cv::Mat::zeros(free.size(), CV_8U);
+  const int n_rays = std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * range_cells)));
+  std::vector<cv::Point2d> dir(static_cast<std::size_t>(n_rays));
+  for (int k = 0; k < n_rays; ++k) {
+    const double a = 2.0 * M_PI * k / n_rays;
+    dir[static_cast<std::size_t>(k)] = {0.5 * std::cos(a), 0.5 * std::sin(a)};
+  }
+  const int steps = static_cast<int>(std::ceil(2.0 * range_cells));
+  for (const cv::Point2d& p : samples) {
+    const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+    if (px < 0 || py < 0 || px >= free.cols || py >= free.rows) continue;
+    for (const cv::Point2d& d : dir) {
+      double x = p.x, y = p.y;
+      for (int s = 0; s <= steps; ++s, x += d.x, y += d.y) {
+        const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y));
+        if (cx < 0 || cy < 0 || cx >= free.cols || cy >= free.rows) break;
+        if (!free.at<unsigned char>(cy, cx)) break;
+        seen.at<unsigned char>(cy, cx) = 255;
+      }
+    }
+  }
+  return seen;
+}
+
+/// Step 3: the 8-connected groups of `places` of at least `min_cells` that, when the path is known, the path enters
+/// (a path position within `near_cells` of one of the group's cells).
+cv::Mat reachable(const cv::Mat& places, int min_cells, const std::vector<cv::Point2d>& path, int near_cells) {
+  cv::Mat ids, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(places, ids, stats, centroids, 8, CV_32S);
+  std::vector<char> keep(static_cast<std::size_t>(n), 0);
+  std::vector<char> entered(static_cast<std::size_t>(n), path.empty() ? 1 : 0);
+  for (const cv::Point2d& p : path) {
+    const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+    for (int y = std::max(0, py - near_cells); y <= std::min(places.rows - 1, py + near_cells); ++y)
+      for (int x = std::max(0, px - near_cells); x <= std::min(places.cols - 1, px + near_cells); ++x)
+        entered[static_cast<std::size_t>(ids.at<int>(y, x))] = 1;
+  }
+  for (int i = 1; i < n; ++i)
+    keep[static_cast<std::size_t>(i)] = entered[static_cast<std::size_t>(i)] && stats.at<int>(i, cv::CC_STAT_AREA) >= min_cells;
+  cv::Mat out = cv::Mat::zeros(places.size(), CV_8U);
+  for (int y = 0; y < out.rows; ++y)
+    for (int x = 0; x < out.cols; ++x)
+      if (keep[static_cast<std::size_t>(ids.at<int>(y, x))]) out.at<unsigned char>(y, x) = 255;
+  return out;
+}
+
+std::size_t count(const cv::Mat& m) { return static_cast<std::size_t>(cv::countNonZero(m)); }
+
+}  // namespace
+
+PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOptions& o,
+                       const std::vector<cv::Point2d>& path) {
+  PreparedMap r;
+  const cv::Mat free = occ.cells == kFree;
+  r.free_cells = count(free);
+  cv::Mat places = free.clone();
+  if (o.enabled) {
+    const double res = occ.resolution;
+    places = robotFits(free, o.robot_radius / res);
+    r.removed_robot_fit = r.free_cells - count(places);
+    if (!path.empty() && o.view_range > 0) {
+      // The path sampled every path_step metres (the first position always).
+      std::vector<cv::Point2d> samples;
+      for (const cv::Point2d& p : path)
+        if (samples.empty() || std::hypot(p.x - samples.back().x, p.y - samples.back().y) * res >= o.path_step)
+          samples.push_back(p);
+      const std::size_t before = count(places);
+      places &= seenFromNear(free, samples, o.view_range / res);
+      r.removed_far = before - count(places);
+    }
+    const std::size_t before = count(places);
+    const int min_cells = static_cast<int>(std::ceil(o.min_area / (res * res)));
+    places = reachable(places, min_cells, path, static_cast<int>(std::ceil(o.robot_radius / res)) + 1);
+    r.removed_unreachable = before - count(places);
+  }
+  r.places = places;
+  r.seen_not_place = free & ~places;
+  r.place_cells = count(places);
+  return r;
+}
+
+places::OccupancyImage placesOnly(const places::OccupancyImage& occ, const PreparedMap& prepared) {
+  places::OccupancyImage out = occ;
+  out.cells = occ.cells.clone();
+  out.cells.setTo(kUnknown, prepared.seen_not_place);
+  return out;
+}
+
+std::vector<cv::Point2d> pathInCells(const std::vector<cv::Point2d>& world, cv::Point2d origin, double resolution,
+                                     int rows) {
+  std::vector<cv::Point2d> cells;
+  cells.reserve(world.size());
+  for (const cv::Point2d& w : world)
+    cells.emplace_back((w.x - origin.x) / resolution, rows - (w.y - origin.y) / resolution);
+  return cells;
+}
+
+}  // namespace gridtopo::topology
