@@ -139,6 +139,8 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
   std::vector<int> run(static_cast<std::size_t>(n_minor + max_off - min_off));
   // A line enters the image with the counter of the border; each cell state maps the counter r to its next value
   // through max(r + add, floor) capped at max_run: free (+1, 0), occupied (reset: -inf, 0), unknown by option.
+  // Free cells that are no place (kSeen, the topology's map preparation) are free to a beam: the features describe
+  // the space as the laser saw it; only the labels and nodes are kept off them.
   const int border_run = map_border == BeamStop::kMaxRange ? max_run : 0;
   const bool unknown_default = unknown_cells == BeamStop::kObstacle;
   for (int pass = 0; pass < 2; ++pass) {
@@ -155,10 +157,10 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
       }
       const unsigned char* c = columns.ptr<unsigned char>(k);
       if (unknown_default) {
-        for (int m = 0; m < n_minor; ++m) r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : 0;
+        for (int m = 0; m < n_minor; ++m) r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : 0;
       } else if (unknown_cells == BeamStop::kMaxRange) {
         for (int m = 0; m < n_minor; ++m)
-          r[m] = c[m] == kFree ? std::min(r[m] + 1, max_run) : (c[m] == kUnknown || c[m] == kSeen) ? max_run : 0;
+          r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : c[m] == kUnknown ? max_run : 0;
       } else {
         for (int m = 0; m < n_minor; ++m) r[m] = c[m] != kOccupied ? std::min(r[m] + 1, max_run) : 0;
       }

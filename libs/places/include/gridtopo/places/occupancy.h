@@ -11,7 +11,7 @@ namespace gridtopo::places {
 
 /// Cell states stored in OccupancyImage::cells. kSeen: free in the map, but no place (the topology's map
 /// preparation, topology/map_preparation.h: free space the laser saw that no robot stood in); it takes no label,
-/// and simulated beams treat it as unknown.
+/// and simulated beams pass through it as through free cells (the features describe the space the laser saw).
 enum CellState : unsigned char { kOccupied = 0, kUnknown = 128, kSeen = 192, kFree = 255 };
 
 struct OccupancyImage {

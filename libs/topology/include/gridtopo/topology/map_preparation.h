@@ -10,8 +10,10 @@
 //      the path at most view_range away (the far ends of fans through windows and glass are not places);
 //   3. reachable: places form connected groups; a group the path does not enter (when the path is known) or
 //      smaller than min_area (always) is no place (islands of free space behind glass, beyond a window).
-// Cells that are free but no place stay in the map: they take no label and no node, the place classifier's
-// simulated beams stop at them (as at the unknown), and the overlay and the GUI draw them apart.
+// Cells that are free but no place stay in the map: they take no label and no node, and the overlay and the GUI
+// draw them apart. The place classifier's simulated beams pass through them as through free cells: the features of
+// a place describe the space as the laser saw it (on the Intel SLAM maps of seeds 1-3, beams stopped at them broke
+// the corridor loops on two seeds; passing, every seed keeps both and attaches more rooms, doc/topology.md).
 // Anchored on ROSE / ROSE^2 (Kucner et al. ICRA 2021; Luperto et al. RA-L 2022), which clean partial, cluttered
 // SLAM maps before segmenting them; the evidence weighed here is our own (robot clearance, visibility, reachability).
 #include <opencv2/core.hpp>
