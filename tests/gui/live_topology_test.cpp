@@ -117,9 +117,12 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
   EXPECT_EQ(last->steps, final_steps);
   EXPECT_EQ(last->scans_fed, snap->scans_fed);
 
-  // Exactly what the topology map builder (gridtopo-map) computes from the final best map.
+  // Exactly what the topology map builder (gridtopo-map) computes from the final best map and every scan's pose.
   const auto grid = slam::toOccupancyGrid(snap->resultMap());  // at the end: the loop closure's map
-  const mapping::MapTopology ref = mapping::topologyOfSlamGrid(grid, *shippedModel(), topologyOptions(), "final");
+  std::vector<cv::Point2d> path;
+  for (const TimedPose& p : snap->trajectory) path.emplace_back(p.pose.x, p.pose.y);
+  const mapping::MapTopology ref =
+      mapping::topologyOfSlamGrid(grid, *shippedModel(), topologyOptions(), "final", {}, std::move(path));
   EXPECT_EQ(differingCells(last->data->map.grey, ref.map.grey), 0);
   EXPECT_DOUBLE_EQ(last->data->map.origin_x, ref.map.origin.x);
   EXPECT_DOUBLE_EQ(last->data->map.origin_y, ref.map.origin.y);
@@ -127,13 +130,13 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
   EXPECT_EQ(differingCells(last->data->labelling.labels, ref.labelling.labels), 0);
   EXPECT_EQ(last->data->topo.graph.nodes.size(), ref.graph().nodes.size());
   EXPECT_EQ(last->data->topo.graph.edges.size(), ref.graph().edges.size());
-  // The office (rooms around a corridor loop); measured with these options: 3 rooms, 4 corridor pieces, 5 doorways,
-  // 18 edges.
+  // The office (rooms around a corridor loop); measured with these options: 2 rooms, 2 corridor pieces, 5 doorways,
+  // 16 edges (3 rooms, 4 corridor pieces, 18 edges before the map preparation took the fans and frayed edges).
   std::array<int, 3> counts{0, 0, 0};
   for (const auto& n : last->data->topo.graph.nodes) counts[n.label]++;
   std::printf("final live topology: %d rooms, %d corridors, %d doorways, %zu edges, %.2f s\n", counts[0], counts[1],
               counts[2], last->data->topo.graph.edges.size(), last->seconds);
-  EXPECT_GE(counts[0], 3);
+  EXPECT_GE(counts[0], 2);
   EXPECT_GE(counts[1], 1);
   EXPECT_GE(counts[2], 3);
   EXPECT_EQ(session::liveTopologyCaption(*last),
@@ -214,7 +217,7 @@ TEST(LiveTopology, DropsIntermediateRequestsAndStopsInTheMiddleOfAComputation) {
     session::LiveTopology live(shippedModel(), topologyOptions());
     orphan = live.listener();
   }
-  orphan(map, 5, 5);
+  orphan(map, 5, 5, {});
 }
 
 TEST(LiveTopology, SessionDrawsTheLabelsAndTheGraphOverTheSlamMap) {

@@ -24,6 +24,7 @@
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/mapping/topology_builder.h"
+#include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/slam/map_builder.h"
@@ -126,7 +127,14 @@ TEST(TopologyBuilder, RecomputesOnScheduleAndLabelsTheOffice) {
   const auto* grid = builder.getCurrentlyBuiltMetricMap()->mapByClass<mrpt::maps::COccupancyGridMap2D>().get();
   ASSERT_NE(grid, nullptr);
   io::writeGridmapGz(*grid, (dir / "map.gridmap.gz").string());
-  const auto run = testing_app::runApp("gridtopo-topology", (dir / "map.gridmap.gz").string() + " -q -m " +
+  // With the path the builder gave the map preparation: its metric builder's simple map's poses.
+  mrpt::maps::CSimpleMap sm;
+  builder.getCurrentlyBuiltMap(sm);
+  std::vector<TimedPose> path;
+  for (const cv::Point2d& p : mapping::pathOfSimpleMap(sm)) path.push_back({0.0, {p.x, p.y, 0.0}});
+  io::writeTrajectory((dir / "path.txt").string(), path);
+  const auto run = testing_app::runApp("gridtopo-topology", (dir / "map.gridmap.gz").string() + " -t " +
+                                                                (dir / "path.txt").string() + " -q -m " +
                                                                 GRIDTOPO_DATA_DIR "/models/places_model.yml -o " +
                                                                 (dir / "topo").string());
   ASSERT_EQ(run.status, 0) << run.output;

@@ -119,7 +119,7 @@ TEST(TopologyApp, RunIniRunsAndItsOptionsIniReproducesTheRun) {
   const std::string ini = slurp(d / "out" / "options.ini");
   EXPECT_EQ(ini.rfind("[topology_run]\nmap = " + fs::absolute(map).lexically_normal().string() + "\nmodel = " +
                           fs::absolute(kModel).lexically_normal().string() + "\noutput = " + (d / "out").string() +
-                          "\n\n[topology]\n",
+                          "\ntrajectory = \n\n[topology]\n",
                       0),
             0u)
       << ini;
@@ -180,7 +180,7 @@ TEST(TopologyApp, RunIniErrorsNameFileLineSectionAndKey) {
               ":3: [topology_run] model: no such file '/nonexistent/model.yml'");
   expectError("[topology_run]\nmap = " + map + "\n", ":1: [topology_run] output: missing");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "maps = x\n",
-              ":4: [topology_run] maps: unknown key (expected map, model, output)");
+              ":4: [topology_run] maps: unknown key (expected map, model, output, trajectory)");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[topolgy]\n",
               ":4: [topolgy]: unknown section (expected topology_run, topology, relaxation, correction)");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[correction]\nmin_room = 3\n",

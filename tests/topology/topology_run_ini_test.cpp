@@ -46,7 +46,7 @@ TEST(TopologyRunIni, TheRunsIniLoadsBackToTheSameRun) {
   const std::string text = topology::topologyRunIni(spec);
   EXPECT_EQ(text.rfind("[topology_run]\nmap = /maps/a.png\nmodel = " +
                            (fs::current_path() / topology::kDefaultPlacesModel).string() +
-                           "\noutput = /tmp/out\n\n[topology]\n",
+                           "\noutput = /tmp/out\ntrajectory = \n\n[topology]\n",
                        0),
             0u)
       << text;

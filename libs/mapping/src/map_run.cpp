@@ -66,7 +66,6 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   records.shrink_to_fit();
   summary.steps = slam_builder->filter().stepsProcessed();
   const unsigned final_size = builder.getCurrentlyBuiltMapSize();
-  const auto last = builder.currentTopology();
 
   slam::SlamRunSpec slam_spec;
   slam_spec.input = spec.input;
@@ -77,14 +76,19 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   topo_spec.map = (fs::path(slam_spec.output) / "map.gridmap.gz").string();
   topo_spec.model = spec.model;
   topo_spec.output = topologyOutputDir(spec);
+  topo_spec.trajectory = (fs::path(slam_spec.output) / "trajectory.txt").string();
   topo_spec.options = spec.topology;
   // The SLAM's outputs first, in its memory-saving order (every particle freed but the best), then the final map's
   // topology from that map unless the schedule has just computed it: the peak memory is the filter's or the
   // final map's with its topology, never both.
   const slam::SlamOutputs slam_out = slam_builder->finishRun(
       {"gridtopo-map " + spec.input, "one pose per laser scan, best particle"}, slam::slamRunIni(slam_spec));
-  if (!last || last->map_size != final_size)
-    builder.updateTopologyOf(slam_out.grid, final_size, pathOfSimpleMap(slam_out.simplemap));
+  // The final topology is gridtopo-topology's on OUT/slam/map.gridmap.gz with -t OUT/slam/trajectory.txt: the
+  // map preparation weighs every scan's pose (the schedule's updates had the simple map's, the processed scans').
+  std::vector<cv::Point2d> path;
+  path.reserve(slam_out.trajectory.size());
+  for (const TimedPose& p : slam_out.trajectory) path.emplace_back(p.pose.x, p.pose.y);
+  builder.updateTopologyOf(slam_out.grid, final_size, std::move(path));
   summary.topology = builder.currentTopology();
   summary.topology_updates = builder.topologyUpdates();
   summary.seconds_mapping = secondsSince(t_map);

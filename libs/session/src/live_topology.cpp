@@ -28,6 +28,7 @@ struct LiveTopology::Queue {
   struct Request {
     slam::GridMap map;
     std::size_t steps = 0, scans_fed = 0;
+    std::vector<cv::Point2d> path;
   };
   mutable std::mutex mu;
   mutable std::condition_variable cv;
@@ -38,14 +39,14 @@ struct LiveTopology::Queue {
   std::uint64_t sequence = 0;
   std::shared_ptr<const LiveTopologyResult> latest;
 
-  void request(const slam::GridMap& map, std::size_t steps, std::size_t scans_fed) {
+  void request(const slam::GridMap& map, std::size_t steps, std::size_t scans_fed, std::vector<cv::Point2d> path) {
     {
       std::lock_guard<std::mutex> lk(mu);
       if (quit || steps == last_steps) return;
       last_steps = steps;
       ++requests;
       if (pending) ++dropped;
-      pending = Request{map, steps, scans_fed};  // shares the tiles
+      pending = Request{map, steps, scans_fed, std::move(path)};  // shares the tiles
     }
     cv.notify_all();
   }
@@ -69,14 +70,15 @@ LiveTopology::~LiveTopology() {
   if (worker_.joinable()) worker_.join();
 }
 
-void LiveTopology::request(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed) {
-  queue_->request(best_map, steps, scans_fed);
+void LiveTopology::request(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed,
+                           std::vector<cv::Point2d> path) {
+  queue_->request(best_map, steps, scans_fed, std::move(path));
 }
 
 SlamRunner::BestMapListener LiveTopology::listener() const {
   std::weak_ptr<Queue> weak = queue_;
-  return [weak](const slam::GridMap& map, std::size_t steps, std::size_t scans_fed) {
-    if (const auto q = weak.lock()) q->request(map, steps, scans_fed);
+  return [weak](const slam::GridMap& map, std::size_t steps, std::size_t scans_fed, std::vector<cv::Point2d> path) {
+    if (const auto q = weak.lock()) q->request(map, steps, scans_fed, std::move(path));
   };
 }
 
@@ -140,7 +142,8 @@ void LiveTopology::run() {
           [&q](const std::string& stage, std::size_t, std::size_t) {
             // Safe points only: the scan simulation reports from inside its thread pool.
             if (stage != "scans" && q.cancel) throw Cancelled{};
-          });
+          },
+          std::move(req.path));
       auto data = std::make_shared<TopologyData>();
       data->map = mapLayerFromImage(t.map);
       data->occ = std::move(t.occ);

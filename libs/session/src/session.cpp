@@ -269,6 +269,15 @@ void Session::setLiveTopology(bool on, const mapping::TopologyBuilderOptions& sc
   if (live_on_ && runner_) attachLiveTopology();
 }
 
+namespace {
+std::vector<cv::Point2d> pathOfPoses(const std::vector<TimedPose>& poses) {
+  std::vector<cv::Point2d> path;
+  path.reserve(poses.size());
+  for (const TimedPose& p : poses) path.emplace_back(p.pose.x, p.pose.y);
+  return path;
+}
+}  // namespace
+
 void Session::attachLiveTopology() {
   live_ = std::make_unique<LiveTopology>(model_, topology_options_);
   runner_->setBestMapListener(live_schedule_.update_every, live_->listener());
@@ -276,7 +285,8 @@ void Session::attachLiveTopology() {
   const auto s = runner_->snapshot();
   // The listener's map: the run's result at the end of the log, the best particle's before.
   if (s && s->state != RunState::Running && s->steps > 0)
-    live_->request(s->scans_fed == s->scans_total ? s->resultMap() : s->best_map, s->steps, s->scans_fed);
+    live_->request(s->scans_fed == s->scans_total ? s->resultMap() : s->best_map, s->steps, s->scans_fed,
+                   pathOfPoses(s->trajectory));
 }
 
 std::shared_ptr<const LiveTopologyResult> Session::liveTopologyResult() const {

@@ -1,5 +1,7 @@
 #include "gridtopo/session/slam_runner.h"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 #include "gridtopo/core/error.h"
@@ -101,10 +103,18 @@ void SlamRunner::notifyListener(bool idle) {
   if (!idle && (listener_every_ == 0 || steps % listener_every_ != 0)) return;
   listener_steps_ = steps;
   // At the end of the log, the run's result (with loop closure: the map of the optimised poses).
-  if (run_->atEnd())
-    listener_(run_->resultMap(), steps, run_->scansFed());
-  else
-    listener_(filter.particles()[filter.bestParticleIndex()].map, steps, run_->scansFed());
+  if (run_->atEnd()) {
+    // As gridtopo-map's final topology: every scan's pose of the run's result.
+    std::vector<cv::Point2d> path;
+    for (const TimedPose& p : run_->trajectory()) path.emplace_back(p.pose.x, p.pose.y);
+    listener_(run_->resultMap(), steps, run_->scansFed(), std::move(path));
+  } else {
+    const auto& best = filter.particles()[filter.bestParticleIndex()];
+    std::vector<cv::Point2d> path;
+    for (const slam::TrajectoryNode* n = best.node.get(); n; n = n->parent.get()) path.emplace_back(n->pose.x, n->pose.y);
+    std::reverse(path.begin(), path.end());
+    listener_(best.map, steps, run_->scansFed(), std::move(path));
+  }
 }
 
 std::shared_ptr<const SlamSnapshot> SlamRunner::snapshot() const {

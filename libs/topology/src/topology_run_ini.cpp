@@ -126,6 +126,7 @@ std::string topologyRunIni(const TopologyRunSpec& spec) {
   run.map = absolute(spec.map);
   run.model = absolute(spec.model);
   run.output = absolute(spec.output);
+  if (!spec.trajectory.empty()) run.trajectory = absolute(spec.trajectory);
   return topologyRunSchema().ini(run, kTopologyRunSection) + "\n" + topologyOptionsIni(spec.options);
 }
 

@@ -59,7 +59,9 @@ class LiveTopology {
   /// Asks for the topology of `best_map` after `steps` processed scans, `scans_fed` scans of the log (any thread;
   /// cheap: the map's tiles are shared). Replaces a request that is still waiting; ignored for the `steps` of the
   /// last request.
-  void request(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed);
+  /// `path`: where the robot was (world metres; the map preparation weighs it), empty when unknown.
+  void request(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed,
+               std::vector<cv::Point2d> path = {});
   /// A listener for SlamRunner::setBestMapListener that makes requests. It holds the LiveTopology weakly: called
   /// after the LiveTopology is gone, it does nothing.
   SlamRunner::BestMapListener listener() const;

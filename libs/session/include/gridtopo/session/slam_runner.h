@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <opencv2/core.hpp>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -123,8 +124,10 @@ class SlamRunner {
   /// Receives the best particle's map (its tiles shared with the filter, copy-on-write: taking it is cheap), the
   /// filter's processed scans it holds (slam::RbpfSlam::stepsProcessed, the snapshot's `steps`) and the scans fed
   /// so far (the snapshot's `scans_fed`). Called on the worker thread: it must return quickly.
-  using BestMapListener =
-      std::function<void(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed)>;
+  /// `path`: where the robot was (world x, y of every processed scan; the topology's map preparation weighs it): the
+  /// best particle's poses while running, the run's result (its simple map, as gridtopo-map's) at the end.
+  using BestMapListener = std::function<void(const slam::GridMap& best_map, std::size_t steps, std::size_t scans_fed,
+                                             std::vector<cv::Point2d> path)>;
   /// The worker calls `listener` each time the filter has processed a multiple of `every` scans (0: never on
   /// schedule), and when the run pauses, ends or stops, before the snapshot that shows it is published (so once
   /// waitIdle() returns, the listener has had the map of the idle run); never twice for one scan count. An empty
