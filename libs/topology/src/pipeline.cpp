@@ -54,6 +54,20 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                R::closed(0, 1000), "m^2", "S1: enclosed obstacles up to this area count as the segment's (0 = off)")
           .add("segment_vote", field(&O::seg_rules, &SegmentationRules::segment_vote), R::any(), "",
                "room and corridor cells take their segment's majority label")
+          .add("doorways_from_geometry", field(&O::doorways, &DoorwayGeometryOptions::enabled), R::any(), "",
+               "critical lines of the places' Voronoi diagram (narrow passages between wider spaces) become doorways")
+          .add("doorway_min_width", field(&O::doorways, &DoorwayGeometryOptions::min_width), R::closed(0, 10), "m",
+               "narrowest door")
+          .add("doorway_max_width", field(&O::doorways, &DoorwayGeometryOptions::max_width), R::closed(0, 10), "m",
+               "widest door")
+          .add("doorway_wider_by", field(&O::doorways, &DoorwayGeometryOptions::wider_by), R::closed(0, 10), "m",
+               "on both sides the clearance grows beyond the door's half width by this")
+          .add("doorway_reach", field(&O::doorways, &DoorwayGeometryOptions::reach), R::leftOpen(0, 20), "m",
+               "how far each side is looked at")
+          .add("doorway_depth", field(&O::doorways, &DoorwayGeometryOptions::depth), R::leftOpen(0, 2), "m",
+               "thickness of a geometric doorway across its line")
+          .add("doorway_refuse_unsupported", field(&O::doorways, &DoorwayGeometryOptions::refuse_unsupported),
+               R::any(), "", "classifier doorways no critical line reaches take the label around them")
           .add("blob_vote", field(&O::blob_vote, &BlobVoteOptions::enabled), R::any(), "",
                "step 7b: vote room / corridor labels in geometric blobs")
           .add("blob_vote_neck_width", field(&O::blob_vote, &BlobVoteOptions::neck_width), R::leftOpen(0, 20), "m",
@@ -168,6 +182,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels_blob_vote = voteInGeometricBlobs(labels, resolution, o.blob_vote, labelling->lattice, labelling->probs);
     input = r.labels_blob_vote;
   }
+  if (o.doorways.enabled) input = addGeometricDoorways(input, resolution, o.doorways);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
   r.regions = extractRegions(r.labels, resolution);
   r.segmentation = segmentRooms(r.regions, resolution, o);

@@ -14,6 +14,7 @@
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
 #include "gridtopo/topology/corridor_split.h"
+#include "gridtopo/topology/doorway_geometry.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/graph_rules.h"
 #include "gridtopo/topology/map_preparation.h"
@@ -45,6 +46,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   int overlay_scale = 2;                 ///< [topology] enlargement of the PNG overlay
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
+  DoorwayGeometryOptions doorways;       ///< [topology] doorways_from_geometry, doorway_* (before the correction)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
   CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
   GraphRuleOptions graph_rules;  ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2), graph_rooms_by_segment (G3)
