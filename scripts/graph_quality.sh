@@ -20,7 +20,10 @@ if [ -z "$OUT" ]; then OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT; fi
 row() {  # name map reference-map reference-labels reference-segmentation
   local d=$OUT/$1
   mkdir -p "$d"
-  "$BIN/gridtopo-topology" "$2" -m "$MODEL" -c "$INI" -o "$d/topology" -q > "$d.log" 2>&1
+  # A SLAM map's trajectory.txt beside it goes to the map preparation (which free cells are places).
+  local traj=()
+  [ -f "$(dirname "$2")/trajectory.txt" ] && traj=(-t "$(dirname "$2")/trajectory.txt")
+  "$BIN/gridtopo-topology" "$2" "${traj[@]}" -m "$MODEL" -c "$INI" -o "$d/topology" -q > "$d.log" 2>&1
   "$BIN/gridtopo-topology-compare" "$2" "$d/topology" -c "$INI" --reference-map "$3" --reference-labels "$4" \
     --reference-segmentation "$5" -j "$d/compare.json" > /dev/null
   python3 - "$d/compare.json" "$1" <<'PY'
