@@ -23,8 +23,8 @@ echo "== 2/4 accuracy against datasets/slam/intel.relations.gz"
   -j "$OUT/slam/eval.json" | tee "$OUT/slam/eval.txt" | grep -E "error:"
 
 echo "== 3/4 places and topology: $OUT/slam/map.yaml -> $OUT/topology"
-"$BIN/gridtopo-topology" "$OUT/slam/map.yaml" -m datasets/models/places_model.yml -c config-ini/topology.ini \
-  -o "$OUT/topology"
+"$BIN/gridtopo-topology" "$OUT/slam/map.yaml" -t "$OUT/slam/trajectory.txt" -m datasets/models/places_model.yml \
+  -c config-ini/topology.ini -o "$OUT/topology"
 
 echo "== 4/4 topology against the labelled lab_intel floor plan (datasets/places)"
 P=datasets/places
