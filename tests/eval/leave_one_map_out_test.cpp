@@ -118,11 +118,13 @@ TEST(LeaveOneMapOut, ScoresEveryMapWithAModelThatDidNotSeeIt) {
   EXPECT_EQ(pooled, 21455);
   EXPECT_NEAR(r.pooled.before.accuracy(), 0.902913, 1e-6);
   EXPECT_NEAR(r.pooled.after.accuracy(), 0.902261, 1e-6);
-  EXPECT_NEAR(r.pooled.corrected.accuracy(), 0.901888, 1e-6);
+  // Doorways from geometry (issue 26, on by default) moved the corrected stage and the segmentation benchmark;
+  // with them off the earlier figures come back exactly (0.901888, 0.997251, 0.989151).
+  EXPECT_NEAR(r.pooled.corrected.accuracy(), 0.900443, 1e-6);
   EXPECT_NEAR(r.pooled.blob_oracle.accuracy(), 0.995479, 1e-6);
   EXPECT_NEAR(r.pooled.oracle_region_vote.accuracy(), 0.903379, 1e-6);
-  EXPECT_NEAR(r.plain[0].score.precision, 0.997251, 1e-6);
-  EXPECT_NEAR(r.furnished[2].score.recall, 0.989151, 1e-6);
+  EXPECT_NEAR(r.plain[0].score.precision, 0.997260, 1e-6);
+  EXPECT_NEAR(r.furnished[2].score.recall, 0.989870, 1e-6);
   EXPECT_GE(r.pooled.blob_oracle.accuracy(), r.pooled.after.accuracy() - 1e-12);
   // The benchmark: each plan's two rooms and corridor, plain and furnished.
   ASSERT_EQ(r.plain.size(), 3u);
