@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -325,4 +326,42 @@ TEST(CorrelativeMatcher, AFeaturelessCorridorIsAmbiguousAlongItsAxis) {
   EXPECT_NEAR(found->pose.y, 1.25, 0.03);
   const slam::Point2 at{found->pose.x, found->pose.y};
   EXPECT_TRUE(slam::branchAndBoundSearch(grid, query, w, 0.93 * found->score, &at, 0.6).has_value());
+}
+
+// With two threads the loop closure's steps run on their own thread, behind the filter (SlamRun): the trajectory,
+// the closure table and a result read in the middle of the run are those of one thread, bit for bit.
+TEST(LoopClosure, ItsOwnThreadGivesTheSerialResultBitForBit) {
+  const sim::SimLog log = largeLoopLog();
+  auto scans = std::make_shared<const std::vector<ScanRecord>>(log.records);
+  struct Out {
+    std::vector<TimedPose> mid, end;
+    std::string closures;
+  };
+  const auto runWith = [&](int threads) {
+    slam::SlamOptions o = testOptions();
+    o.threads = threads;
+    slam::SlamRun run(scans, o);
+    run.filter().setInitialPose(toPose(log.truth.front()));
+    Out out;
+    while (!run.atEnd()) {
+      run.step();
+      if (run.scansFed() == scans->size() * 3 / 4) out.mid = run.trajectory();  // after the first closures
+    }
+    out.end = run.trajectory();
+    out.closures = slam::closuresText(run.loopCloser()->closures(), run.loopCloser()->counts(), 0);
+    return out;
+  };
+  const Out one = runWith(1), two = runWith(2);
+  EXPECT_NE(one.closures.find("# closure "), std::string::npos);  // the run closed loops
+  EXPECT_EQ(one.closures, two.closures);
+  for (const auto* pair : {&one.mid, &one.end}) {
+    const auto& other = pair == &one.mid ? two.mid : two.end;
+    ASSERT_EQ(pair->size(), other.size());
+    ASSERT_FALSE(pair->empty());
+    for (std::size_t i = 0; i < pair->size(); ++i) {
+      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.x, &other[i].pose.x, sizeof(double)), 0) << i;
+      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.y, &other[i].pose.y, sizeof(double)), 0) << i;
+      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.phi, &other[i].pose.phi, sizeof(double)), 0) << i;
+    }
+  }
 }

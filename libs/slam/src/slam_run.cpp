@@ -31,6 +31,49 @@ SlamRun::SlamRun(const SlamOptions& options)
   startLoopCloser();
 }
 
+SlamRun::~SlamRun() {
+  if (!closer_thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(closer_mutex_);
+    closer_stop_ = true;
+  }
+  closer_wake_.notify_all();
+  closer_thread_.join();
+}
+
+void SlamRun::closerWorkerLoop() {
+  std::unique_lock<std::mutex> lock(closer_mutex_);
+  for (;;) {
+    closer_wake_.wait(lock, [&] { return closer_stop_ || !closer_jobs_.empty(); });
+    if (closer_jobs_.empty()) return;  // stopping, nothing left
+    std::function<void()> job = std::move(closer_jobs_.front());
+    closer_jobs_.pop_front();
+    closer_busy_ = true;
+    lock.unlock();
+    std::exception_ptr err;
+    try {
+      if (!closer_error_) job();  // after an error the remaining steps are dropped
+    } catch (...) {
+      err = std::current_exception();
+    }
+    lock.lock();
+    if (err && !closer_error_) closer_error_ = err;
+    closer_busy_ = false;
+    closer_done_.notify_all();
+  }
+}
+
+void SlamRun::waitForLoopCloser() const {
+  if (!closer_thread_.joinable()) return;
+  std::unique_lock<std::mutex> lock(closer_mutex_);
+  closer_done_.wait(lock, [&] { return closer_jobs_.empty() && !closer_busy_; });
+  if (closer_error_) {
+    std::exception_ptr e = closer_error_;
+    closer_error_ = nullptr;
+    std::rethrow_exception(e);
+  }
+}
+
 void SlamRun::requireFilter(const char* what) const {
   if (!filter_) throw std::logic_error(std::string("SlamRun::") + what + ": the run is finished");
 }
@@ -62,13 +105,13 @@ void SlamRun::startLoopCloser() {
   // the lineages that died out since (a fixed-lag smoother's view of the filter's motion).
   closer_->setFilterPath([this] {
     std::vector<Pose2> path;
-    for (const TrajectoryNode* n : pathOf(filter_->bestParticle().node)) path.push_back(n->estimate);
+    for (const TrajectoryNode* n : pathOf(closer_node_)) path.push_back(n->estimate);
     return path;
   });
 }
 
 void SlamRun::closeLoops(std::size_t index) {
-  const TrajectoryNodePtr& node = filter_->bestParticle().node;
+  const TrajectoryNodePtr node = filter_->bestParticle().node;
   const Pose2 motion = node->parent ? relative(node->parent->estimate, node->estimate) : Pose2{};
   const ScanRecord& record = (*scans_)[index];
   // The odometry over the same step (from the previous processed scan), when both scans carry it.
@@ -79,6 +122,21 @@ void SlamRun::closeLoops(std::size_t index) {
       odometry = relative({before.odometry.x, before.odometry.y, before.odometry.phi},
                           {record.odometry.x, record.odometry.y, record.odometry.phi});
   }
+  if (filter_->threads() > 1 && !options_.loop_closure.feedback) {
+    // On the loop closure's thread, beside the filter's next scans.
+    std::unique_lock<std::mutex> lock(closer_mutex_);
+    if (!closer_thread_.joinable()) closer_thread_ = std::thread([this] { closerWorkerLoop(); });
+    closer_done_.wait(lock, [&] { return closer_jobs_.size() < kCloserQueue; });
+    closer_jobs_.push_back([this, node, index, t = record.scan.timestamp, motion, odometry,
+                            scan = filter_->lastPreparedScan()] {
+      closer_node_ = node;
+      closer_->addScan(index, t, node->estimate, motion, odometry ? &*odometry : nullptr, scan);
+    });
+    lock.unlock();
+    closer_wake_.notify_one();
+    return;
+  }
+  closer_node_ = node;
   const LoopClosureStep step = closer_->addScan(index, record.scan.timestamp, node->estimate, motion,
                                                 odometry ? &*odometry : nullptr, filter_->lastPreparedScan());
   if (!step.feedback) return;
@@ -103,12 +161,14 @@ GridMap SlamRun::mapAt(const std::vector<Pose2>& poses) const {
 
 std::vector<TimedPose> SlamRun::trajectory() const {
   requireFilter("trajectory");
+  waitForLoopCloser();
   if (!closer_ || filter_->particles().empty()) return filter_->trajectory();
   return filter_->trajectoryThrough(closer_->finalPoses());
 }
 
 GridMap SlamRun::resultMap() const {
   requireFilter("resultMap");
+  waitForLoopCloser();
   if (filter_->particles().empty()) return GridMap(options_.resolution);
   return closedLoops() ? mapAt(closer_->finalPoses()) : filter_->bestParticle().map;
 }
@@ -144,6 +204,7 @@ bool SlamRun::feed(ScanRecord record) {
 
 std::string SlamRun::statsText() const {
   requireFilter("statsText");
+  waitForLoopCloser();
   const std::vector<StepStats>& st = filter_->stats();
   std::ostringstream out;
   out << "# " << kStatsColumns << " rss_kb\n";
@@ -169,6 +230,7 @@ std::vector<ClosureLine> SlamRun::closureLines(const std::vector<Pose2>& poses) 
 
 mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
   requireFilter("simpleMap");
+  waitForLoopCloser();
   if (filter_->particles().empty()) return {};
   if (!closer_) return simpleMapOf(filter_->bestParticle().node, *scans_);
   return simpleMapAt(processedScanIndices(), closer_->finalPoses(), *scans_);
@@ -176,6 +238,7 @@ mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
 
 SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
   requireFilter("outputs");
+  waitForLoopCloser();
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
   if (closer_) {
@@ -197,6 +260,7 @@ SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, 
 
 SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, const std::string& options_ini) {
   requireFilter("finish");
+  waitForLoopCloser();
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamOutputs o;
   const std::vector<Pose2> poses = closer_ ? closer_->finalPoses() : std::vector<Pose2>{};

@@ -54,6 +54,8 @@ inline constexpr std::size_t kLineageLag = 40;
 
 class RbpfSlam {
  public:
+  /// Threads of its pool, the caller included.
+  int threads() const { return pool_->threads(); }
   explicit RbpfSlam(const SlamOptions& options);
 
   /// Before the first scan: the pose of the first scan in the map frame (default: its odometry pose, or the

@@ -6,8 +6,13 @@
 #include <mrpt/maps/CSimpleMap.h>
 
 #include <cstddef>
+#include <condition_variable>
+#include <deque>
+#include <exception>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -28,6 +33,10 @@ class SlamRun {
   /// A run without a log, fed scan by scan with feed() (the MRPT map builder). It keeps the ranges of the
   /// processed scans only (what the simple map needs); the other records keep their time and odometry.
   explicit SlamRun(const SlamOptions& options);
+  /// Waits for the loop closure's step in flight.
+  ~SlamRun();
+  SlamRun(const SlamRun&) = delete;
+  SlamRun& operator=(const SlamRun&) = delete;
 
   /// The filter: for setInitialPose / insertKnownScan before the first scan, and for reading its state.
   RbpfSlam& filter();
@@ -49,8 +58,12 @@ class SlamRun {
   /// Wall time spent in the filter (s), pauses excluded (the loop closure's included).
   double filterSeconds() const { return filter_seconds_; }
 
-  /// The loop closure beside the filter ([loop_closure] enabled), or null.
-  const LoopCloser* loopCloser() const { return closer_.get(); }
+  /// The loop closure beside the filter ([loop_closure] enabled), or null; up to date with every scan fed (its
+  /// step in flight is waited for).
+  const LoopCloser* loopCloser() const {
+    waitForLoopCloser();
+    return closer_.get();
+  }
   /// The trajectory of every scan fed so far: through the pose graph's optimised poses with loop closure, else
   /// the filter's (RbpfSlam::trajectory).
   std::vector<TimedPose> trajectory() const;
@@ -81,6 +94,14 @@ class SlamRun {
   /// The loop closure's step after a processed scan, and the feedback of a large correction into the filter.
   void closeLoops(std::size_t index);
   void startLoopCloser();
+  /// With more than one thread and without feedback, the loop closure's steps run in order on a thread of their own,
+  /// up to kCloserQueue processed scans behind the filter: each step reads only its own copies (the scan, the
+  /// motion) and the best particle's path as it was after its scan (an immutable trajectory node), so the results
+  /// are those of the serial order, bit for bit. This waits until every queued step is done and rethrows the first
+  /// error one threw.
+  void waitForLoopCloser() const;
+  void closerWorkerLoop();
+  static constexpr std::size_t kCloserQueue = 64;
   /// Every processed scan inserted into a new map at the pose graph's current poses (feedback), or at `poses`.
   GridMap mapOfGraph() const;
   GridMap mapAt(const std::vector<Pose2>& poses) const;
@@ -97,6 +118,16 @@ class SlamRun {
   std::shared_ptr<std::vector<ScanRecord>> appended_;  ///< the records of a run without a log (= *scans_)
   std::unique_ptr<RbpfSlam> filter_;
   std::unique_ptr<LoopCloser> closer_;
+  /// The best particle's newest trajectory node after the processed scan of the loop closure's current step: its
+  /// view of the filter (set by whichever thread runs the step).
+  TrajectoryNodePtr closer_node_;
+  // The loop closure's queue of steps and its thread (declared after closer_: they end first).
+  mutable std::mutex closer_mutex_;
+  mutable std::condition_variable closer_wake_, closer_done_;
+  std::deque<std::function<void()>> closer_jobs_;
+  bool closer_busy_ = false, closer_stop_ = false;
+  mutable std::exception_ptr closer_error_;
+  std::thread closer_thread_;
   std::size_t feedbacks_ = 0;
 
   std::size_t limit_ = 0;
