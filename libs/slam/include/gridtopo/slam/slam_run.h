@@ -55,7 +55,8 @@ class SlamRun {
   /// The scans this run feeds: min(max_scans, log size), or the scans appended so far by feed().
   std::size_t scanLimit() const { return limit_; }
   const std::vector<ScanRecord>& scans() const { return *scans_; }
-  /// Wall time spent in the filter (s), pauses excluded (the loop closure's included).
+  /// Wall time spent in the filter (s), pauses excluded; the loop closure's included when it runs inline (one
+  /// thread, or feedback), else only the time the filter waited for its queue.
   double filterSeconds() const { return filter_seconds_; }
 
   /// The loop closure beside the filter ([loop_closure] enabled), or null; up to date with every scan fed (its
