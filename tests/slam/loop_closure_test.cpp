@@ -354,14 +354,15 @@ TEST(LoopClosure, ItsOwnThreadGivesTheSerialResultBitForBit) {
   const Out one = runWith(1), two = runWith(2);
   EXPECT_NE(one.closures.find("# closure "), std::string::npos);  // the run closed loops
   EXPECT_EQ(one.closures, two.closures);
-  for (const auto* pair : {&one.mid, &one.end}) {
-    const auto& other = pair == &one.mid ? two.mid : two.end;
-    ASSERT_EQ(pair->size(), other.size());
-    ASSERT_FALSE(pair->empty());
-    for (std::size_t i = 0; i < pair->size(); ++i) {
-      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.x, &other[i].pose.x, sizeof(double)), 0) << i;
-      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.y, &other[i].pose.y, sizeof(double)), 0) << i;
-      ASSERT_EQ(std::memcmp(&(*pair)[i].pose.phi, &other[i].pose.phi, sizeof(double)), 0) << i;
+  const auto expectSameBits = [](const std::vector<TimedPose>& a, const std::vector<TimedPose>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_FALSE(a.empty());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(std::memcmp(&a[i].pose.x, &b[i].pose.x, sizeof(double)), 0) << i;
+      ASSERT_EQ(std::memcmp(&a[i].pose.y, &b[i].pose.y, sizeof(double)), 0) << i;
+      ASSERT_EQ(std::memcmp(&a[i].pose.phi, &b[i].pose.phi, sizeof(double)), 0) << i;
     }
-  }
+  };
+  expectSameBits(one.mid, two.mid);
+  expectSameBits(one.end, two.end);
 }

@@ -36,6 +36,7 @@ SlamRun::~SlamRun() {
   {
     std::lock_guard<std::mutex> lock(closer_mutex_);
     closer_stop_ = true;
+    closer_jobs_.clear();  // nobody will read their results
   }
   closer_wake_.notify_all();
   closer_thread_.join();
@@ -48,11 +49,12 @@ void SlamRun::closerWorkerLoop() {
     if (closer_jobs_.empty()) return;  // stopping, nothing left
     std::function<void()> job = std::move(closer_jobs_.front());
     closer_jobs_.pop_front();
+    const bool failed = closer_error_ != nullptr;  // after an error the remaining steps are dropped
     closer_busy_ = true;
     lock.unlock();
     std::exception_ptr err;
     try {
-      if (!closer_error_) job();  // after an error the remaining steps are dropped
+      if (!failed) job();
     } catch (...) {
       err = std::current_exception();
     }
@@ -67,11 +69,8 @@ void SlamRun::waitForLoopCloser() const {
   if (!closer_thread_.joinable()) return;
   std::unique_lock<std::mutex> lock(closer_mutex_);
   closer_done_.wait(lock, [&] { return closer_jobs_.empty() && !closer_busy_; });
-  if (closer_error_) {
-    std::exception_ptr e = closer_error_;
-    closer_error_ = nullptr;
-    std::rethrow_exception(e);
-  }
+  // The error stays: the loop closure missed steps, and every later result would be built on it.
+  if (closer_error_) std::rethrow_exception(closer_error_);
 }
 
 void SlamRun::requireFilter(const char* what) const {

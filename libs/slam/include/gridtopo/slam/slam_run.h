@@ -33,7 +33,7 @@ class SlamRun {
   /// A run without a log, fed scan by scan with feed() (the MRPT map builder). It keeps the ranges of the
   /// processed scans only (what the simple map needs); the other records keep their time and odometry.
   explicit SlamRun(const SlamOptions& options);
-  /// Waits for the loop closure's step in flight.
+  /// Drops the loop closure's queued steps and waits for the one in flight.
   ~SlamRun();
   SlamRun(const SlamRun&) = delete;
   SlamRun& operator=(const SlamRun&) = delete;
@@ -99,7 +99,7 @@ class SlamRun {
   /// up to kCloserQueue processed scans behind the filter: each step reads only its own copies (the scan, the
   /// motion) and the best particle's path as it was after its scan (an immutable trajectory node), so the results
   /// are those of the serial order, bit for bit. This waits until every queued step is done and rethrows the first
-  /// error one threw.
+  /// error one threw (at every later call too: the steps after it are dropped).
   void waitForLoopCloser() const;
   void closerWorkerLoop();
   static constexpr std::size_t kCloserQueue = 64;
@@ -127,7 +127,7 @@ class SlamRun {
   mutable std::condition_variable closer_wake_, closer_done_;
   std::deque<std::function<void()>> closer_jobs_;
   bool closer_busy_ = false, closer_stop_ = false;
-  mutable std::exception_ptr closer_error_;
+  std::exception_ptr closer_error_;
   std::thread closer_thread_;
   std::size_t feedbacks_ = 0;
 
