@@ -34,9 +34,11 @@ inline std::string statsWithoutTimeAndRss(const std::string& text) {
   std::string out;
   for (std::string l; std::getline(in, l);) {
     std::istringstream w(l);
-    std::string word;
-    for (int i = 0; w >> word; ++i)
-      if (l[0] == '#' || (i != 3 && i != 12)) out += word + ' ';
+    std::vector<std::string> words;
+    for (std::string word; w >> word;) words.push_back(word);
+    // A step row: drop its wall time (column 3) and the process RSS (the last column).
+    for (std::size_t i = 0; i < words.size(); ++i)
+      if (l[0] == '#' || (i != 3 && i + 1 != words.size())) out += words[i] + ' ';
     out += '\n';
   }
   return out;

@@ -73,7 +73,7 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
   const auto& stats = run.filter().stats();
   for (std::size_t i = 0; i < kSteps; ++i) {
     const auto w = words(rows[i + 1]);
-    ASSERT_EQ(w.size(), 13u) << rows[i + 1];
+    ASSERT_EQ(w.size(), 14u) << rows[i + 1];
     // The row is statsRow's, then the resident memory in kB (a live process holds more than a megabyte).
     EXPECT_EQ(rows[i + 1].rfind(slam::statsRow(stats[i]) + ' ', 0), 0u) << rows[i + 1];
     EXPECT_EQ(std::stoul(w[0]), i);
@@ -85,7 +85,13 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
     EXPECT_GE(stats[i].lineages, 1);
     EXPECT_LE(stats[i].lineages, 6);
     if (i < slam::kLineageLag) EXPECT_EQ(stats[i].lineages, 1) << i;
-    EXPECT_GT(std::stoul(w[12]), 1024u);
+    // Processed scans back to the particles' common ancestor: at most the path's length; the lineages 40 scans
+    // back are one only where the particles met at or after that.
+    EXPECT_EQ(std::stoul(w[12]), stats[i].coalescence);
+    EXPECT_LE(stats[i].coalescence, i);
+    if (stats[i].coalescence <= slam::kLineageLag) EXPECT_EQ(stats[i].lineages, 1) << i;
+    if (stats[i].lineages > 1) EXPECT_GT(stats[i].coalescence, slam::kLineageLag) << i;
+    EXPECT_GT(std::stoul(w[13]), 1024u);
   }
   EXPECT_EQ(stats.front().scan_index, 0u);
   EXPECT_GT(run.filterSeconds(), 0.0);

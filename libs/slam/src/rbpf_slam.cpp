@@ -270,8 +270,32 @@ void RbpfSlam::recordStep(StepStats& st, std::chrono::steady_clock::time_point t
     std::sort(ancestors.begin(), ancestors.end());
     st.lineages = static_cast<int>(std::unique(ancestors.begin(), ancestors.end()) - ancestors.begin());
   }
+  st.coalescence = coalescenceDepth();
   st.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.push_back(st);
+}
+
+std::size_t RbpfSlam::coalescenceDepth() const {
+  // Every processed scan adds one node to every particle's path, so the particles' paths step back in lockstep:
+  // climb them together, one node each, until they meet (or the oldest reaches its root).
+  std::vector<const TrajectoryNode*> front;
+  front.reserve(particles_.size());
+  for (const Particle& p : particles_) front.push_back(p.node.get());
+  std::size_t depth = 0;
+  for (;;) {
+    std::sort(front.begin(), front.end());
+    front.erase(std::unique(front.begin(), front.end()), front.end());
+    if (front.size() <= 1) return depth;
+    bool moved = false;
+    for (const TrajectoryNode*& n : front) {
+      if (n && n->parent) {
+        n = n->parent.get();
+        moved = true;
+      }
+    }
+    if (!moved) return depth;
+    ++depth;
+  }
 }
 
 void RbpfSlam::resample(const std::vector<double>& w) {

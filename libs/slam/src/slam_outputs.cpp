@@ -46,7 +46,7 @@ std::string statsRow(const StepStats& s) {
   std::ostringstream o;
   o << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' ' << s.neff << ' '
     << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
-    << s.unique_tiles << ' ' << s.map_bytes << ' ' << s.lineages;
+    << s.unique_tiles << ' ' << s.map_bytes << ' ' << s.lineages << ' ' << s.coalescence;
   return o.str();
 }
 

@@ -47,6 +47,10 @@ struct StepStats {
   /// Distinct histories the particle set still holds kLineageLag processed scans back: how many of the particles'
   /// ancestors at that step differ (1 = every particle descends from one pose there; the issue-23 diversity curve).
   int lineages = 0;
+  /// Processed scans back to the particles' most recent common ancestor (0: they all sit on one pose; the depth of
+  /// the tree's root when they never met): how far back the particle set still holds more than one history, so
+  /// whether any alternative to the best particle's map reaches a revisit (issue 23, lever 1).
+  std::size_t coalescence = 0;
 };
 
 /// The lag (processed scans, about 10 m at the default 0.25 m update) at which StepStats::lineages counts ancestors.
@@ -137,6 +141,8 @@ class RbpfSlam {
                   std::size_t index);
   /// The normalised weights (for N_eff and resampling); the log weights are rebased to a maximum of 0.
   std::vector<double> normaliseWeights();
+  /// Processed scans back to the particles' most recent common ancestor (StepStats::coalescence).
+  std::size_t coalescenceDepth() const;
   /// Resample (low variance) with the normalised weights `w`; survivors restart at weight 1.
   void resample(const std::vector<double>& w);
   /// Completes the step's statistics (tile counts every 20 steps, wall time since `t0`) and keeps them.

@@ -26,7 +26,7 @@ mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices,
 /// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
 inline constexpr const char* kStatsColumns =
     "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
-    "lineages";
+    "lineages coalescence";
 /// One processed step's row of stats.txt (kStatsColumns, space-separated, no newline).
 std::string statsRow(const StepStats& s);
 
