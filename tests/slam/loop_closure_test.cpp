@@ -309,6 +309,38 @@ TEST(CorrelativeMatcher, FindsTheExhaustiveBestPoseOfTheWindow) {
   EXPECT_FALSE(outside.has_value());
 }
 
+TEST(CorrelativeMatcher, EachLevelBoundsTheFinestOverItsSpan) {
+  // Level h at cell (cx, cy) is the maximum of level 0 over [cx, cx + 2^h) x [cy, cy + 2^h): checked against the
+  // definition on every cell from 2^h + 3 cells left of and below the lattice to 3 cells beyond it (the levels
+  // store only the cells where that maximum can be non-zero), and the storage stays within the lattice plus the
+  // low-side margins.
+  std::vector<slam::Point2> pts;
+  addWall(pts, 0.0, 0.0, 3.0);
+  addCorner(pts, 1.0, 0.0);
+  addWall(pts, 1.2, 0.5, 2.0);
+  const int depth = 4;
+  const slam::CorrelationGrid grid(pts, 0.05, 0.07, depth, 0.03);
+  const int x1 = grid.cellX(3.0) + 8, y1 = grid.cellY(1.6) + 8;  // past the last point plus its margin
+  int nonzero = 0;
+  for (int cy = -3; cy <= y1; ++cy)
+    for (int cx = -3; cx <= x1; ++cx) nonzero += grid.value(0, cx, cy) > 0;
+  ASSERT_GT(nonzero, 100);
+  for (int h = 1; h <= depth; ++h) {
+    const int span = 1 << h;
+    for (int cy = -span - 3; cy <= y1; ++cy)
+      for (int cx = -span - 3; cx <= x1; ++cx) {
+        int m = 0;
+        for (int dy = 0; dy < span; ++dy)
+          for (int dx = 0; dx < span; ++dx) m = std::max(m, grid.value(0, cx + dx, cy + dy));
+        ASSERT_EQ(grid.value(h, cx, cy), m) << "level " << h << " cell " << cx << ", " << cy;
+      }
+  }
+  // Lattice about (3 m + 2 margins) x (1.8 m + 2 margins) at 5 cm: a byte per cell and level plus the margins,
+  // four bytes per cell for the nearest point.
+  const double cells = (x1 - 8 + 1.0) * (y1 - 8 + 1.0);
+  EXPECT_LT(static_cast<double>(grid.bytes()), cells * (depth + 1 + 4) * 1.6);
+}
+
 TEST(CorrelativeMatcher, AFeaturelessCorridorIsAmbiguousAlongItsAxis) {
   // 26 m of corridor walls; the query sees 20 m of the same walls: every shift of up to 3 m along the axis fits.
   std::vector<slam::Point2> submap, query;

@@ -12,7 +12,6 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
     : res_(resolution), depth_(std::max(0, depth)) {
   if (!(refine_sigma > 0.0)) refine_sigma = sigma;
   refine_k_ = -0.5 / (refine_sigma * refine_sigma);
-  pad_ = 1 << depth_;
   double minx = 0.0, miny = 0.0, maxx = 0.0, maxy = 0.0;
   if (!points.empty()) {
     minx = maxx = points.front().x;
@@ -30,65 +29,95 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
   y0_ = miny - margin * res_;
   const int w0 = static_cast<int>(std::ceil((maxx - minx) / res_)) + 2 * margin + 1;
   const int h0 = static_cast<int>(std::ceil((maxy - miny) / res_)) + 2 * margin + 1;
+  w0_ = w0;
+  h0_ = h0;
+  // The cells holding points, each with its points' mean (summed in the points' order).
+  std::vector<std::pair<std::size_t, std::size_t>> cell_of_point;  // (cell, point index)
+  cell_of_point.reserve(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const int cx = cellX(points[k].x), cy = cellY(points[k].y);
+    if (cx < 0 || cy < 0 || cx >= w0 || cy >= h0) continue;
+    cell_of_point.emplace_back(static_cast<std::size_t>(cy) * w0 + cx, k);
+  }
+  std::sort(cell_of_point.begin(), cell_of_point.end());
   // Distance of every cell centre to the nearest point: OpenCV's distance transform with labels names the nearest
   // cell holding points, and the distance is taken to the mean of that cell's points (not to its centre), so that
   // the grid is exact to well under a cell where it matters, next to the points.
   cv::Mat seeds(h0, w0, CV_8UC1, cv::Scalar(255));
-  std::vector<double> sum_x(static_cast<std::size_t>(w0) * h0, 0.0), sum_y(sum_x.size(), 0.0);
-  std::vector<int> count(sum_x.size(), 0);
-  for (const Point2& p : points) {
-    const int cx = cellX(p.x), cy = cellY(p.y);
-    if (cx < 0 || cy < 0 || cx >= w0 || cy >= h0) continue;
-    seeds.at<std::uint8_t>(cy, cx) = 0;
-    const std::size_t i = static_cast<std::size_t>(cy) * w0 + cx;
-    sum_x[i] += p.x;
-    sum_y[i] += p.y;
-    ++count[i];
+  std::vector<std::size_t> seed_cells;
+  std::vector<std::pair<double, double>> means;  // the distances are taken to these; means_ keeps them as floats
+  for (std::size_t k = 0; k < cell_of_point.size();) {
+    const std::size_t c = cell_of_point[k].first;
+    double sx = 0.0, sy = 0.0;
+    int n = 0;
+    for (; k < cell_of_point.size() && cell_of_point[k].first == c; ++k) {
+      sx += points[cell_of_point[k].second].x;
+      sy += points[cell_of_point[k].second].y;
+      ++n;
+    }
+    seeds.data[c] = 0;
+    seed_cells.push_back(c);
+    means.emplace_back(sx / n, sy / n);
+    means_.emplace_back(static_cast<float>(sx / n), static_cast<float>(sy / n));
   }
-  cv::Mat dist, labels;
-  cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  std::vector<std::size_t> cell_of_label(static_cast<std::size_t>(w0) * h0 + 1, 0);
-  for (int y = 0; y < h0; ++y)
-    for (int x = 0; x < w0; ++x)
-      if (seeds.at<std::uint8_t>(y, x) == 0)
-        cell_of_label[static_cast<std::size_t>(labels.at<int>(y, x))] = static_cast<std::size_t>(y) * w0 + x;
-  w0_ = w0;
-  h0_ = h0;
-  nearest_.assign(static_cast<std::size_t>(w0) * h0, {1e6f, 1e6f});
-  std::vector<float> dist_m(nearest_.size(), 1e3f);
-  if (!points.empty())
+  std::vector<std::pair<std::size_t, std::size_t>>().swap(cell_of_point);
+  nearest_.assign(static_cast<std::size_t>(w0) * h0, 0);
+  levels_.resize(static_cast<std::size_t>(depth_) + 1);
+  levels_[0] = Level{0, w0, h0, std::vector<std::uint8_t>(static_cast<std::size_t>(w0) * h0, 0)};
+  if (!means_.empty()) {
+    cv::Mat dist, labels;
+    cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+    dist.release();
+    seeds.release();
+    // Label of each seed cell -> its index in means_.
+    int max_label = 0;
+    for (std::size_t c : seed_cells) max_label = std::max(max_label, reinterpret_cast<const int*>(labels.data)[c]);
+    std::vector<std::uint32_t> mean_of_label(static_cast<std::size_t>(max_label) + 1, 0);
+    for (std::size_t m = 0; m < seed_cells.size(); ++m)
+      mean_of_label[static_cast<std::size_t>(reinterpret_cast<const int*>(labels.data)[seed_cells[m]])] =
+          static_cast<std::uint32_t>(m);
+    const double k = -0.5 / (sigma * sigma);
+    std::vector<std::uint8_t>& base = levels_[0].v;
     for (int y = 0; y < h0; ++y)
       for (int x = 0; x < w0; ++x) {
-        const std::size_t c = cell_of_label[static_cast<std::size_t>(labels.at<int>(y, x))];
-        const double mx = sum_x[c] / count[c], my = sum_y[c] / count[c];
         const std::size_t i = static_cast<std::size_t>(y) * w0 + x;
-        nearest_[i] = {static_cast<float>(mx), static_cast<float>(my)};
-        dist_m[i] = static_cast<float>(std::hypot(x0_ + (x + 0.5) * res_ - mx, y0_ + (y + 0.5) * res_ - my));
+        const std::uint32_t m = mean_of_label[static_cast<std::size_t>(reinterpret_cast<const int*>(labels.data)[i])];
+        nearest_[i] = m;
+        const double mx = means[m].first, my = means[m].second;
+        const double dd = static_cast<float>(std::hypot(x0_ + (x + 0.5) * res_ - mx, y0_ + (y + 0.5) * res_ - my));
+        base[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(k * dd * dd)));
       }
-  w_ = w0 + 2 * pad_;
-  h_ = h0 + 2 * pad_;
-  levels_.assign(static_cast<std::size_t>(depth_) + 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w_) * h_, 0));
-  std::vector<std::uint8_t>& base = levels_[0];
-  const double k = -0.5 / (sigma * sigma);
-  for (int y = 0; y < h0; ++y) {
-    std::uint8_t* row = &base[static_cast<std::size_t>(y + pad_) * w_ + pad_];
-    for (int x = 0; x < w0; ++x) {
-      const double dd = dist_m[static_cast<std::size_t>(y) * w0 + x];
-      row[x] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(k * dd * dd)));
-    }
   }
   // Level h: the maximum of level h−1 over the cell and its neighbours 2^(h−1) cells right, up, and both.
   for (int h = 1; h <= depth_; ++h) {
     const int s = 1 << (h - 1);
-    const std::vector<std::uint8_t>& prev = levels_[static_cast<std::size_t>(h) - 1];
-    std::vector<std::uint8_t>& cur = levels_[static_cast<std::size_t>(h)];
-    auto at = [&](int x, int y) -> std::uint8_t {
-      return (x < w_ && y < h_) ? prev[static_cast<std::size_t>(y) * w_ + x] : 0;
+    const int pad = (1 << h) - 1;
+    Level& cur = levels_[static_cast<std::size_t>(h)];
+    cur.pad = pad;
+    cur.w = w0 + pad;
+    cur.h = h0 + pad;
+    cur.v.assign(static_cast<std::size_t>(cur.w) * cur.h, 0);
+    const Level& prev = levels_[static_cast<std::size_t>(h) - 1];
+    // Row by row: the maximum of the previous level's row at cx and cx + s (0 outside it), then of two such rows.
+    std::vector<std::uint8_t> r0(static_cast<std::size_t>(cur.w)), r1(r0.size());
+    auto rowMax = [&](int cy, std::vector<std::uint8_t>& out) {
+      std::fill(out.begin(), out.end(), std::uint8_t{0});
+      const int py = cy + prev.pad;
+      if (py < 0 || py >= prev.h) return;
+      const std::uint8_t* row = prev.v.data() + static_cast<std::size_t>(py) * prev.w;
+      for (int x = 0; x < cur.w; ++x) {
+        const int a = x - pad + prev.pad, b = a + s;
+        const std::uint8_t va = (a >= 0 && a < prev.w) ? row[a] : 0;
+        const std::uint8_t vb = (b >= 0 && b < prev.w) ? row[b] : 0;
+        out[static_cast<std::size_t>(x)] = std::max(va, vb);
+      }
     };
-    for (int y = 0; y < h_; ++y)
-      for (int x = 0; x < w_; ++x)
-        cur[static_cast<std::size_t>(y) * w_ + x] = std::max(std::max(at(x, y), at(x + s, y)),
-                                                             std::max(at(x, y + s), at(x + s, y + s)));
+    for (int y = 0; y < cur.h; ++y) {
+      rowMax(y - pad, r0);
+      rowMax(y - pad + s, r1);
+      std::uint8_t* dst = cur.v.data() + static_cast<std::size_t>(y) * cur.w;
+      for (int x = 0; x < cur.w; ++x) dst[x] = std::max(r0[static_cast<std::size_t>(x)], r1[static_cast<std::size_t>(x)]);
+    }
   }
 }
 
@@ -104,14 +133,15 @@ double CorrelationGrid::interpolated(double x, double y) const {
 double CorrelationGrid::refined(double x, double y) const {
   const int ix = cellX(x), iy = cellY(y);
   if (ix < 0 || iy < 0 || ix >= w0_ || iy >= h0_) return 0.0;
-  const auto& p = nearest_[static_cast<std::size_t>(iy) * w0_ + ix];
+  if (means_.empty()) return 0.0;
+  const auto& p = means_[nearest_[static_cast<std::size_t>(iy) * w0_ + ix]];
   const double dx = x - p.first, dy = y - p.second;
   return std::exp(refine_k_ * (dx * dx + dy * dy));
 }
 
 std::size_t CorrelationGrid::bytes() const {
-  std::size_t b = sizeof(*this) + nearest_.capacity() * sizeof(nearest_[0]);
-  for (const auto& l : levels_) b += l.capacity();
+  std::size_t b = sizeof(*this) + nearest_.capacity() * sizeof(nearest_[0]) + means_.capacity() * sizeof(means_[0]);
+  for (const Level& l : levels_) b += l.v.capacity();
   return b;
 }
 

@@ -31,10 +31,11 @@ class CorrelationGrid {
   int depth() const { return depth_; }
   /// Value in [0, 255] of level `h` at cell (cx, cy) of the finest lattice; 0 outside.
   int value(int h, int cx, int cy) const {
-    const int x = cx + pad_, y = cy + pad_;
-    if (static_cast<unsigned>(x) >= static_cast<unsigned>(w_) || static_cast<unsigned>(y) >= static_cast<unsigned>(h_))
+    const Level& l = levels_[static_cast<std::size_t>(h)];
+    const int x = cx + l.pad, y = cy + l.pad;
+    if (static_cast<unsigned>(x) >= static_cast<unsigned>(l.w) || static_cast<unsigned>(y) >= static_cast<unsigned>(l.h))
       return 0;
-    return levels_[static_cast<std::size_t>(h)][static_cast<std::size_t>(y) * w_ + x];
+    return l.v[static_cast<std::size_t>(y) * l.w + x];
   }
   /// The finest level interpolated bilinearly at a point of the submap's frame, in [0, 1].
   double interpolated(double x, double y) const;
@@ -51,16 +52,23 @@ class CorrelationGrid {
     const int i = static_cast<int>(v);
     return i - (v < static_cast<double>(i));
   }
+  /// One level of the precomputation stack. Level h at cell cx holds the maximum over cells [cx, cx + 2^h) of
+  /// level 0, so it is non-zero only from cx = −(2^h − 1) to the lattice's last cell: it stores those cells (a
+  /// margin of 2^h − 1 on the low sides only; everything else is 0).
+  struct Level {
+    int pad = 0, w = 0, h = 0;
+    std::vector<std::uint8_t> v;
+  };
   double res_;
   int depth_;
   double x0_ = 0.0, y0_ = 0.0;  ///< submap-frame coordinates of the corner of finest cell (0, 0)
-  int pad_ = 0;                 ///< cells of margin on every side (2^depth)
-  int w_ = 0, h_ = 0;           ///< stored size, margins included
-  std::vector<std::vector<std::uint8_t>> levels_;
-  int w0_ = 0, h0_ = 0;        ///< the finest lattice without margins
+  std::vector<Level> levels_;
+  int w0_ = 0, h0_ = 0;        ///< the finest lattice
   double refine_k_ = 0.0;      ///< −1 / (2 refine_sigma²), in 1/m²
-  /// Per finest cell, the nearest of the submap's points (the mean of the points of the nearest cell holding any).
-  std::vector<std::pair<float, float>> nearest_;
+  /// Per finest cell, the index in means_ of the cell holding submap points nearest to it; means_ holds each such
+  /// cell's mean point.
+  std::vector<std::uint32_t> nearest_;
+  std::vector<std::pair<float, float>> means_;
 };
 
 struct SearchWindow {
