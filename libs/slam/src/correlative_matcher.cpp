@@ -69,19 +69,19 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
     cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
     dist.release();
     seeds.release();
+    const int* label = labels.ptr<int>();  // per cell, the label of the nearest seed cell (a seed's own label)
     // Label of each seed cell -> its index in means_.
     int max_label = 0;
-    for (std::size_t c : seed_cells) max_label = std::max(max_label, reinterpret_cast<const int*>(labels.data)[c]);
+    for (std::size_t c : seed_cells) max_label = std::max(max_label, label[c]);
     std::vector<std::uint32_t> mean_of_label(static_cast<std::size_t>(max_label) + 1, 0);
     for (std::size_t m = 0; m < seed_cells.size(); ++m)
-      mean_of_label[static_cast<std::size_t>(reinterpret_cast<const int*>(labels.data)[seed_cells[m]])] =
-          static_cast<std::uint32_t>(m);
+      mean_of_label[static_cast<std::size_t>(label[seed_cells[m]])] = static_cast<std::uint32_t>(m);
     const double k = -0.5 / (sigma * sigma);
     std::vector<std::uint8_t>& base = levels_[0].v;
     for (int y = 0; y < h0; ++y)
       for (int x = 0; x < w0; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * w0 + x;
-        const std::uint32_t m = mean_of_label[static_cast<std::size_t>(reinterpret_cast<const int*>(labels.data)[i])];
+        const std::uint32_t m = mean_of_label[static_cast<std::size_t>(label[i])];
         nearest_[i] = m;
         const double mx = means[m].first, my = means[m].second;
         const double dd = static_cast<float>(std::hypot(x0_ + (x + 0.5) * res_ - mx, y0_ + (y + 0.5) * res_ - my));
