@@ -3,8 +3,8 @@
 
 For every processed scan of one or more gridtopo-slam output directories: the metres the robot travelled since the
 particles' most recent common ancestor (the `coalescence` column of stats.txt, in processed scans, turned into
-travel along the run's trajectory.txt), and the metres between resamplings. Writes a data file per run and, with
--o, one gnuplot PNG with a curve per run (time since the start on x, metres of history held on y).
+travel along the run's trajectory.txt). With -o, one gnuplot PNG with a curve per run (time since the start on x,
+metres of history held on y; the curves' data in a temporary directory, removed afterwards).
 
   python3 scripts/diversity_curve.py -o doc/img/slam-diversity.png LABEL=OUT_DIR [LABEL=OUT_DIR ...]
 
@@ -69,7 +69,8 @@ def main():
     ap.add_argument('-o', '--png', help='write the curves to this PNG (gnuplot)')
     ap.add_argument('--title', default='history the particle set holds')
     a = ap.parse_args()
-    tmp = tempfile.mkdtemp()
+    tmp_dir = tempfile.TemporaryDirectory()
+    tmp = tmp_dir.name
     plots = []
     for i, spec in enumerate(a.runs):
         label, sep, out_dir = spec.partition('=')
