@@ -5,16 +5,18 @@
 # gridtopo-topology-compare against the plan; prints one row per map. The plans are in the model's training set:
 # the rows measure the steps after labelling, not the classifier. lab_d is skipped (its labelled image is 992 x 800,
 # its room ground truth 840 x 581).
-#   usage: scripts/graph_quality.sh [-b build-dir] [-c topology.ini] [-o out-dir] [INTEL_SLAM_map.yaml ...]
+#   usage: scripts/graph_quality.sh [-b build-dir] [-c topology.ini] [-m model.yml] [-o out-dir] [INTEL_SLAM_map.yaml ...]
+# (-m: the place model, default datasets/models/places_model.yml; with another model the plans' rows no longer hold
+# only maps of its training set)
 #   e.g.   scripts/graph_quality.sh out/intel/slam/map.yaml
 set -euo pipefail
 cd "$(dirname "$0")/.."
-BUILD=build INI=config-ini/topology.ini OUT=
-while getopts "b:c:o:" f; do
-  case $f in b) BUILD=$OPTARG ;; c) INI=$OPTARG ;; o) OUT=$OPTARG ;; *) exit 2 ;; esac
+BUILD=build INI=config-ini/topology.ini OUT= MODEL=datasets/models/places_model.yml
+while getopts "b:c:m:o:" f; do
+  case $f in b) BUILD=$OPTARG ;; c) INI=$OPTARG ;; m) MODEL=$OPTARG ;; o) OUT=$OPTARG ;; *) exit 2 ;; esac
 done
 shift $((OPTIND - 1))
-BIN=$BUILD/bin P=datasets/places MODEL=datasets/models/places_model.yml
+BIN=$BUILD/bin P=datasets/places
 if [ -z "$OUT" ]; then OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT; fi
 
 row() {  # name map reference-map reference-labels reference-segmentation
