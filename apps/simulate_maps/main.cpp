@@ -37,13 +37,15 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<double> visit("", "room-visit-probability", "each room is entered with this probability", false,
                                   0.7, "p", cmd);
     TCLAP::ValueArg<double> clearance("", "clearance", "m the robot's path keeps from obstacles", false, 0.25, "m", cmd);
+    TCLAP::ValueArg<double> no_return("", "no-return-probability", "fraction of the beams logged as no-return (a random "
+                                      "dropout; the Intel log has 0.028)", false, 0.002, "p", cmd);
     TCLAP::ValueArg<std::string> maps("", "maps", "comma-separated plan names (default: all 9)", false, "", "names", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
     const auto run = simtrain::simulateMapsRunOf(
         {dir.getValue(), out.getValue(), variant.getValue(), threads.getValue(), slam_ini.getValue(), seed.getValue(),
-         visit.getValue(), clearance.getValue(), maps.getValue()});
+         visit.getValue(), clearance.getValue(), maps.getValue(), no_return.getValue()});
     ProgressBar bar(run.only.empty() ? places::standardLabelledMaps(run.places_dir).size() : run.only.size(),
                     "simulated maps", "maps");
     std::unique_ptr<ProgressBar> scans;  // the SLAM's scans of the current map

@@ -146,6 +146,9 @@ SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& a) {
   if (!(a.room_visit_probability >= 0 && a.room_visit_probability <= 1))
     throw InputError("--room-visit-probability", "must be in [0, 1]");
   if (!(a.clearance >= 0 && a.clearance <= 1)) throw InputError("--clearance", "must be in [0, 1] m");
+  if (!(a.no_return_probability >= 0 && a.no_return_probability < 1))
+    throw InputError("--no-return-probability", "must be in [0, 1)");
+  o.laser.dropout_probability = a.no_return_probability;
   o.laser.seed = static_cast<std::uint64_t>(a.seed);
   o.tour.seed = static_cast<std::uint64_t>(a.seed);
   o.tour.room_visit_probability = a.room_visit_probability;
@@ -158,6 +161,8 @@ SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& a) {
           << r.output << " -c " << (a.slam_ini.empty() ? "''" : a.slam_ini) << " -s " << a.seed
           << " --room-visit-probability " << a.room_visit_probability << " --clearance " << a.clearance
           << (a.maps.empty() ? "" : " --maps " + a.maps);
+  if (a.no_return_probability != SimulateMapsArgs{}.no_return_probability)
+    command << " --no-return-probability " << a.no_return_probability;
   r.command = command.str();
   return r;
 }

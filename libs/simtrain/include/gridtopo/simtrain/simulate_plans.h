@@ -52,6 +52,8 @@ struct SimulateMapsArgs {
   double room_visit_probability = 0.7;
   double clearance = 0.25;                  ///< m
   std::string maps;                         ///< comma-separated plan names; empty: all
+  /// Fraction of the beams logged as no-return (a random dropout; the Intel log has 2.8 %, ACES 0.8 %).
+  double no_return_probability = 0.002;
 };
 
 /// What simulatePlans needs for those arguments: the options, the output directory, the plans, and the command line
@@ -63,7 +65,8 @@ struct SimulateMapsRun {
   std::string command;
 };
 
-/// Checks the arguments (InputError naming the flag: --variant, --seed, --room-visit-probability, --clearance, and
+/// Checks the arguments (InputError naming the flag: --variant, --seed, --room-visit-probability, --clearance,
+/// --no-return-probability, and
 /// the INI's errors) and loads the [slam] section of the INI.
 SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& args);
 
