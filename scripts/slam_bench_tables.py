@@ -36,17 +36,17 @@ def main(root):
           " local mean (m) | revisit mean (m) | revisit / local | CPU median (s) | wall median (s) | peak RSS max (MB) |")
     print("|---|---|" + ("---|" if vcol else "") + "---|---|---|---|---|---|---|---|---|")
     for k in keys:
-            g = groups[k]
-            rs = list(g.values())
-            mean = statistics.mean(r["trans_mean_m"] for r in rs)
-            worst = max(r["trans_mean_m"] for r in rs)
-            loc = statistics.mean(r["trans_local_mean_m"] for r in rs)
-            rev = statistics.mean(r["trans_revisit_mean_m"] for r in rs)
-            cpu = statistics.median(r["cpu_s"] for r in rs)
-            wall = statistics.median(r["wall_s"] for r in rs)
-            rss = max(r["peak_rss_mb"] for r in rs)
-            print(head(k) + f" {len(rs)} | {mean:.4f} | {worst:.4f} | {loc:.4f} |"
-                  f" {rev:.4f} | {rev / loc:.1f} | {cpu:.1f} | {wall:.1f} | {rss:.0f} |")
+        g = groups[k]
+        rs = list(g.values())
+        mean = statistics.mean(r["trans_mean_m"] for r in rs)
+        worst = max(r["trans_mean_m"] for r in rs)
+        loc = statistics.mean(r["trans_local_mean_m"] for r in rs)
+        rev = statistics.mean(r["trans_revisit_mean_m"] for r in rs)
+        cpu = statistics.median(r["cpu_s"] for r in rs)
+        wall = statistics.median(r["wall_s"] for r in rs)
+        rss = max(r["peak_rss_mb"] for r in rs)
+        print(head(k) + f" {len(rs)} | {mean:.4f} | {worst:.4f} | {loc:.4f} |"
+              f" {rev:.4f} | {rev / loc:.1f} | {cpu:.1f} | {wall:.1f} | {rss:.0f} |")
     seeds = sorted({s for g in groups.values() for s in g})
     print()
     print("| log | loop closure |" + (" variant |" if vcol else "") + " " + " | ".join(str(s) for s in seeds) + " |")

@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
                                   0.7, "p", cmd);
     TCLAP::ValueArg<double> clearance("", "clearance", "m the robot's path keeps from obstacles", false, 0.25, "m", cmd);
     TCLAP::ValueArg<double> no_return("", "no-return-probability", "fraction of the beams logged as no-return (a random "
-                                      "dropout; the Intel log has 0.028)", false, 0.002, "p", cmd);
+                                      "dropout; the Intel log has 0.028)", false,
+                                      simtrain::SimulateMapsArgs{}.no_return_probability, "p", cmd);
     TCLAP::ValueArg<std::string> maps("", "maps", "comma-separated plan names (default: all 9)", false, "", "names", cmd);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);

@@ -53,7 +53,7 @@ struct SimulateMapsArgs {
   double clearance = 0.25;                  ///< m
   std::string maps;                         ///< comma-separated plan names; empty: all
   /// Fraction of the beams logged as no-return (a random dropout; the Intel log has 2.8 %, ACES 0.8 %).
-  double no_return_probability = 0.002;
+  double no_return_probability = TrainingMapOptions::defaultLaser().dropout_probability;
 };
 
 /// What simulatePlans needs for those arguments: the options, the output directory, the plans, and the command line
@@ -66,8 +66,7 @@ struct SimulateMapsRun {
 };
 
 /// Checks the arguments (InputError naming the flag: --variant, --seed, --room-visit-probability, --clearance,
-/// --no-return-probability, and
-/// the INI's errors) and loads the [slam] section of the INI.
+/// --no-return-probability, and the INI's errors) and loads the [slam] section of the INI.
 SimulateMapsRun simulateMapsRunOf(const SimulateMapsArgs& args);
 
 /// "exact" / "slam"; InputError(`field`) otherwise.
