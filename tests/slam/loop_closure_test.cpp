@@ -398,3 +398,159 @@ TEST(LoopClosure, ItsOwnThreadGivesTheSerialResultBitForBit) {
   expectSameBits(one.mid, two.mid);
   expectSameBits(one.end, two.end);
 }
+
+namespace {
+
+// A 1 km ring of 2.5 m wide corridors, 300 m x 200 m, around a solid block; door recesses (1 m wide, 0.5 m deep)
+// on both walls every 6 to 14 m at positions drawn from a fixed sequence, so that every stretch of 20 m differs.
+sim::FloorPlan kilometreLoopPlan() {
+  std::uint64_t state = 12345;
+  const auto next = [&] {  // a fixed linear congruential sequence in [0, 1): the same plan on every platform
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  const auto recesses = [&](double from, double to) {
+    std::vector<double> at;
+    for (double x = from + 3.0 + 6.0 * next(); x < to - 4.0; x += 6.0 + 8.0 * next()) at.push_back(x);
+    return at;
+  };
+  sim::FloorPlan p;
+  const double W = 300, H = 200, w = 2.5;
+  addRecessedWall(p, 0, 0, W, recesses(0, W), 1.0, -0.5);
+  addRecessedWall(p, w, w, W - w, recesses(w, W - w), 1.0, 0.5);
+  addRecessedWall(p, H, 0, W, recesses(0, W), 1.0, 0.5);
+  addRecessedWall(p, H - w, w, W - w, recesses(w, W - w), 1.0, -0.5);
+  // The west and east corridors: vertical walls, with recesses made by transposing horizontal ones.
+  const auto vertical = [&](double x, double y0, double y1, double depth) {
+    sim::FloorPlan h;
+    addRecessedWall(h, x, y0, y1, recesses(y0, y1), 1.0, depth);
+    for (const auto& s : h.walls) p.walls.push_back({s.y0, s.x0, s.y1, s.x1});
+  };
+  vertical(0, 0, H, -0.5);
+  vertical(w, w, H - w, 0.5);
+  vertical(W, 0, H, 0.5);
+  vertical(W - w, w, H - w, -0.5);
+  return p;
+}
+
+struct FedLoop {
+  std::vector<slam::Pose2> drifted, closed;
+  std::size_t back = 0;  ///< the node of the return nearest the start
+  double drift_xy = 0.0, drift_th = 0.0, closed_xy = 0.0, closed_th = 0.0;
+};
+
+// The loop closure alone fed the true path of `log` with a heading bias of `bias` rad per metre (a filter that
+// drifts), the way the filter feeds it; the return's error before and after.
+FedLoop feedDrifting(const sim::SimLog& log, const slam::SlamOptions& o, double bias, slam::LoopClosureCounts* counts,
+                     std::vector<slam::LoopClosureRecord>* closures) {
+  slam::LoopCloser closer(o.loop_closure, o.motion);
+  const auto& truth = log.truth;
+  FedLoop r;
+  slam::Pose2 filter = toPose(truth.front());
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    slam::Pose2 motion{0, 0, 0};
+    if (k > 0) {
+      motion = slam::relative(toPose(truth[k - 1]), toPose(truth[k]));
+      motion.theta += bias * std::hypot(motion.x, motion.y);
+      filter = slam::compose(filter, motion);
+    }
+    r.drifted.push_back(filter);
+    const slam::PreparedScan ps = slam::prepareScan(log.records[k].scan, o.beams, o.resolution);
+    closer.addScan(k, log.records[k].scan.timestamp, filter, motion, nullptr, ps);
+  }
+  r.closed = closer.finalPoses();
+  if (counts) *counts = closer.counts();
+  if (closures) *closures = closer.closures();
+  // The return: after half the poses, the one nearest the start in the truth.
+  double best = 1e18;
+  for (std::size_t k = truth.size() / 2; k < truth.size(); ++k) {
+    const double d = std::hypot(truth[k].x - truth[0].x, truth[k].y - truth[0].y);
+    if (d < best) best = d, r.back = k;
+  }
+  const slam::Pose2 rt = slam::relative(toPose(truth[0]), toPose(truth[r.back]));
+  const auto error = [&](const std::vector<slam::Pose2>& p, double& xy, double& th) {
+    const slam::Pose2 re = slam::relative(p[0], p[r.back]);
+    xy = std::hypot(re.x - rt.x, re.y - rt.y);
+    th = std::abs(slam::wrapAngle(re.theta - rt.theta));
+  };
+  error(r.drifted, r.drift_xy, r.drift_th);
+  error(r.closed, r.closed_xy, r.closed_th);
+  return r;
+}
+
+}  // namespace
+
+TEST(LoopClosure, AKilometreLoopThirtyMetresOffAtTheReturnClosesThroughTheGlobalSearch) {
+  // Once round the 1 km ring counter-clockwise and 80 m on past the start; the filter's heading drifts by 0.4 mrad
+  // per metre (20 degrees over the loop), so the return is tens of metres off: far beyond the windowed search's
+  // 8 m. The place signatures must propose the start, agreeing matches accept it, and the loop closes.
+  sim::SimOptions so;
+  so.max_range = 10.0;
+  so.beams = 91;
+  so.scan_spacing = 0.5;
+  so.seed = 21;
+  const sim::SimLog log = sim::simulate(
+      kilometreLoopPlan(),
+      {{5, 1.25, 0}, {298.75, 1.25, 0}, {298.75, 198.75, 0}, {1.25, 198.75, 0}, {1.25, 1.25, 0}, {85, 1.25, 0}}, so);
+  slam::SlamOptions o = testOptions();
+  slam::LoopClosureCounts counts;
+  std::vector<slam::LoopClosureRecord> closures;
+  const FedLoop on = feedDrifting(log, o, 0.0004 * 0.87, &counts, &closures);
+  std::printf("1 km loop: drift at the return %.2f m %.1f deg; closed %.3f m %.2f deg; global: searches %zu "
+              "proposed %zu contradicted %zu accepted %zu dropped %zu\n",
+              on.drift_xy, on.drift_th * 57.3, on.closed_xy, on.closed_th * 57.3, counts.global_searches,
+              counts.global_proposed, counts.global_contradicted, counts.global_accepted, counts.global_dropped);
+  EXPECT_GT(on.drift_xy, 25.0);
+  EXPECT_GT(on.drift_th, 0.3);
+  EXPECT_GT(counts.global_accepted, 2u);
+  EXPECT_LT(on.closed_xy, 0.10);
+  EXPECT_LT(on.closed_th, 0.01);
+  // Every global closure joins two poses that are truly at the same place.
+  for (const auto& c : closures)
+    if (c.global) {
+      const auto& a = log.truth[c.scan_index];
+      const auto& b = log.truth[c.submap_node];  // nodes are scans here: the loop closure is fed every scan
+      EXPECT_LT(std::hypot(a.x - b.x, a.y - b.y), 3.0) << "global closure at scan " << c.scan_index;
+    }
+  // Without the global search the windowed one cannot reach the start: the loop stays open.
+  o.loop_closure.global_search = false;
+  const FedLoop off = feedDrifting(log, o, 0.0004 * 0.87, nullptr, nullptr);
+  std::printf("1 km loop, windowed search alone: closed %.2f m\n", off.closed_xy);
+  EXPECT_GT(off.closed_xy, 5.0);
+}
+
+TEST(LoopClosure, LookAlikeMatchesBesideTheTrajectoryAreProposedAndRefused) {
+  // A east and back, B east and back, A east again, fed to the loop closure alone (no drift). B's places look like
+  // A's, 5 m beside them: the global search proposes B-to-A matches, and the short trajectory between the two
+  // corridors contradicts them. None may enter the graph; the real revisit of A does close.
+  sim::SimOptions so;
+  so.max_range = 10.0;
+  so.scan_spacing = 0.3;
+  so.seed = 9;
+  const double pi = 3.14159265358979;
+  const sim::SimLog log = sim::simulate(lookAlikePlan(),
+                                        {{3, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi},
+                                         {1.25, 6.25, 0}, {28.5, 6.25, 0}, {28.5, 6.25, pi}, {1.25, 6.25, pi},
+                                         {1.25, 1.25, 0}, {28.5, 1.25, 0}},
+                                        so);
+  slam::SlamOptions o = testOptions();
+  slam::LoopClosureCounts counts;
+  std::vector<slam::LoopClosureRecord> closures;
+  const FedLoop r = feedDrifting(log, o, 0.0, &counts, &closures);
+  std::size_t wrong = 0;  // global closures that join the two corridors
+  for (const auto& c : closures)
+    if (c.global && !c.rejected && (log.truth[c.scan_index].y > 4) != (log.truth[c.submap_node].y > 4)) ++wrong;
+  double max_err = 0.0;
+  for (std::size_t k = 0; k < r.closed.size(); ++k) {
+    const slam::Pose2 e = slam::relative(r.closed[0], r.closed[k]);
+    const slam::Pose2 t = slam::relative(toPose(log.truth[0]), toPose(log.truth[k]));
+    max_err = std::max(max_err, std::hypot(e.x - t.x, e.y - t.y));
+  }
+  std::printf("look-alike, global: proposed %zu contradicted %zu accepted %zu; closures %zu, across corridors %zu; "
+              "max error %.3f m\n",
+              counts.global_proposed, counts.global_contradicted, counts.global_accepted, closures.size(), wrong,
+              max_err);
+  EXPECT_GT(counts.global_contradicted, 0u);
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_LT(max_err, 0.1);
+}

@@ -52,10 +52,26 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
   const std::size_t i = nodes_.size() - 1;
   step.newest_before = step.newest_after = graph_.pose(i);
   if (i % static_cast<std::size_t>(o_.search_every) == 0) searchForClosures(step);
+  if (o_.global_search) {
+    std::vector<Pose2> geometry;  // the filter's path, read once per step and only when needed
+    const auto geo = [&]() -> const std::vector<Pose2>& {
+      if (geometry.empty()) geometry = localGeometry();
+      return geometry;
+    };
+    if (next_to_sign_ < nodes_.size() && nodes_[i].travelled - nodes_[next_to_sign_].travelled >= o_.global_query_m)
+      signOlderPlaces(geo());
+    if (nodes_[i].travelled - last_global_travel_ >= o_.global_every_m) {
+      last_global_travel_ = nodes_[i].travelled;
+      proposeGlobalClosures(geo());
+    }
+    if (!pending_.empty()) verifyGlobalClosures(step, geo());
+  }
   const bool pending = pending_from_ < closures_.size();
   // Optimise every optimize_every scans while closures are pending, and at once after a closure that moves the
-  // estimate by more than ten loop_sigma_xy (the first closure after a long excursion).
-  const bool large = step.accepted > 0 && closures_.back().offset_xy > 10.0 * o_.loop_sigma_xy;
+  // estimate by more than ten loop_sigma_xy (the first closure after a long excursion) or after verified global
+  // closures.
+  const bool large = optimize_now_ || (step.accepted > 0 && closures_.back().offset_xy > 10.0 * o_.loop_sigma_xy);
+  optimize_now_ = false;
   if (pending && (i - last_optimized_node_ >= static_cast<std::size_t>(o_.optimize_every) || large))
     optimizePoseGraph(step);
   return step;
@@ -135,7 +151,7 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   // Submaps: runs of submap_nodes consecutive nodes.
   const std::size_t i = nodes_.size() - 1;
   if (submaps_.empty() || submaps_.back().last + 1 - submaps_.back().first >= static_cast<std::size_t>(o_.submap_nodes))
-    submaps_.push_back({i, i});
+    submaps_.push_back({i, i, {}, false});
   else
     submaps_.back().last = i;
 }
@@ -434,7 +450,11 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   const std::size_t i = nodes_.size() - 1;
   const Pose2 before = graph_.pose(i);
   adoptFilterPath();
-  const PoseGraphSolveOptions so = solveOptions();
+  PoseGraphSolveOptions so = solveOptions();
+  // A new global closure can bend the graph far from where it stands: more iterations for that optimisation.
+  bool global = false;
+  for (std::size_t k = pending_from_; k < closures_.size(); ++k) global = global || closures_[k].global;
+  if (global) so.max_iterations = std::max(so.max_iterations, 4 * o_.max_iterations);
   graph_.optimize(so);
   ++optimizations_;
   // The new closures that still disagree with everything else are look-alikes: out, and optimise again.
@@ -442,7 +462,9 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   for (std::size_t k = pending_from_; k < closures_.size(); ++k) {
     LoopClosureRecord& c = closures_[k];
     c.residual = graph_.residual(graph_.edges()[c.edge]).norm();
-    if (o_.outlier_sigmas > 0.0 && c.residual > o_.outlier_sigmas) {
+    // Global closures were verified by their agreement (a large correction leaves them far from the stiff motion
+    // edges' first compromise): they stay.
+    if (!c.global && o_.outlier_sigmas > 0.0 && c.residual > o_.outlier_sigmas) {
       c.rejected = true;
       graph_.deactivateEdge(c.edge);
       rejected = true;
@@ -467,6 +489,287 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
                                   std::abs(d.theta) > o_.feedback_min_rotation);
 }
 
+std::pair<std::size_t, std::size_t> LoopCloser::stretchOf(std::size_t centre, double back, double ahead) const {
+  const double t = nodes_[centre].travelled;
+  std::size_t first = centre, last = centre;
+  while (first > 0 && t - nodes_[first - 1].travelled <= back) --first;
+  while (last + 1 < nodes_.size() && nodes_[last + 1].travelled - t <= ahead) ++last;
+  return {first, last};
+}
+
+std::vector<Point2> LoopCloser::stretchPoints(std::size_t centre, std::size_t first, std::size_t last,
+                                              const std::vector<Pose2>& geometry, double voxel) const {
+  // Nearest to the centre first, so that the thinning keeps the points of the scans closest to it.
+  std::vector<std::size_t> order;
+  for (std::size_t j = first; j <= last; ++j) order.push_back(j);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const auto d = [&](std::size_t j) { return j > centre ? j - centre : centre - j; };
+    return d(a) < d(b);
+  });
+  std::vector<Point2> pts;
+  const Pose2& ref = geometry[centre];
+  for (std::size_t j : order) {
+    const Pose2 rel = relative(ref, geometry[j]);
+    for (const Point2& p : nodes_[j].points) pts.push_back(transform(rel, p));
+  }
+  thinInPlace(pts, voxel);
+  return pts;
+}
+
+PlaceSignatureShape LoopCloser::signatureShape() const {
+  PlaceSignatureShape shape;
+  shape.rings = o_.signature_rings;
+  shape.sectors = o_.signature_sectors;
+  shape.radius = o_.point_range;
+  shape.voxel = 2.0 * o_.query_voxel;
+  return shape;
+}
+
+void LoopCloser::signOlderPlaces(const std::vector<Pose2>& geometry) {
+  // A node is signed once the trajectory has gone half global_query_m past it (its stretch is complete), every
+  // global_signature_every_m of travel: the points of the trajectory within half global_query_m either side of it,
+  // so that the way there and the way back give the same signature.
+  const std::size_t i = nodes_.size() - 1;
+  const double half = 0.5 * o_.global_query_m;
+  const PlaceSignatureShape shape = signatureShape();
+  for (; next_to_sign_ < nodes_.size() && nodes_[i].travelled - nodes_[next_to_sign_].travelled >= half;
+       ++next_to_sign_) {
+    const std::size_t j = next_to_sign_;
+    if (nodes_[j].travelled - last_signed_travel_ < o_.global_signature_every_m) continue;
+    last_signed_travel_ = nodes_[j].travelled;
+    const auto [first, last] = stretchOf(j, half, half);
+    places_.push_back({j, PlaceSignature(stretchPoints(j, first, last, geometry, o_.query_voxel), shape)});
+  }
+}
+
+void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
+  const std::size_t i = nodes_.size() - 1;
+  const double half = 0.5 * o_.global_query_m;
+  if (nodes_[i].travelled < o_.global_query_m) return;
+  // The query: the newest global_query_m of trajectory, centred on its middle node (the stretch a place is signed
+  // with).
+  const std::size_t c = stretchOf(i, half, 0.0).first;
+  const auto [q0, q1] = stretchOf(c, half, half);
+  const std::vector<Point2> query = stretchPoints(c, q0, q1, geometry, o_.query_voxel);
+  if (query.size() < 50) return;
+  const PlaceSignature signature(query, signatureShape());
+  if (signature.empty()) return;
+  ++global_searches_;
+  // Candidates: places whose stretches ended at least global_min_travel before the query's began, ranked by the
+  // signatures' distance.
+  const double latest = nodes_[q0].travelled - o_.global_min_travel - half;
+  struct Scored {
+    double distance, yaw;
+    std::size_t place;
+  };
+  // The ring keys (heading-free, cheap) pre-rank every place; the full distance, with its heading, ranks the best
+  // of them.
+  std::vector<std::pair<double, std::size_t>> ranked;
+  for (std::size_t k = 0; k < places_.size() && nodes_[places_[k].node].travelled <= latest; ++k)
+    ranked.emplace_back(places_[k].signature.ringKeyDistance(signature), k);
+  const std::size_t pre = std::min<std::size_t>(ranked.size(), 10 * static_cast<std::size_t>(o_.global_candidates));
+  std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(pre), ranked.end());
+  ranked.resize(pre);
+  std::vector<Scored> scored;
+  for (const auto& [key_distance, k] : ranked) {
+    (void)key_distance;
+    double yaw = 0.0;
+    const double d = places_[k].signature.distance(signature, &yaw);
+    if (d <= o_.global_max_distance) scored.push_back({d, yaw, k});
+  }
+  std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.place < b.place;
+  });
+  std::vector<std::size_t> tried;  // nodes of the places matched: distinct places only
+  const std::vector<PathDrift> drift = driftToSubmaps(c);
+  double d_max = o_.resolution;
+  for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
+  const double dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
+  for (const Scored& cand : scored) {
+    if (tried.size() >= static_cast<std::size_t>(o_.global_candidates)) break;
+    const std::size_t j = places_[cand.place].node;
+    bool distinct = true;
+    for (std::size_t t : tried)
+      if (std::abs(nodes_[t].travelled - nodes_[j].travelled) < o_.global_independent_m) distinct = false;
+    if (!distinct) continue;
+    tried.push_back(j);
+    // The exact match: the query against the place's stretches both ways, around the signature's heading.
+    const auto [t0, t1] = stretchOf(j, o_.global_query_m, o_.global_query_m);
+    const CorrelationGrid grid(stretchPoints(j, t0, t1, geometry, o_.resolution), o_.resolution, o_.field_sigma,
+                               o_.depth, o_.refine_sigma);
+    SearchWindow w;
+    w.center = {0.0, 0.0, cand.yaw};
+    w.xy = o_.global_window_xy;
+    w.theta = o_.global_window_theta;
+    const auto found = branchAndBoundSearch(grid, query, w, o_.global_min_score);
+    if (!found) continue;
+    const double margin_xy = 4.0 * grid.resolution(), margin_th = 4.0 * dtheta;
+    if (std::abs(found->pose.x) > w.xy - margin_xy || std::abs(found->pose.y) > w.xy - margin_xy ||
+        std::abs(wrapAngle(found->pose.theta - w.center.theta)) > w.theta - margin_th)
+      continue;
+    const CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
+    if (m.score < o_.global_min_score) continue;
+    if (o_.ambiguity_ratio < 1.0) {
+      const Point2 at{m.pose.x, m.pose.y};
+      if (branchAndBoundSearch(grid, query, w, std::max(o_.global_min_score, o_.ambiguity_ratio * m.score), &at,
+                               o_.ambiguity_distance))
+        continue;
+    }
+    ++global_proposed_;
+    // No bound from the drift a long trajectory can have gathered: a building's odometry can drift by a third of
+    // the travel (the outdoor campus log), and agreement decides (verifyGlobalClosures). But where the trajectory
+    // between the place and the query is short enough to trust (global_consistency_max_m), the match must agree
+    // with it as the windowed search's own window would (a look-alike corridor a few metres beside the place).
+    const Pose2 estimate = relative(graph_.pose(j), graph_.pose(c));
+    const double off_xy = std::hypot(m.pose.x - estimate.x, m.pose.y - estimate.y);
+    const double off_theta = std::abs(wrapAngle(m.pose.theta - estimate.theta));
+    // Beyond that, the heading: the filter's heading drifts by at most window_theta_per_m per metre of the graph's
+    // least-drift path (plus the suspect steps' disagreement), and so the position by that heading times the
+    // path; a match that turns the trajectory further is a look-alike (the same corner elsewhere in the building).
+    const PathDrift& pd = drift[std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes))];
+    const double bound_theta = o_.window_theta_min + o_.window_theta_per_m * pd.travel + pd.suspect_theta;
+    const double bound_xy = o_.window_xy_min + o_.window_xy_per_m * pd.travel + pd.suspect_xy + bound_theta * pd.travel;
+    if (off_theta > bound_theta || off_xy > bound_xy) {
+      ++global_contradicted_;
+      continue;
+    }
+    const double chain = nodes_[c].travelled - nodes_[j].travelled;
+    if (chain <= o_.global_consistency_max_m) {
+      const Pose2 along = relative(geometry[j], geometry[c]);
+      const Pose2 e = relative(along, m.pose);
+      if (std::hypot(e.x, e.y) > o_.global_consistency_xy + o_.window_xy_per_m * chain ||
+          std::abs(e.theta) > o_.window_theta_min + o_.window_theta_per_m * chain) {
+        ++global_contradicted_;
+        continue;
+      }
+    }
+    GlobalMatch g;
+    g.node = c;
+    g.place = j;
+    g.z = m.pose;
+    g.sqrt_information = closureSqrtInformation(grid, query, m.pose, dtheta);
+    g.score = m.score;
+    g.signature_distance = cand.distance;
+    g.offset_xy = off_xy;
+    g.offset_theta = off_theta;
+    pending_.push_back(g);
+  }
+}
+
+void LoopCloser::distributeLoopError(std::size_t place, std::size_t node, const Pose2& z) {
+  if (place >= node) return;
+  const Pose2 target = compose(graph_.pose(place), z);
+  const double span = nodes_[node].travelled - nodes_[place].travelled;
+  if (span <= 0.0) return;
+  const double dtheta = wrapAngle(target.theta - graph_.pose(node).theta);
+  // The heading error spread evenly over the travel from the place to the node, the chain re-integrated from the
+  // place; then the remaining translation error spread the same way; the nodes after `node` follow rigidly.
+  std::vector<Pose2> p(nodes_.size());
+  p[place] = graph_.pose(place);
+  for (std::size_t k = place + 1; k < nodes_.size(); ++k) {
+    Pose2 step = relative(graph_.pose(k - 1), graph_.pose(k));
+    if (k <= node) step.theta = wrapAngle(step.theta + dtheta * (nodes_[k].travelled - nodes_[k - 1].travelled) / span);
+    p[k] = compose(p[k - 1], step);
+  }
+  const double ex = target.x - p[node].x, ey = target.y - p[node].y;
+  for (std::size_t k = place + 1; k < nodes_.size(); ++k) {
+    const double f = k <= node ? (nodes_[k].travelled - nodes_[place].travelled) / span : 1.0;
+    graph_.setPose(k, {p[k].x + f * ex, p[k].y + f * ey, p[k].theta});
+  }
+}
+
+bool LoopCloser::globalMatchesAgree(const GlobalMatch& a, const GlobalMatch& b,
+                                    const std::vector<Pose2>& geometry) const {
+  const double travel_q = std::abs(nodes_[b.node].travelled - nodes_[a.node].travelled);
+  const double travel_p = std::abs(nodes_[b.place].travelled - nodes_[a.place].travelled);
+  if (travel_q > o_.global_consistency_max_m || travel_p > o_.global_consistency_max_m) return false;
+  // The queries' relative pose along the trajectory, against the one the two matches imply through the places'
+  // relative pose: node_a⁻¹ ⊕ node_b = z_a⁻¹ ⊕ (place_a⁻¹ ⊕ place_b) ⊕ z_b.
+  const Pose2 along = relative(geometry[a.node], geometry[b.node]);
+  const Pose2 places = relative(geometry[a.place], geometry[b.place]);
+  const Pose2 implied = compose(compose(relative(a.z, Pose2{}), places), b.z);
+  const Pose2 e = relative(along, implied);
+  const double length = travel_q + travel_p;
+  return std::hypot(e.x, e.y) <= o_.global_consistency_xy + o_.global_consistency_per_m * length &&
+         std::abs(e.theta) <= o_.global_consistency_theta + 0.1 * o_.global_consistency_per_m * length;
+}
+
+void LoopCloser::verifyGlobalClosures(LoopClosureStep& step, const std::vector<Pose2>& geometry) {
+  const std::size_t i = nodes_.size() - 1;
+  const double now = nodes_[i].travelled;
+  // Matches that waited too long without agreement are dropped.
+  std::vector<GlobalMatch> kept;
+  for (GlobalMatch& g : pending_) {
+    if (now - nodes_[g.node].travelled <= o_.global_pending_m) kept.push_back(g);
+    else if (!g.accepted) ++global_dropped_;
+  }
+  pending_.swap(kept);
+  // For each match not yet accepted, newest first: the largest set of mutually agreeing matches it belongs to
+  // (greedy, newest first); accepted when it holds an accepted match or global_agree independent queries.
+  for (std::size_t k = pending_.size(); k-- > 0;) {
+    if (pending_[k].accepted) continue;
+    std::vector<std::size_t> clique{k};
+    for (std::size_t l = pending_.size(); l-- > 0;) {
+      if (l == k) continue;
+      bool agrees = true;
+      for (std::size_t m : clique)
+        if (!globalMatchesAgree(pending_[std::min(l, m)], pending_[std::max(l, m)], geometry)) {
+          agrees = false;
+          break;
+        }
+      if (agrees) clique.push_back(l);
+    }
+    bool anchored = false;
+    std::vector<double> queries;
+    for (std::size_t m : clique) {
+      anchored = anchored || pending_[m].accepted;
+      queries.push_back(nodes_[pending_[m].node].travelled);
+    }
+    std::sort(queries.begin(), queries.end());
+    int independent = 0;
+    double last = -1e300;
+    for (double q : queries)
+      if (q - last >= o_.global_independent_m) {
+        ++independent;
+        last = q;
+      }
+    if (!anchored && independent < o_.global_agree) continue;
+    // A first global closure after a long excursion can correct hundreds of metres and most of a radian: the
+    // optimisation starts from the trajectory with that error spread along the loop (distributeLoopError).
+    if (!anchored) {
+      const GlobalMatch& newest = pending_[*std::max_element(clique.begin(), clique.end(), [&](std::size_t a, std::size_t b) {
+        return pending_[a].node < pending_[b].node;
+      })];
+      distributeLoopError(newest.place, newest.node, newest.z);
+    }
+    for (std::size_t m : clique) {
+      GlobalMatch& g = pending_[m];
+      if (g.accepted) continue;
+      g.accepted = true;
+      PoseGraphEdge e;
+      e.a = g.place;
+      e.b = g.node;
+      e.z = g.z;
+      e.sqrt_information = g.sqrt_information;
+      e.robust = false;
+      LoopClosureRecord rec;
+      rec.edge = graph_.addEdge(e);
+      rec.node = g.node;
+      rec.scan_index = nodes_[g.node].scan_index;
+      rec.timestamp = nodes_[g.node].timestamp;
+      rec.submap_node = g.place;
+      rec.score = g.score;
+      rec.window_xy = o_.global_window_xy;
+      rec.offset_xy = g.offset_xy;
+      rec.offset_theta = g.offset_theta;
+      rec.global = true;
+      closures_.push_back(rec);
+      ++step.accepted;
+      optimize_now_ = true;
+    }
+  }
+}
+
 LoopClosureCounts LoopCloser::counts() const {
   LoopClosureCounts c;
   c.nodes = nodes_.size();
@@ -475,7 +778,14 @@ LoopClosureCounts LoopCloser::counts() const {
   c.on_border = border_;
   c.suspect_steps = suspect_;
   c.optimizations = optimizations_;
-  for (const LoopClosureRecord& r : closures_) (r.rejected ? c.rejected : c.accepted) += 1;
+  for (const LoopClosureRecord& r : closures_) {
+    (r.rejected ? c.rejected : c.accepted) += 1;
+    if (r.global) ++c.global_accepted;
+  }
+  c.global_searches = global_searches_;
+  c.global_proposed = global_proposed_;
+  c.global_dropped = global_dropped_;
+  c.global_contradicted = global_contradicted_;
   return c;
 }
 
@@ -483,17 +793,20 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
                          std::size_t feedbacks) {
   std::ostringstream out;
   out << "# closures: node scan_index timestamp submap_node score window_xy offset_xy offset_theta correction_xy "
-         "correction_theta residual rejected\n";
+         "correction_theta residual rejected global\n";
   out << std::setprecision(10);
   for (const LoopClosureRecord& c : closures)
     out << "# closure " << c.node << ' ' << c.scan_index << ' ' << c.timestamp << ' ' << c.submap_node << ' '
         << std::setprecision(4) << c.score << ' ' << c.window_xy << ' ' << c.offset_xy << ' ' << c.offset_theta
         << ' ' << c.correction_xy << ' ' << c.correction_theta << ' ' << c.residual << ' ' << (c.rejected ? 1 : 0)
+        << ' ' << (c.global ? 1 : 0)
         << std::setprecision(10) << '\n';
   out << std::setprecision(4) << "# loop_closure: nodes " << n.nodes << " searches " << n.searches << " closures "
       << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " on_border " << n.on_border
       << " suspect_steps " << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks
-      << '\n';
+      << " global_searches " << n.global_searches << " global_proposed " << n.global_proposed
+      << " global_accepted " << n.global_accepted
+      << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped << '\n';
   return out.str();
 }
 

@@ -37,7 +37,7 @@ struct MapLayer {
   /// p(occupied) of a cell (1 - grey/255).
   double occupancy(int row, int col) const { return 1.0 - grey.at<unsigned char>(row, col) / 255.0; }
   /// The layer as the typed map the topology takes (the grey image shared, not copied).
-  MapImage image() const { return {grey, resolution, {origin_x, origin_y}, kind, source}; }
+  MapImage image() const { return {grey, resolution, {origin_x, origin_y}, kind, source, {}}; }
 };
 
 /// The layer of a typed map (as io::readMap returns it).

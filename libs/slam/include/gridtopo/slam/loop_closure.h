@@ -11,6 +11,15 @@
 //   3. optimizePoseGraph: Ceres with a Huber loss on the closures (pose_graph.h), every optimize_every scans
 //      while closures are pending;
 //   4. the correction of the newest pose, which the caller may feed back into the filter (SlamRun).
+// And, beyond the drift window (global_search):
+//   5. signOlderPlaces: every older stretch of the trajectory gets a place signature (place_signature.h, Scan
+//      Context after Kim & Kim, IROS 2018), centred on its middle pose (the same for the way there and back);
+//   6. proposeGlobalClosures: the newest stretch's signature ranks them all, wherever the estimate puts them; the
+//      best are matched exactly (branch and bound around the signature's place and heading);
+//   7. verifyGlobalClosures: a match enters the graph only once global_agree independent matches agree with each
+//      other and with the trajectory between them (pairwise consistency, after Mangelson, Dominic, Eustice,
+//      Vasudevan, "Pairwise consistent measurement set maximization for robust multi-robot map merging", ICRA 2018),
+//      (no bound on the drift itself: a building's odometry can drift by a third of the travel).
 // The final trajectory and map are rebuilt from the optimised poses.
 #include <cstddef>
 #include <functional>
@@ -25,6 +34,7 @@
 #include "gridtopo/slam/correlative_matcher.h"
 #include "gridtopo/slam/loop_closure_options.h"
 #include "gridtopo/slam/motion_model.h"
+#include "gridtopo/slam/place_signature.h"
 #include "gridtopo/slam/pose2.h"
 #include "gridtopo/slam/pose_graph.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -45,6 +55,7 @@ struct LoopClosureRecord {
   double correction_xy = 0.0, correction_theta = 0.0;
   double residual = 0.0;  ///< its whitened residual after that optimisation (standard deviations)
   bool rejected = false;  ///< left out after that optimisation (residual above outlier_sigmas)
+  bool global = false;    ///< proposed by the place signatures beyond the drift window and verified by agreement
   std::size_t edge = 0;   ///< its edge in the pose graph
 };
 
@@ -52,6 +63,10 @@ struct LoopClosureRecord {
 struct LoopClosureCounts {
   std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, on_border = 0, suspect_steps = 0,
               optimizations = 0;
+  /// The global search: searches, exact matches proposed, matches refused because the short trajectory between the
+  /// place and the query contradicts them, matches accepted (after agreement), matches dropped for want of agreement.
+  std::size_t global_searches = 0, global_proposed = 0, global_contradicted = 0, global_accepted = 0,
+              global_dropped = 0;
 };
 
 /// What one step of the loop closure did.
@@ -117,6 +132,34 @@ class LoopCloser {
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                        const Pose2* odometry, const PreparedScan& scan);
   void searchForClosures(LoopClosureStep& step);
+  /// A stretch of trajectory: the nodes whose travel lies within [travel(centre) − back, travel(centre) + ahead].
+  std::pair<std::size_t, std::size_t> stretchOf(std::size_t centre, double back, double ahead) const;
+  /// The points of nodes [first, last] in the frame of node `centre`, thinned to one per `voxel`.
+  std::vector<Point2> stretchPoints(std::size_t centre, std::size_t first, std::size_t last,
+                                    const std::vector<Pose2>& geometry, double voxel) const;
+  PlaceSignatureShape signatureShape() const;
+  void signOlderPlaces(const std::vector<Pose2>& geometry);
+  void proposeGlobalClosures(const std::vector<Pose2>& geometry);
+  void verifyGlobalClosures(LoopClosureStep& step, const std::vector<Pose2>& geometry);
+  /// The graph's poses from `place` on, with the error that the closure `z` (node in the place's frame) finds
+  /// spread along the travel between them: the optimisation's starting point after a large correction.
+  void distributeLoopError(std::size_t place, std::size_t node, const Pose2& z);
+  /// A place of the trajectory: node `node` and the stretch of half global_query_m either side of it.
+  struct SignedPlace {
+    std::size_t node;
+    PlaceSignature signature;
+  };
+  /// An exact match of a global search, waiting for agreement.
+  struct GlobalMatch {
+    std::size_t node, place;  ///< the query's middle node, the place's node
+    Pose2 z;                  ///< the node in the place's frame
+    Eigen::Matrix3d sqrt_information;
+    double score, signature_distance, offset_xy, offset_theta;
+    bool accepted = false;
+  };
+  /// The two matches agree: the loop they close with the trajectory between their queries and between their
+  /// places closes within the tolerance (false when either stretch is too long to compare).
+  bool globalMatchesAgree(const GlobalMatch& a, const GlobalMatch& b, const std::vector<Pose2>& geometry) const;
   /// How far the graph's motion edges can have drifted between two nodes, each the least over the graph's paths
   /// (motion edges count, accepted closures are free): the travel (m), and the filter's disagreement with the
   /// odometry summed over the suspect steps (m, rad), where one of the two went wrong.
@@ -164,6 +207,13 @@ class LoopCloser {
   // Correlation grids, least recently used last.
   std::list<std::pair<std::size_t, std::unique_ptr<CorrelationGrid>>> cache_;
   std::size_t searches_ = 0, ambiguous_ = 0, border_ = 0, suspect_ = 0, optimizations_ = 0;
+  // The global search.
+  std::vector<SignedPlace> places_;
+  std::size_t next_to_sign_ = 0;
+  double last_signed_travel_ = -1e300, last_global_travel_ = -1e300;
+  std::vector<GlobalMatch> pending_;
+  bool optimize_now_ = false;
+  std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0;
 };
 
 /// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then

@@ -42,6 +42,36 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double ambiguity_ratio = 0.93;
   double ambiguity_distance = 0.6;  ///< m
 
+  // Global closures: proposed anywhere in the map, whatever the drift, and verified before they bend it
+  /// true: besides the windowed search above, places are proposed by their signature (place_signature.h) among
+  /// every older stretch of the trajectory, matched exactly, and enter the graph only once several independent
+  /// matches agree with each other and with the trajectory between them. false: the windowed search alone.
+  bool global_search = true;
+  double global_every_m = 3.0;     ///< m of travel between global searches
+  double global_query_m = 20.0;    ///< m of trajectory behind a pose whose points form its place (query and signature)
+  double global_signature_every_m = 1.0;  ///< m of travel between the older poses that get a signature
+  double global_min_travel = 30.0;  ///< m of travel between a place and the query before it is a candidate
+  int global_candidates = 3;        ///< places matched exactly per global search, best signatures first
+  double global_max_distance = 0.45; ///< a candidate's signature distance must be below this (0: identical, 1: unlike)
+  double global_window_xy = 3.0;    ///< m, half-width of the exact search around the signature's place
+  double global_window_theta = 0.2;  ///< rad, half-width around the signature's heading
+  double global_min_score = 0.6;    ///< the exact match's mean grid value over the query's points
+  /// Matches (this one included) whose queries lie at least global_independent_m apart that must agree before any
+  /// of them enters the graph.
+  int global_agree = 3;
+  double global_independent_m = 4.0;
+  /// Two matches agree when the loop they close with the trajectory between their queries and between their places
+  /// closes within global_consistency_xy (m) + global_consistency_per_m × that trajectory's length, and
+  /// global_consistency_theta (rad) + a tenth of that per metre; places or queries further apart than
+  /// global_consistency_max_m along the trajectory are not compared.
+  double global_consistency_xy = 0.3;
+  double global_consistency_theta = 0.03;
+  double global_consistency_per_m = 0.01;
+  double global_consistency_max_m = 80.0;
+  double global_pending_m = 60.0;   ///< m of travel a match waits for agreement before it is dropped
+  int signature_rings = 15;         ///< the signature's radial bins over point_range
+  int signature_sectors = 72;       ///< its angular bins
+
   // The pose graph
   /// A closure's information is the curvature of its match's score (each query point one observation, divided by
   /// information_gain for the correlation between neighbouring points), its deviations floored at loop_sigma_*.
