@@ -54,6 +54,7 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME gridtopo)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # a shlibs file and ldconfig triggers for our libraries
 set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "RBPF grid SLAM and room/corridor/doorway topology on MRPT\n"
     " Command-line apps gridtopo-slam, gridtopo-topology, gridtopo-map, ... and the GUI, their shared libraries,\n"
     " the shipped place model and the commented INI files (/usr/share/gridtopo).")
