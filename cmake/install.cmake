@@ -55,9 +55,10 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME gridtopo)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # a shlibs file and ldconfig triggers for our libraries
-set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "RBPF grid SLAM and room/corridor/doorway topology on MRPT\n"
-    " Command-line apps gridtopo-slam, gridtopo-topology, gridtopo-map, ... and the GUI, their shared libraries,\n"
-    " the shipped place model and the commented INI files (/usr/share/gridtopo).")
+# One string each (a list would put ';' into the control file): the synopsis line, then the extended description.
+set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "RBPF grid SLAM and room/corridor/doorway topology on MRPT
+The apps gridtopo-slam, gridtopo-topology, gridtopo-map, ... and gridtopo-gui, their shared libraries, the shipped
+place model and the commented INI files (/usr/share/gridtopo).")
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME gridtopo-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
@@ -65,6 +66,7 @@ set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
 libmrpt-config-dev, libmrpt-math-dev, libmrpt-poses-dev, libmrpt-serialization-dev, libmrpt-io-dev, \
 libmrpt-system-dev, libopencv-dev, libopencv-contrib-dev, libeigen3-dev, libceres-dev, nlohmann-json3-dev, \
 libtclap-dev, zlib1g-dev")
-set(CPACK_DEBIAN_DEV_DESCRIPTION "gridtopo: headers and CMake package\n"
-    " find_package(gridtopo) gives the targets gridtopo::slam, gridtopo::topology, gridtopo::mapping, ... .")
+set(CPACK_DEBIAN_DEV_DESCRIPTION "gridtopo: headers and CMake package
+find_package(gridtopo) gives the targets gridtopo::slam, gridtopo::topology, gridtopo::mapping, gridtopo::places,
+gridtopo::io and gridtopo::core.")
 include(CPack)

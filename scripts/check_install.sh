@@ -63,7 +63,8 @@ say "example configured and built"
 
 # The first 1000 scans of Intel (its first rooms and corridor; 200 scans hold only 15 SLAM steps: the robot starts
 # slowly) as an MRPT rawlog (action / sensory-frame layout), by the installed gridtopo-import.
-zcat "$SRC/datasets/slam/intel.clf.gz" | awk '{ print } $1 == "FLASER" && ++n == 1000 { exit }' > "$W/intel1000.clf"
+awk '{ print } $1 == "FLASER" && ++n == 1000 { exit }' <(zcat "$SRC/datasets/slam/intel.clf.gz") > "$W/intel1000.clf"
+[ "$(grep -c '^FLASER' "$W/intel1000.clf")" = 1000 ] || fail "intel1000.clf does not hold 1000 scans"
 (cd "$W" && "$P/bin/gridtopo-import" -q -i intel1000.clf -o intel1000.rawlog.gz)
 printf '[slam]\nparticles = 10\nthreads = 2\n\n[topology_builder]\nupdate_every = 100\n' > "$W/example.ini"
 (cd "$W" && ./example/mrpt_builder intel1000.rawlog.gz out example.ini) > "$W/example.txt" ||
@@ -87,6 +88,12 @@ rooms=$(num '(\([0-9]*\) rooms'); corridors=$(num '\([0-9]*\) corridors'); doorw
 [ "$cols" -ge 400 ] && [ "$cols" -le 800 ] && [ "$rows" -ge 400 ] && [ "$rows" -le 800 ] || fail "map $cols x $rows"
 [ "$rooms" -ge 3 ] && [ "$corridors" -ge 1 ] && [ "$doorways" -ge 2 ] && [ "$edges" -ge $((nodes - 1)) ] ||
   fail "graph: $rooms rooms, $corridors corridors, $doorways doorways, $edges edges"
+# The observation-only layout (CObservationOdometry + CObservation2DRangeScan) goes through processObservation.
+(cd "$W" && "$P/bin/gridtopo-import" -q -i intel1000.clf --layout obs -o intel1000obs.rawlog.gz &&
+  ./example/mrpt_builder intel1000obs.rawlog.gz out-obs example.ini) > "$W/example-obs.txt" ||
+  { cat "$W/example-obs.txt"; fail "the example failed on the observation-only layout"; }
+grep -Eq '2000 rawlog entries \(0 frames, 2000 observations\), (1[2-9][0-9]|2[0-4][0-9]) scans in the map' \
+  "$W/example-obs.txt" || fail "observation-only layout: $(cat "$W/example-obs.txt")"
 for f in map.gridmap.gz map.png path.txt topology.json topology.graphml; do
   [ -s "$W/out/$f" ] || fail "the example wrote no $f"
 done
@@ -132,7 +139,8 @@ for f in ./usr/include/gridtopo/slam/map_builder.h "./usr/$LIBDIR/cmake/gridtopo
 done
 ! grep -q '^./usr/include' "$W/run.txt" || fail "headers in the runtime package"
 run_depends=$(dpkg-deb -f "$RUN_DEB" Depends); dev_depends=$(dpkg-deb -f "$DEV_DEB" Depends)
-for d in libmrpt-slam2.5 libmrpt-maps2.5 libceres3 libopencv-core406; do
+# (Debian 12 links Ceres statically: libceres.a through its CMake package; its shared deps come instead.)
+for d in libmrpt-slam2.5 libmrpt-maps2.5 libmrpt-obs2.5 libopencv-core406 libopencv-contrib406; do
   grep -q "\b$d\b" <<< "$run_depends" || fail "gridtopo's Depends lacks $d: $run_depends"
 done
 for d in "gridtopo (= " libmrpt-slam-dev libmrpt-graphs-dev libopencv-dev libceres-dev libeigen3-dev; do

@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
     builder.initialize();
 
     // The rawlog, read with MRPT's classes, one entry at a time.
+    if (!std::filesystem::is_regular_file(rawlog)) throw std::runtime_error(rawlog + ": no such file");
     mrpt::io::CFileGZInputStream in(rawlog);
     auto archive = mrpt::serialization::archiveFrom(in);
     mrpt::obs::CActionCollection::Ptr action;
@@ -74,7 +75,7 @@ int main(int argc, char** argv) {
       if (obs) {
         builder.processObservation(obs);
         ++observations;
-      } else {
+      } else if (action && frame) {
         builder.processActionObservation(*action, *frame);
         ++frames;
       }
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
       frame.reset();
       obs.reset();
     }
+
+    if (frames + observations == 0) throw std::runtime_error(rawlog + ": no rawlog entry MRPT could read");
 
     // The final map and its topology.
     builder.updateTopology();
