@@ -8,9 +8,11 @@
 #     gridtopo-import): its map, path and graph are checked (sizes, seen cells, nodes, edges);
 #  3. the installed gridtopo-topology, started from a folder outside the checkout with its default model (found in
 #     the prefix's share/gridtopo), gives the same graph on the example's map as the example's topology builder;
-#  4. `cpack -G DEB` makes gridtopo and gridtopo-dev .debs whose contents (dpkg-deb -c) and Depends are checked.
+#  4. `cpack -G DEB` makes gridtopo and gridtopo-dev .debs whose contents (dpkg-deb -c) and Depends are checked;
+#     the runtime package, unpacked, runs gridtopo-topology with its own libraries and model.
 # Usage: scripts/check_install.sh        GRIDTOPO_BUILD_DIR selects the build folder (default build).
-# About 40 s on 2 cores (the example's build about 20 s, cpack about 10 s). Exit 0 when every check passes.
+# About 2 minutes on 2 busy cores (the example's build 20-40 s; cpack 60-90 s, of which ~30 s is its
+# 'preinstall' step checking that the whole tree is built). Exit 0 when every check passes.
 set -euo pipefail
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$(cd "${GRIDTOPO_BUILD_DIR:-$SRC/build}" && pwd)
@@ -147,6 +149,17 @@ for d in "gridtopo (= " libmrpt-slam-dev libmrpt-graphs-dev libopencv-dev libcer
   grep -qF "$d" <<< "$dev_depends" || fail "gridtopo-dev's Depends lacks $d: $dev_depends"
 done
 ! grep -qE '(^|, )libmrpt-dev\b' <<< "$run_depends, $dev_depends" || fail "depends on the libmrpt-dev metapackage"
+# The runtime package's apps work from where it puts them: unpacked (dpkg-deb -x, not installed system-wide), its
+# gridtopo-topology loads the package's libraries and takes the package's model.
+dpkg-deb -x "$RUN_DEB" "$W/root"
+for lib in $(ldd "$W/root/usr/bin/gridtopo-topology" | awk '/libgridtopo_/ { print $3 }'); do
+  [ "$(dirname "$(realpath "$lib")")" = "$W/root/usr/$LIBDIR" ] || fail "the packaged gridtopo-topology loads $lib"
+done
+(cd "$W/elsewhere" && "$W/root/usr/bin/gridtopo-topology" -q "$W/out/map.gridmap.gz" -t "$W/out/path.txt" -o topo-deb) ||
+  fail "the packaged gridtopo-topology failed"
+grep -qx "model = $W/root/usr/share/gridtopo/datasets/models/places_model.yml" "$W/elsewhere/topo-deb/options.ini" ||
+  fail "the packaged gridtopo-topology did not take the package's model"
+cmp -s "$W/elsewhere/topo-deb/topology.json" "$W/out/topology.json" || fail "the packaged gridtopo-topology's graph differs"
 say "$(basename "$RUN_DEB") ($(wc -l < "$W/run.txt") entries), $(basename "$DEV_DEB") ($(wc -l < "$W/dev.txt") entries)"
 echo "check_install: gridtopo Depends: $run_depends"
 echo "check_install: OK"
