@@ -2,23 +2,47 @@
 
 set(GRIDTOPO_WARNINGS -Wall -Wextra -Wpedantic -Wno-psabi)
 
-# gridtopo_library(<name> SOURCES ... DEPS ...): libs/<name> -> target gridtopo_<name>, alias gridtopo::<name>.
+include(GNUInstallDirs)
+
+# The libraries a program outside the tree links (issue 37): shared, installed with their headers and exported as
+# gridtopo::<name> by find_package(gridtopo) (cmake/gridtopoConfig.cmake.in). The others (eval, experiment,
+# session, sim, simtrain) serve our apps and tests only: static, linked into the apps, never installed.
+# Shared because MRPT, OpenCV and Ceres are shared in Debian: a program and our apps then hold one copy of each
+# library (and of MRPT's class registry), and a fix to one of ours reaches every program without relinking.
+set(GRIDTOPO_PUBLIC_LIBRARIES core io places topology slam mapping)
+
+# gridtopo_library(<name> SOURCES ... DEPS ...): libs/<name> -> target gridtopo_<name>, alias gridtopo::<name>
+# (the same name find_package(gridtopo) gives a program outside the tree).
 function(gridtopo_library name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
-  add_library(gridtopo_${name} ${A_SOURCES})
+  if(name IN_LIST GRIDTOPO_PUBLIC_LIBRARIES)
+    set(_type SHARED)
+  else()
+    set(_type STATIC)
+  endif()
+  add_library(gridtopo_${name} ${_type} ${A_SOURCES})
   add_library(gridtopo::${name} ALIAS gridtopo_${name})
-  target_include_directories(gridtopo_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_include_directories(gridtopo_${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                                     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_options(gridtopo_${name} PRIVATE ${GRIDTOPO_WARNINGS})
   target_link_libraries(gridtopo_${name} PUBLIC ${A_DEPS})
   set_target_properties(gridtopo_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(_type STREQUAL SHARED)
+    set_target_properties(gridtopo_${name} PROPERTIES EXPORT_NAME ${name} VERSION ${PROJECT_VERSION}
+                          SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+    install(TARGETS gridtopo_${name} EXPORT gridtopoTargets
+            LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
+  endif()
 endfunction()
 
-# gridtopo_app(<exe-name> SOURCES ... DEPS ...)
+# gridtopo_app(<exe-name> SOURCES ... DEPS ...): installed to bin/ (CMAKE_INSTALL_BINDIR).
 function(gridtopo_app name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
   target_compile_options(${name} PRIVATE ${GRIDTOPO_WARNINGS})
   target_link_libraries(${name} PRIVATE ${A_DEPS})
+  install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 endfunction()
 
 # gridtopo_test(<name> SOURCES ... DEPS ... [LABELS ...]): a GoogleTest binary registered with CTest.

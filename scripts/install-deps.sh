@@ -13,6 +13,8 @@ PACKAGES=(
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   # gridtopo-experiment: plots (gnuplot), and scripts/check_slurm.sh, which the suite runs (a one-node Slurm).
   gnuplot-nox python3 slurm-wlm munge
+  # cpack -G DEB (scripts/check_install.sh, in the suite): dpkg-shlibdeps computes the runtime Depends
+  dpkg-dev file
 )
 
 missing=()
