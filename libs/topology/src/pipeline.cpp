@@ -4,6 +4,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <filesystem>
@@ -212,11 +213,18 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
                           bool keep_scans_and_features) {
   MapTopology t;
+  const auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto t0 = std::chrono::steady_clock::now();
   t.occ = occupancyForTopology(map, o, &t.prepared);
+  t.seconds_prepare = since(t0);
   t.labelling =
       places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
   if (progress) progress("regions", 0, 1);
+  t0 = std::chrono::steady_clock::now();
   t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin);
+  t.seconds_graph = since(t0);
   return t;
 }
 
