@@ -165,7 +165,7 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
     throw InputError(source, "no free cell is left after the free-space opening of radius " +
                                  std::to_string(opening_radius) + " m (free_opening_radius / grid_free_opening_radius)");
   PreparedMap p = prepareMap(occ, o.preparationFor(map.kind),
-                             pathInCells(map.path, map.origin, occ.resolution, occ.rows()));
+                             pathInCells(map.path, map.origin, occ.resolution, occ.rows()), o.threads);
   if (p.place_cells == 0)
     throw InputError(source, "no free cell is a place (places_robot_radius, places_view_range, places_min_area)");
   occ.cells.setTo(places::kSeen, p.seen_not_place);
