@@ -69,6 +69,7 @@ TEST(TopologyScale, FourThousandSquareMapInBoundedMemory) {
   EXPECT_GT(run.labelling.lattice.samples.size(), 400'000u);
   EXPECT_GT(run.topo.graph.nodes.size(), 150u);
   EXPECT_GT(run.topo.graph.edges.size(), run.topo.graph.nodes.size());
-  // Bounded memory: MEASURED_BOUND.
-  EXPECT_LT(peak_growth_mb, 1e9);
+  // Bounded memory: the pipeline's peak grows the process by 704 MB; before the stripes, the ring of integral rows
+  // and the released region images it grew it by 968 MB (the whole map's scans twice and its features at once).
+  EXPECT_LT(peak_growth_mb, 800.0);
 }

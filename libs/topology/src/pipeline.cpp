@@ -192,7 +192,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
-  r.regions = graphRegions(r.regions, r.segmentation, resolution, o.corridor_split, o.graph_rules);
+  r.regions = graphRegions(std::move(r.regions), r.segmentation, resolution, o.corridor_split, o.graph_rules);
   r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }
