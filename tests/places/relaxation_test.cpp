@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/relaxation.h"
@@ -165,4 +167,33 @@ TEST(Relaxation, RingOfIntegralRowsEqualsTheWholeIntegralImage) {
     EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "R = " << R;
     EXPECT_GT(cv::norm(a, p, cv::NORM_INF), 0.05) << "the relaxation must change the probabilities";
   }
+}
+
+TEST(Labelling, StripesOfTheLatticeGiveTheWholeLatticesProbabilities) {
+  // classifyLattice takes the lattice a stripe of block rows at a time (labelPlaces: at most kStripeSamples): the
+  // classifier's output is the same bits for stripes of one block row, of a few hundred samples and of the whole
+  // lattice, with the shipped model, on rooms and a corridor with clutter.
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(160, 240, CV_8U, cv::Scalar(kOccupied));
+  occ.cells(cv::Rect(5, 5, 230, 30)).setTo(kFree);    // corridor
+  occ.cells(cv::Rect(5, 40, 110, 110)).setTo(kFree);  // two rooms below it, doors onto it
+  occ.cells(cv::Rect(120, 40, 115, 110)).setTo(kFree);
+  occ.cells(cv::Rect(40, 35, 18, 5)).setTo(kFree);
+  occ.cells(cv::Rect(160, 35, 18, 5)).setTo(kFree);
+  occ.cells(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+  occ.cells(cv::Rect(150, 60, 30, 4)).setTo(kUnknown);
+  const PlacesModel model = PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
+  const Lattice lat = buildLattice(occ, model.scan.lattice_spacing);
+  const cv::Mat whole = classifyLattice(occ, lat, model, 2, lat.samples.size());
+  ASSERT_EQ(whole.rows, static_cast<int>(lat.samples.size()));
+  ASSERT_GT(latticeStripes(lat, 300).size(), 10u);
+  for (const std::size_t stripe : {std::size_t(1), std::size_t(300)}) {
+    const cv::Mat parts = classifyLattice(occ, lat, model, 2, stripe);
+    ASSERT_EQ(parts.size(), whole.size());
+    EXPECT_EQ(std::memcmp(parts.data, whole.data, whole.total() * whole.elemSize()), 0) << stripe;
+  }
+  // And the corridor is told from the rooms (the output is a classification, not noise).
+  const cv::Vec3f corridor = whole.at<cv::Vec3f>(lat.block_sample.at<int>(10, 60));
+  EXPECT_GT(corridor[1], corridor[0]);
 }

@@ -36,7 +36,7 @@ cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
 /// through them counts).
 cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells, int threads) {
   // The samples split over the threads, each marking its own image; the union does not depend on the split.
-  const int nt = std::max(1, std::min(threads, static_cast<int>(samples.size() / 64)));
+  const int nt = std::max(1, std::min(threads, static_cast<int>(samples.size() / 16)));
   if (nt > 1) {
     std::vector<cv::Mat> part(static_cast<std::size_t>(nt));
     std::vector<std::thread> pool;
