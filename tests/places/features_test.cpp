@@ -216,3 +216,27 @@ TEST(Features, LanesEqualScalarBitForBit) {
   }
   featureLanes(true);
 }
+
+TEST(Features, BeamMajorScansGiveTheSameBits) {
+  // extractFeaturesOfBeams reads the scans beam-major (as simulateBeams gives them): every feature, capped copies
+  // included, equals extractFeatures' of the same scans sample-major.
+  OccupancyImage occ = test::rectangleRoom(24.0, 6.0, 0.05);
+  cv::RNG rng(4);
+  for (int i = 0; i < 60; ++i)
+    occ.cells(cv::Rect(rng.uniform(10, 470), rng.uniform(10, 120), rng.uniform(1, 8), rng.uniform(1, 8))).setTo(kOccupied);
+  const auto lat = buildLattice(occ, 0.3);
+  ScanSimulationOptions so;
+  const SimulatedScans scans = simulateScans(occ, lat.samples, so);
+  const cv::Mat beams = simulateBeams(occ, lat.samples, so);
+  ASSERT_EQ(beams.cols, static_cast<int>(scans.size()));
+  FeatureOptions o;
+  o.capped_ranges = {2.0, 10.0};
+  const cv::Mat a = extractFeatures(scans, o, 2), b = extractFeaturesOfBeams(beams, o, 2);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.rows, 500);
+  EXPECT_EQ(std::memcmp(a.data, b.data, a.total() * a.elemSize()), 0);
+  int capped_differ = 0;
+  for (int i = 0; i < a.rows; ++i)
+    capped_differ += std::memcmp(a.ptr<float>(i), a.ptr<float>(i) + numFeatures(), numFeatures() * sizeof(float)) != 0;
+  EXPECT_GT(capped_differ, 20);
+}

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/relaxation.h"
@@ -94,4 +96,104 @@ TEST(Relaxation, NeighbourhoodRadius) {
   EXPECT_EQ(cv::norm(b, c, cv::NORM_INF), 0.0);
   o.neighbourhood_radius = 0;
   EXPECT_THROW(relaxLabels(c, valid, r, o, 1), gridtopo::InputError);
+}
+
+namespace {
+// Reference: one whole integral image per iteration (rows + 1 x cols + 1, label sums and the count), the window
+// sums and the update exactly as relaxLabels defines them.
+void relaxWithWholeIntegral(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r, int R, int iterations) {
+  const int rows = probs.rows, cols = probs.cols;
+  std::vector<double> integ(static_cast<std::size_t>((rows + 1) * (cols + 1) * 4), 0.0);
+  const auto at = [&](int y, int x) { return integ.data() + (static_cast<std::size_t>(y) * (cols + 1) + x) * 4; };
+  cv::Mat next = probs.clone();
+  for (int it = 0; it < iterations; ++it) {
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) {
+        double v[4] = {0, 0, 0, 0};
+        if (valid.at<unsigned char>(y, x))
+          for (int l = 0; l < 3; ++l) v[l] = probs.at<cv::Vec3f>(y, x)[l], v[3] = 1;
+        double* o = at(y + 1, x + 1);
+        const double *a = at(y, x + 1), *b = at(y + 1, x), *c = at(y, x);
+        for (int l = 0; l < 4; ++l) o[l] = v[l] + a[l] + b[l] - c[l];
+      }
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) {
+        if (!valid.at<unsigned char>(y, x)) continue;
+        const int y0 = std::max(0, y - R), y1 = std::min(rows, y + R + 1);
+        const int x0 = std::max(0, x - R), x1 = std::min(cols, x + R + 1);
+        const double *a = at(y1, x1), *b = at(y0, x1), *c = at(y1, x0), *d = at(y0, x0);
+        const cv::Vec3f& pi = probs.at<cv::Vec3f>(y, x);
+        double s[3];
+        for (int l = 0; l < 3; ++l) s[l] = a[l] - b[l] - c[l] + d[l] - pi[l];
+        const double n = std::round(a[3] - b[3] - c[3] + d[3]) - 1;
+        cv::Vec3f& out = next.at<cv::Vec3f>(y, x);
+        if (n < 0.5) { out = pi; continue; }
+        double u[3], z = 0;
+        for (int l = 0; l < 3; ++l) {
+          double q = 0;
+          for (int m = 0; m < 3; ++m) q += r[l][m] * s[m] / n;
+          u[l] = pi[l] * (1.0 + q);
+          z += u[l];
+        }
+        for (int l = 0; l < 3; ++l) out[l] = z > 0 ? static_cast<float>(u[l] / z) : pi[l];
+      }
+    std::swap(probs, next);
+  }
+}
+}  // namespace
+
+TEST(Relaxation, RingOfIntegralRowsEqualsTheWholeIntegralImage) {
+  // relaxLabels keeps only a band's integral rows; on a lattice many bands tall, with holes (invalid blocks), its
+  // probabilities equal those of the whole integral image bit for bit, for the 8-neighbourhood and a wider window.
+  cv::Mat p(700, 37, CV_32FC3);
+  cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
+  cv::RNG rng(9);
+  for (int y = 0; y < p.rows; ++y)
+    for (int x = 0; x < p.cols; ++x) {
+      cv::Vec3f v(rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f));
+      p.at<cv::Vec3f>(y, x) = v / (v[0] + v[1] + v[2]);
+      if (rng.uniform(0.0, 1.0) < 0.2) valid.at<unsigned char>(y, x) = 0, p.at<cv::Vec3f>(y, x) = cv::Vec3f(0, 0, 0);
+    }
+  const Compatibility r{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+  for (const int R : {1, 3}) {
+    RelaxationOptions o;
+    o.max_iterations = 6;
+    o.tolerance = 1e-12;
+    o.neighbourhood_radius = R;
+    cv::Mat a = p.clone(), b = p.clone();
+    const auto res = relaxLabels(a, valid, r, o, 2);
+    EXPECT_EQ(res.iterations, 6);
+    relaxWithWholeIntegral(b, valid, r, R, 6);
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "R = " << R;
+    EXPECT_GT(cv::norm(a, p, cv::NORM_INF), 0.05) << "the relaxation must change the probabilities";
+  }
+}
+
+TEST(Labelling, StripesOfTheLatticeGiveTheWholeLatticesProbabilities) {
+  // classifyLattice takes the lattice a stripe of block rows at a time (labelPlaces: at most kStripeSamples): the
+  // classifier's output is the same bits for stripes of one block row, of a few hundred samples and of the whole
+  // lattice, with the shipped model, on rooms and a corridor with clutter.
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(160, 240, CV_8U, cv::Scalar(kOccupied));
+  occ.cells(cv::Rect(5, 5, 230, 30)).setTo(kFree);    // corridor
+  occ.cells(cv::Rect(5, 40, 110, 110)).setTo(kFree);  // two rooms below it, doors onto it
+  occ.cells(cv::Rect(120, 40, 115, 110)).setTo(kFree);
+  occ.cells(cv::Rect(40, 35, 18, 5)).setTo(kFree);
+  occ.cells(cv::Rect(160, 35, 18, 5)).setTo(kFree);
+  occ.cells(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+  occ.cells(cv::Rect(150, 60, 30, 4)).setTo(kUnknown);
+  const PlacesModel model = PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
+  const Lattice lat = buildLattice(occ, model.scan.lattice_spacing);
+  const cv::Mat whole = classifyLattice(occ, lat, model, 2, lat.samples.size());
+  ASSERT_EQ(whole.rows, static_cast<int>(lat.samples.size()));
+  ASSERT_GT(latticeStripes(lat, 300).size(), 10u);
+  for (const std::size_t stripe : {std::size_t(1), std::size_t(300)}) {
+    const cv::Mat parts = classifyLattice(occ, lat, model, 2, stripe);
+    ASSERT_EQ(parts.size(), whole.size());
+    EXPECT_EQ(std::memcmp(parts.data, whole.data, whole.total() * whole.elemSize()), 0) << stripe;
+  }
+  // And the corridor is told from the rooms (the output is a classification, not noise).
+  const cv::Vec3f corridor = whole.at<cv::Vec3f>(lat.block_sample.at<int>(10, 60));
+  EXPECT_GT(corridor[1], corridor[0]);
 }

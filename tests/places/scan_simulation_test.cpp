@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/places/labelling.h"
 #include "gridtopo/places/scan_simulation.h"
 #include "synthetic.h"
 
@@ -206,4 +207,53 @@ TEST(ScanSimulation, BeamStopOptionsParseAndRoundTrip) {
     EXPECT_EQ(e.field(), "map_border");
   }
   EXPECT_THROW(parseBeamStop("wall", "x", "unknown_cells", true), gridtopo::InputError);
+}
+
+TEST(ScanSimulation, StripesOfSamplesReadWhatTheWholeMapReads) {
+  // A map much taller than the rows a beam depends on (max range 2 m = 40 rows, margin 43): the beams of each
+  // stripe of samples, swept over the stripe's rows and the margin only, equal those of the whole-map sweeps bit
+  // for bit, whatever unknown cells and the border do, for every family (72 beams: steep and shallow slopes).
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(400, 90, CV_8U, cv::Scalar(kFree));
+  cv::RNG rng(5);
+  for (int r = 0; r < occ.rows(); ++r)
+    for (int c = 0; c < occ.cols(); ++c) {
+      const double u = rng.uniform(0.0, 1.0);
+      if (u < 0.04) occ.cells.at<unsigned char>(r, c) = kOccupied;
+      else if (u < 0.06) occ.cells.at<unsigned char>(r, c) = kUnknown;
+      else if (u < 0.08) occ.cells.at<unsigned char>(r, c) = kSeen;
+    }
+  occ.cells(cv::Rect(20, 0, 3, 400)).setTo(kFree);  // long free lines: beams saturate across stripe borders
+  occ.cells(cv::Rect(60, 0, 1, 400)).setTo(kFree);
+  const Lattice lat = buildLattice(occ, 0.1);
+  ScanSimulationOptions o;
+  o.num_beams = 72;
+  o.max_range = 2.0;
+  o.threads = 2;
+  ASSERT_EQ(scanRowMargin(occ, o), 43);
+  int saturated = 0;
+  for (const BeamStop unknown : {BeamStop::kObstacle, BeamStop::kMaxRange, BeamStop::kPass})
+    for (const BeamStop border : {BeamStop::kObstacle, BeamStop::kMaxRange}) {
+      o.unknown_cells = unknown, o.map_border = border;
+      const SimulatedScans whole = simulateScans(occ, lat.samples, o);
+      const auto stripes = latticeStripes(lat, 1500);
+      ASSERT_GE(stripes.size(), 4u);
+      int mismatches = 0;
+      for (const auto& [a, b] : stripes) {
+        const std::vector<cv::Point> part(lat.samples.begin() + static_cast<long>(a),
+                                          lat.samples.begin() + static_cast<long>(b));
+        const cv::Mat beams = simulateBeams(occ, part, o);
+        ASSERT_EQ(beams.rows, o.num_beams);
+        ASSERT_EQ(beams.cols, static_cast<int>(b - a));
+        for (std::size_t i = a; i < b; ++i)
+          for (int k = 0; k < o.num_beams; ++k) {
+            const std::uint16_t v = beams.at<std::uint16_t>(k, static_cast<int>(i - a));
+            mismatches += v != whole.scan(i)[k];
+            saturated += v == 2000;
+          }
+      }
+      EXPECT_EQ(mismatches, 0) << beamStopName(unknown) << " / " << beamStopName(border);
+    }
+  EXPECT_GT(saturated, 1000);
 }

@@ -123,6 +123,12 @@ TEST(MapPreparation, FarFansAndIslandsAreSeenButNoPlacesRoomsAndTheCorridorArePl
   EXPECT_GT(m.removed_unreachable, 0u);
   EXPECT_EQ(m.free_cells, m.place_cells + m.removed_robot_fit + m.removed_far + m.removed_unreachable);
   EXPECT_EQ(static_cast<std::size_t>(cv::countNonZero(m.seen_not_place)), m.free_cells - m.place_cells);
+  // The visibility rays split over threads (the path's samples in parts): the same places.
+  for (int threads : {2, 3}) {
+    const PreparedMap t = prepareMap(f.occ, MapPreparationOptions{}, f.path, threads);
+    EXPECT_EQ(cv::countNonZero(t.places != m.places), 0) << threads << " threads";
+    EXPECT_EQ(t.removed_far, m.removed_far);
+  }
 }
 
 TEST(MapPreparation, WithoutThePathOnlyGeometryDecidesAndOffKeepsEveryFreeCell) {

@@ -30,4 +30,11 @@ void releaseFreedMemory() {
 #endif
 }
 
+void keepFreedMemoryForReuse() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, -1);  // as an unsigned size: never trim
+#endif
+}
+
 }  // namespace gridtopo

@@ -357,9 +357,11 @@ int featureLanes(bool allow_avx) {
   return laneKernel().lanes;
 }
 
-cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads) {
-  const std::size_t n = scans.size(), F = numFeatures();
-  const int M = scans.num_beams;
+namespace {
+// Sample i's beam k is ranges[i * sample_stride + k * beam_stride] (millimetres).
+cv::Mat extractFeaturesStrided(const std::uint16_t* ranges, std::size_t n, int M, std::size_t sample_stride,
+                               std::size_t beam_stride, const FeatureOptions& options, int threads) {
+  const std::size_t F = numFeatures();
   const std::size_t Ms = static_cast<std::size_t>(M);
   const std::size_t copies = 1 + options.capped_ranges.size();
   // Not initialised: every row's base columns are computed and every capped copy is computed or copied.
@@ -388,14 +390,17 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
     };
     for (std::size_t b0; (b0 = next.fetch_add(kChunk)) < n;) {
       for (std::size_t i = b0; i < std::min(n, b0 + kChunk); ++i) {
-        const std::uint16_t* s = scans.scan(i);
+        const std::uint16_t* s = ranges + i * sample_stride;
         float* row = out.ptr<float>(static_cast<int>(i));
         const std::size_t need = Ms * (1 + options.capped_ranges.size());
         if (buf_used + need > buf.size()) flush();
         float* beams = buf.data() + buf_used;
         buf_used += Ms;
         std::uint16_t longest_mm = 0;
-        for (int k = 0; k < M; ++k) beams[k] = s[k] * 0.001f, longest_mm = std::max(longest_mm, s[k]);
+        for (int k = 0; k < M; ++k) {
+          const std::uint16_t r = s[static_cast<std::size_t>(k) * beam_stride];
+          beams[k] = r * 0.001f, longest_mm = std::max(longest_mm, r);
+        }
         const float longest = longest_mm * 0.001f;  // the longest beam (the conversion is monotonic)
         lane_beams[used] = beams, lane_out[used] = row;
         if (++used == kLanes) flush();
@@ -408,7 +413,7 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
           if (buf_used + Ms > buf.size()) flush();
           float* capped = buf.data() + buf_used;
           buf_used += Ms;
-          for (int k = 0; k < M; ++k) capped[k] = std::min(s[k] * 0.001f, cap);  // = min(beams[k], cap)
+          for (int k = 0; k < M; ++k) capped[k] = std::min(beams[k], cap);
           lane_beams[used] = capped, lane_out[used] = row + F * (c + 1);
           if (++used == kLanes) flush();
         }
@@ -423,6 +428,19 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
   work();
   for (auto& t : pool) t.join();
   return out;
+}
+
+}  // namespace
+
+cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads) {
+  return extractFeaturesStrided(scans.ranges_mm.data(), scans.size(), scans.num_beams,
+                                static_cast<std::size_t>(scans.num_beams), 1, options, threads);
+}
+
+cv::Mat extractFeaturesOfBeams(const cv::Mat& by_beam, const FeatureOptions& options, int threads) {
+  CV_Assert(by_beam.type() == CV_16U && by_beam.isContinuous());
+  return extractFeaturesStrided(by_beam.ptr<std::uint16_t>(), static_cast<std::size_t>(by_beam.cols), by_beam.rows, 1,
+                                static_cast<std::size_t>(by_beam.cols), options, threads);
 }
 
 }  // namespace gridtopo::places

@@ -81,22 +81,20 @@ RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compati
   const int rows = probs.rows, cols = probs.cols;
   std::vector<double> change(static_cast<std::size_t>(std::max(1, threads)), 0.0);
   const int R = options.neighbourhood_radius;
-  // Sums over the (2R+1)^2 window from integral images (rows+1 x cols+1): per-cell cost independent of R.
-  std::vector<double> integ(static_cast<std::size_t>((rows + 1) * (cols + 1) * (kNumLabels + 1)), 0.0);
-  const auto at = [&](int y, int x) { return integ.data() + (static_cast<std::size_t>(y) * (cols + 1) + x) * (kNumLabels + 1); };
+  // Sums over the (2R+1)^2 window from integral images (rows+1 x cols+1): per-cell cost independent of R. The
+  // integral's rows are computed in order and kept in a ring of kBand + 2R + 2 rows: a band of kBand output rows
+  // reads the integral rows from its first row - R to its last + R + 1 (the values, and so the results, are those
+  // of the whole integral image).
+  constexpr int kBand = 128;
+  const int ring = kBand + 2 * R + 2;
+  const std::size_t row_len = static_cast<std::size_t>(cols + 1) * (kNumLabels + 1);
+  std::vector<double> integ(static_cast<std::size_t>(ring) * row_len, 0.0);
+  const auto at = [&](int y, int x) {
+    return integ.data() + static_cast<std::size_t>(y % ring) * row_len + static_cast<std::size_t>(x) * (kNumLabels + 1);
+  };
   for (int it = 0; it < options.max_iterations; ++it) {
-    for (int y = 0; y < rows; ++y)
-      for (int x = 0; x < cols; ++x) {
-        double v[kNumLabels + 1] = {0, 0, 0, 0};
-        if (valid.at<unsigned char>(y, x)) {
-          const cv::Vec3f& pj = probs.at<cv::Vec3f>(y, x);
-          for (int l = 0; l < kNumLabels; ++l) v[l] = pj[l];
-          v[kNumLabels] = 1;
-        }
-        double* o = at(y + 1, x + 1);
-        const double *a = at(y, x + 1), *b = at(y + 1, x), *c = at(y, x);
-        for (int l = 0; l <= kNumLabels; ++l) o[l] = v[l] + a[l] + b[l] - c[l];
-      }
+    std::fill(at(0, 0), at(0, 0) + row_len, 0.0);
+    int computed = 0;  // integral rows 0..computed are ready
     auto work = [&](int t, int r0, int r1) {
       double mx = 0;
       for (int y = r0; y < r1; ++y)
@@ -124,13 +122,34 @@ RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compati
             out[l] = v;
           }
         }
-      change[static_cast<std::size_t>(t)] = mx;
+      change[static_cast<std::size_t>(t)] = std::max(change[static_cast<std::size_t>(t)], mx);
     };
+    std::fill(change.begin(), change.end(), 0.0);
     const int nt = std::max(1, threads);
-    std::vector<std::thread> pool;
-    for (int t = 1; t < nt; ++t) pool.emplace_back(work, t, rows * t / nt, rows * (t + 1) / nt);
-    work(0, 0, rows / nt);
-    for (auto& t : pool) t.join();
+    for (int band = 0; band < rows; band += kBand) {
+      const int band_end = std::min(rows, band + kBand);
+      for (const int need = std::min(rows, band_end + R); computed < need; ++computed) {
+        const int y = computed;  // integral row y + 1 from image row y
+        double* o0 = at(y + 1, 0);
+        std::fill(o0, o0 + (kNumLabels + 1), 0.0);
+        for (int x = 0; x < cols; ++x) {
+          double v[kNumLabels + 1] = {0, 0, 0, 0};
+          if (valid.at<unsigned char>(y, x)) {
+            const cv::Vec3f& pj = probs.at<cv::Vec3f>(y, x);
+            for (int l = 0; l < kNumLabels; ++l) v[l] = pj[l];
+            v[kNumLabels] = 1;
+          }
+          double* o = at(y + 1, x + 1);
+          const double *a = at(y, x + 1), *b = at(y + 1, x), *c = at(y, x);
+          for (int l = 0; l <= kNumLabels; ++l) o[l] = v[l] + a[l] + b[l] - c[l];
+        }
+      }
+      const int n_rows = band_end - band;
+      std::vector<std::thread> pool;
+      for (int t = 1; t < nt; ++t) pool.emplace_back(work, t, band + n_rows * t / nt, band + n_rows * (t + 1) / nt);
+      work(0, band, band + n_rows / nt);
+      for (auto& t : pool) t.join();
+    }
     std::swap(probs, next);
     res.iterations = it + 1;
     res.last_change = *std::max_element(change.begin(), change.end());

@@ -119,12 +119,15 @@ ColumnSamples samplesByColumn(const std::vector<cv::Point>& samples, int cols, b
 // What an unknown cell and the border do to the counter (ScanSimulationOptions::unknown_cells, map_border): an
 // obstacle resets it to 0, max range saturates it (the beam from any later cell of the line reads max range until
 // the next obstacle), pass counts the unknown cell as free.
-void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double resolution, double slope,
+// `k0`: the image's index of column 0 of `columns` (a window of the image's rows, see simulateBeams): the lines
+// are those of the whole image.
+void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double resolution, double slope, int k0,
                  int beam_back, int beam_ahead, double max_range_mm, BeamStop unknown_cells, BeamStop map_border,
                  cv::Mat& by_beam) {
   const int n_major = columns.rows, n_minor = columns.cols;
   std::vector<int> offset(static_cast<std::size_t>(n_major));
-  for (int k = 0; k < n_major; ++k) offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor(k * slope + 0.5));
+  for (int k = 0; k < n_major; ++k)
+    offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor((k + k0) * slope + 0.5));
   const int min_off = *std::min_element(offset.begin(), offset.end());
   const int max_off = *std::max_element(offset.begin(), offset.end());
   const double step_mm = resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
@@ -170,19 +173,38 @@ void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double re
 
 }  // namespace
 
-SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Point>& samples,
-                             const ScanSimulationOptions& options,
-                             const std::function<void(std::size_t, std::size_t)>& progress) {
+int scanRowMargin(const OccupancyImage& occ, const ScanSimulationOptions& options) {
+  // A family's run counter saturates after max_run = floor(max_range_mm / step_mm) + 2 steps, step_mm >= the
+  // resolution: one more row than that.
+  return static_cast<int>(std::floor(options.max_range / occ.resolution)) + 3;
+}
+
+cv::Mat simulateBeams(const OccupancyImage& occ, const std::vector<cv::Point>& samples_in,
+                      const ScanSimulationOptions& options,
+                      const std::function<void(std::size_t, std::size_t)>& progress) {
   options.validate();
-  SimulatedScans out;
-  out.num_beams = options.num_beams;
   const int M = options.num_beams;
-  if (samples.empty()) return out;
-  const std::size_t total = samples.size() * static_cast<std::size_t>(M);
-  out.ranges_mm.resize(total);
-  for (const cv::Point& p : samples)
+  if (samples_in.empty()) return cv::Mat(M, 0, CV_16U);
+  int top = occ.rows(), bottom = -1;
+  for (const cv::Point& p : samples_in) {
     if (p.x < 0 || p.y < 0 || p.x >= occ.cols() || p.y >= occ.rows() || !occ.isFree(p.y, p.x))
-      throw std::invalid_argument("simulateScans: sample is not a free cell of the map");
+      throw std::invalid_argument("simulateBeams: sample is not a free cell of the map");
+    top = std::min(top, p.y), bottom = std::max(bottom, p.y);
+  }
+  // The sweeps cover the samples' rows and `margin` rows on either side. A line's counter takes at most max_run
+  // steps to forget where it started (each step adds one up to max_run, or sets a value that does not depend on
+  // it), and a line entering the window through its top or bottom row makes at least one step per row it descends
+  // (|slope| <= 1 along the columns; one step per row along the rows): at a sample it reads what it reads when
+  // the lines are swept over the whole image. The steep families take their offsets from the image's row numbers.
+  const int margin = scanRowMargin(occ, options);
+  const int w0 = std::max(0, top - margin), w1 = std::min(occ.rows(), bottom + 1 + margin);
+  const cv::Mat window = occ.cells.rowRange(w0, w1);
+  std::vector<cv::Point> shifted;
+  if (w0 > 0) {
+    shifted.reserve(samples_in.size());
+    for (const cv::Point& p : samples_in) shifted.emplace_back(p.x, p.y - w0);
+  }
+  const std::vector<cv::Point>& samples = w0 > 0 ? shifted : samples_in;
   const double max_mm = options.max_range * 1000.0;
   // Not initialised: every sample lies on one line of every family, and both sweeps of a family write its
   // two beams.
@@ -191,9 +213,9 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   // Shallow directions walk the image's columns, read as the rows of its transpose; steep ones walk the
   // transposed image's columns, i.e. the image's rows.
   cv::Mat cells_t;
-  cv::transpose(occ.cells, cells_t);
-  const ColumnSamples by_col = samplesByColumn(samples, occ.cols(), false);
-  const ColumnSamples by_row = samplesByColumn(samples, occ.rows(), true);
+  cv::transpose(window, cells_t);
+  const ColumnSamples by_col = samplesByColumn(samples, window.cols, false);
+  const ColumnSamples by_row = samplesByColumn(samples, window.rows, true);
   const std::size_t n_dirs = static_cast<std::size_t>(M / 2);
   std::atomic<std::size_t> next{0}, done{0};
   auto process = [&](std::size_t k) {
@@ -203,11 +225,11 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
     if (std::abs(dc) >= std::abs(dr)) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm,
+      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, 0, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm,
                   options.unknown_cells, options.map_border, by_beam);
     } else {
       // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
-      sweepFamily(occ.cells, by_row, occ.resolution, dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm,
+      sweepFamily(window, by_row, occ.resolution, dc / dr, w0, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm,
                   options.unknown_cells, options.map_border, by_beam);
     }
   };
@@ -223,20 +245,37 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
   for (int t = 1; t < nt; ++t) pool.emplace_back(worker, false);
   worker(true);  // the calling thread works too and reports progress
   for (auto& t : pool) t.join();
+  if (progress) progress(n_dirs, n_dirs);
+  return by_beam;
+}
+
+SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Point>& samples,
+                             const ScanSimulationOptions& options,
+                             const std::function<void(std::size_t, std::size_t)>& progress) {
+  options.validate();
+  SimulatedScans out;
+  out.num_beams = options.num_beams;
+  const int M = options.num_beams;
+  if (samples.empty()) return out;
+  for (const cv::Point& p : samples)
+    if (p.x < 0 || p.y < 0 || p.x >= occ.cols() || p.y >= occ.rows() || !occ.isFree(p.y, p.x))
+      throw std::invalid_argument("simulateScans: sample is not a free cell of the map");
+  cv::Mat by_beam = simulateBeams(occ, samples, options, progress);
+  out.ranges_mm.resize(samples.size() * static_cast<std::size_t>(M));
   cv::Mat by_sample(static_cast<int>(samples.size()), M, CV_16U, out.ranges_mm.data());
   // Sample-major for the feature extraction, each thread transposing its own range of samples.
   const int n_samples = static_cast<int>(samples.size());
+  const int nt = std::max(1, std::min(options.threads, M / 2));
   auto transposePart = [&](int t) {
     const int a = n_samples * t / nt, b = n_samples * (t + 1) / nt;
     if (b <= a) return;
     cv::Mat dst = by_sample.rowRange(a, b);
     cv::transpose(by_beam.colRange(a, b), dst);
   };
-  pool.clear();
+  std::vector<std::thread> pool;
   for (int t = 1; t < nt; ++t) pool.emplace_back(transposePart, t);
   transposePart(0);
   for (auto& t : pool) t.join();
-  if (progress) progress(n_dirs, n_dirs);
   return out;
 }
 

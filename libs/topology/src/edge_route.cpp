@@ -90,17 +90,16 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
-  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
-  cv::Mat step(ids.size(), CV_32S, cv::Scalar(0)), diag(ids.size(), CV_32S, cv::Scalar(0));
+  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step (computed where needed from the
+  // clearance: no image of them is kept).
+  const auto stepCost = [&](int y, int x, bool diagonal) {
+    const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
+    return static_cast<int>(std::lround(16.0 * (diagonal ? M_SQRT2 : 1.0) * (1.0 + q * q)));
+  };
   int max_step = 1;
   for (int y = 0; y < ids.rows; ++y)
-    for (int x = 0; x < ids.cols; ++x) {
-      if (ids.at<int>(y, x) <= 0) continue;
-      const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
-      step.at<int>(y, x) = static_cast<int>(std::lround(16.0 * (1.0 + q * q)));
-      diag.at<int>(y, x) = static_cast<int>(std::lround(16.0 * M_SQRT2 * (1.0 + q * q)));
-      max_step = std::max(max_step, diag.at<int>(y, x));
-    }
+    for (int x = 0; x < ids.cols; ++x)
+      if (ids.at<int>(y, x) > 0) max_step = std::max(max_step, stepCost(y, x, true));
   cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
   parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
   // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
@@ -124,7 +123,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
       for (int k = 0; k < 8; ++k) {
         const int yy = y + kDy[k], xx = x + kDx[k];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
-        const long long nc = c + (k % 2 ? diag.at<int>(yy, xx) : step.at<int>(yy, xx));
+        const long long nc = c + stepCost(yy, xx, k % 2 != 0);
         if (nc < cost_.at<int>(yy, xx)) {
           cost_.at<int>(yy, xx) = static_cast<int>(nc);
           parent_.at<int>(yy, xx) = i;

@@ -149,10 +149,18 @@ RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRul
   return relabel(rm, remap, label, resolution);
 }
 
+RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double resolution,
+                       const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
+  // Each step's input is let go once the next image exists (on a large map each is a full-map id image).
+  if (rules.rooms_by_segment) regions = splitRoomsBySegments(regions, segmentation, resolution);
+  RegionMap pieces = splitCorridors(regions, resolution, split);
+  regions = RegionMap();
+  return applyGraphRules(pieces, resolution, rules);
+}
+
 RegionMap graphRegions(const RegionMap& regions, const cv::Mat& segmentation, double resolution,
                        const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
-  const RegionMap rooms = rules.rooms_by_segment ? splitRoomsBySegments(regions, segmentation, resolution) : regions;
-  return applyGraphRules(splitCorridors(rooms, resolution, split), resolution, rules);
+  return graphRegions(RegionMap(regions), segmentation, resolution, split, rules);  // the caller's stays as it is
 }
 
 }  // namespace gridtopo::topology

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace gridtopo::topology {
 
@@ -33,7 +34,23 @@ cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
 /// from every sample over 360 degrees, close enough that neighbouring rays are a cell apart at the range, in steps
 /// of half a cell; a ray stops at the first cell that is not free in the map (glass and open doors are free: seen
 /// through them counts).
-cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells) {
+cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells, int threads) {
+  // The samples split over the threads, each marking its own image; the union does not depend on the split.
+  const int nt = std::max(1, std::min(threads, static_cast<int>(samples.size() / 16)));
+  if (nt > 1) {
+    std::vector<cv::Mat> part(static_cast<std::size_t>(nt));
+    std::vector<std::thread> pool;
+    auto run = [&](int t) {
+      const auto a = samples.begin() + static_cast<long>(samples.size() * t / nt);
+      const auto b = samples.begin() + static_cast<long>(samples.size() * (t + 1) / nt);
+      part[static_cast<std::size_t>(t)] = seenFromNear(free, std::vector<cv::Point2d>(a, b), range_cells, 1);
+    };
+    for (int t = 1; t < nt; ++t) pool.emplace_back(run, t);
+    run(0);
+    for (auto& t : pool) t.join();
+    for (int t = 1; t < nt; ++t) part[0] |= part[static_cast<std::size_t>(t)];
+    return part[0];
+  }
   cv::Mat seen = cv::Mat::zeros(free.size(), CV_8U);
   const int n_rays = std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * range_cells)));
   std::vector<cv::Point2d> dir(static_cast<std::size_t>(n_rays));
@@ -85,7 +102,7 @@ std::size_t count(const cv::Mat& m) { return static_cast<std::size_t>(cv::countN
 }  // namespace
 
 PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOptions& o,
-                       const std::vector<cv::Point2d>& path) {
+                       const std::vector<cv::Point2d>& path, int threads) {
   PreparedMap r;
   const cv::Mat free = occ.cells == kFree;
   r.free_cells = count(free);
@@ -101,7 +118,7 @@ PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOp
         if (samples.empty() || std::hypot(p.x - samples.back().x, p.y - samples.back().y) * res >= o.path_step)
           samples.push_back(p);
       const std::size_t before = count(places);
-      places &= seenFromNear(free, samples, o.view_range / res);
+      places &= seenFromNear(free, samples, o.view_range / res, threads);
       r.removed_far = before - count(places);
     }
     const std::size_t before = count(places);

@@ -4,6 +4,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <filesystem>
@@ -164,7 +165,7 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
     throw InputError(source, "no free cell is left after the free-space opening of radius " +
                                  std::to_string(opening_radius) + " m (free_opening_radius / grid_free_opening_radius)");
   PreparedMap p = prepareMap(occ, o.preparationFor(map.kind),
-                             pathInCells(map.path, map.origin, occ.resolution, occ.rows()));
+                             pathInCells(map.path, map.origin, occ.resolution, occ.rows()), o.threads);
   if (p.place_cells == 0)
     throw InputError(source, "no free cell is a place (places_robot_radius, places_view_range, places_min_area)");
   occ.cells.setTo(places::kSeen, p.seen_not_place);
@@ -191,7 +192,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
-  r.regions = graphRegions(r.regions, r.segmentation, resolution, o.corridor_split, o.graph_rules);
+  r.regions = graphRegions(std::move(r.regions), r.segmentation, resolution, o.corridor_split, o.graph_rules);
   r.graph = buildGraph(r.regions, resolution, origin);
   return r;
 }
@@ -212,11 +213,18 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
                           bool keep_scans_and_features) {
   MapTopology t;
+  const auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto t0 = std::chrono::steady_clock::now();
   t.occ = occupancyForTopology(map, o, &t.prepared);
+  t.seconds_prepare = since(t0);
   t.labelling =
       places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
   if (progress) progress("regions", 0, 1);
+  t0 = std::chrono::steady_clock::now();
   t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin);
+  t.seconds_graph = since(t0);
   return t;
 }
 

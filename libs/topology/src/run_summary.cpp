@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "gridtopo/core/process_memory.h"
+
 namespace gridtopo::topology {
 
 std::string resolutionWarning(double resolution, const places::PlacesModel& model) {
@@ -25,9 +27,11 @@ std::string runSummary(const MapTopology& run, const std::string& source, double
     << " m^2), " << lab.lattice.samples.size()
     << " classified, relaxation " << lab.relaxation.iterations << " iterations; " << counts[0] << " rooms, "
     << counts[1] << " corridors, " << counts[2] << " doorways, " << run.topo.graph.edges.size() << " edges, "
-    << segmentCount(run.topo.segmentation) << " segments; " << seconds << " s (scans " << lab.seconds_scans
-    << ", features " << lab.seconds_features << ", classify " << lab.seconds_classify << ", relax "
-    << lab.seconds_relax << ")\n";
+    << segmentCount(run.topo.segmentation) << " segments; " << seconds << " s (prepare " << run.seconds_prepare
+    << ", scans " << lab.seconds_scans << ", features " << lab.seconds_features << ", classify "
+    << lab.seconds_classify << ", relax " << lab.seconds_relax << ", graph " << run.seconds_graph << ")";
+  if (const std::size_t peak = processMemory().peak_kb) o << ", peak RSS " << (peak + 512) / 1024 << " MB";
+  o << "\n";
   return o.str();
 }
 

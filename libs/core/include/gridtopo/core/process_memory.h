@@ -17,4 +17,11 @@ ProcessMemory processMemory();
 /// over the heap stay mapped after they are freed). A no-op on other C libraries.
 void releaseFreedMemory();
 
+/// Keeps freed heap memory in the process for later allocations instead of giving it back to the system (glibc:
+/// no mmap for large blocks, no trimming). For batch programs that allocate and free many large images in turn
+/// (gridtopo-topology: every image of a map is tens of megabytes): each fresh large block costs a page fault per
+/// 4 KiB and the kernel's zeroing, a reused one nothing. The resident memory then stays at its peak until exit. A
+/// no-op on other C libraries.
+void keepFreedMemoryForReuse();
+
 }  // namespace gridtopo

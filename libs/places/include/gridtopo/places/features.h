@@ -49,6 +49,8 @@ void extractFeatures(const float* beams_m, int M, const FeatureOptions& options,
 /// context copies. Parallel over samples (chunks handed out dynamically), and within a thread several scans at
 /// once in SIMD lanes; bit-identical to calling the one-scan extractFeatures() on each (capped) scan.
 cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& options, int threads = 2);
+/// The same of beam-major scans (simulateBeams: CV_16U, beams x samples), bit-identical.
+cv::Mat extractFeaturesOfBeams(const cv::Mat& by_beam, const FeatureOptions& options, int threads = 2);
 
 /// Scans per SIMD batch of the whole-map extraction: 4 with AVX, else 2. `allow_avx = false` forces the SSE2
 /// kernel for the rest of the process (for tests: both kernels must give the bits of the scalar function).

@@ -4,6 +4,8 @@
 #include <functional>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gridtopo/places/model.h"
 #include "gridtopo/places/occupancy.h"
@@ -34,6 +36,23 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
                             int threads = 2, const std::string& source = "<map>",
                             const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
                             bool keep_scans_and_features = false);
+
+/// Samples per stripe of labelPlaces: the simulated scans (2 bytes per beam) and features of this many samples
+/// are held at a time (about 260 MB with 360 beams and 74 features).
+constexpr std::size_t kStripeSamples = std::size_t(1) << 18;
+
+/// The lattice's samples in stripes of whole block rows, each of at most `max_samples` samples (or one block row):
+/// [first, last) index ranges in order.
+std::vector<std::pair<std::size_t, std::size_t>> latticeStripes(const Lattice& lattice, std::size_t max_samples);
+
+/// The classifier's output (samples x 1, CV_32FC3) for every sample of `lattice`: scans (simulateBeams), features
+/// and classification a stripe (latticeStripes(lattice, stripe_samples)) at a time; the same bits for any stripe
+/// size. `progress(done, total)` counts pairs of beam directions over all stripes. Needs a model without context
+/// features (they need every sample's features at once). The seconds of each step are added up over the stripes.
+cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const PlacesModel& model, int threads,
+                        std::size_t stripe_samples, const std::function<void(std::size_t, std::size_t)>& progress = {},
+                        double* seconds_scans = nullptr, double* seconds_features = nullptr,
+                        double* seconds_classify = nullptr);
 
 /// Classifies precomputed features (as from computeSamples) and relaxes: used by training/evaluation.
 LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,

@@ -79,4 +79,15 @@ SimulatedScans simulateScans(const OccupancyImage& occ, const std::vector<cv::Po
                              const ScanSimulationOptions& options,
                              const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+/// The same ranges beam-major: CV_16U, num_beams x samples (row k holds beam k of every sample), without the
+/// sample-major copy simulateScans makes. The sweeps cover only the rows of the samples and scanRowMargin rows on
+/// either side (what a beam reads depends on nothing farther), so a stripe of samples costs a stripe of the map;
+/// the ranges are those of the whole-map sweeps, bit for bit.
+cv::Mat simulateBeams(const OccupancyImage& occ, const std::vector<cv::Point>& samples,
+                      const ScanSimulationOptions& options,
+                      const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// Rows beyond a sample's row that its simulated beams depend on: floor(max_range / resolution) + 3.
+int scanRowMargin(const OccupancyImage& occ, const ScanSimulationOptions& options);
+
 }  // namespace gridtopo::places

@@ -40,5 +40,8 @@ RegionMap applyGraphRules(const RegionMap& regions, double resolution, const Gra
 /// used when rules.rooms_by_segment): G3, splitCorridors(`split`), applyGraphRules(`rules`).
 RegionMap graphRegions(const RegionMap& regions, const cv::Mat& segmentation, double resolution,
                        const CorridorSplitOptions& split, const GraphRuleOptions& rules);
+/// The same, letting go of `regions` (and each step's input) as soon as it is used: less memory on large maps.
+RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double resolution,
+                       const CorridorSplitOptions& split, const GraphRuleOptions& rules);
 
 }  // namespace gridtopo::topology

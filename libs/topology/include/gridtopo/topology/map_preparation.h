@@ -44,9 +44,9 @@ struct PreparedMap {
 
 /// Runs the three steps on `occ` (its free cells). `path` holds the robot's positions in cells (x = column,
 /// y = row of occ; empty when unknown: steps 2 and the path part of 3 are skipped). With `o.enabled` false, every
-/// free cell is a place.
+/// free cell is a place. `threads`: the visibility step's rays are cast on that many threads (same result).
 PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOptions& o,
-                       const std::vector<cv::Point2d>& path = {});
+                       const std::vector<cv::Point2d>& path = {}, int threads = 1);
 
 /// The occupancy the place classifier sees: `occ` with the free cells that are no place made unknown.
 places::OccupancyImage placesOnly(const places::OccupancyImage& occ, const PreparedMap& prepared);

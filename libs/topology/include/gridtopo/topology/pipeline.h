@@ -133,6 +133,8 @@ struct MapTopology {
   PreparedMap prepared;
   places::LabellingResult labelling;
   TopologyResult topo;
+  double seconds_prepare = 0;  ///< occupancy and map preparation (occupancyForTopology)
+  double seconds_graph = 0;    ///< buildTopology: doorways, correction, regions, segmentation, graph
 };
 MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},

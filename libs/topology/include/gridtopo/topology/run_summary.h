@@ -13,7 +13,8 @@ namespace gridtopo::topology {
 std::string resolutionWarning(double resolution, const places::PlacesModel& model);
 
 /// "SOURCE: COLSxROWS cells, N classified, relaxation I iterations; R rooms, C corridors, D doorways, E edges,
-/// S segments; T s (scans ..., features ..., classify ..., relax ...)" with its newline.
+/// S segments; T s (prepare ..., scans ..., features ..., classify ..., relax ..., graph ...), peak RSS P MB" with
+/// its newline (T the caller's `seconds`, the steps' seconds from `run`, P the process's peak resident memory so far).
 std::string runSummary(const MapTopology& run, const std::string& source, double seconds);
 
 }  // namespace gridtopo::topology
