@@ -85,7 +85,8 @@ TEST(OutputTransaction, EarlierRunsFolderIsSwappedOutWhole) {
   EXPECT_EQ(slurp(out / "a.txt"), "new A");
 }
 
-// A folder with files the run does not write is never replaced: the run's entries move in, the others stay.
+// A folder with files the run does not write is never replaced: the run's files move in, the others stay (also
+// inside a folder the run writes into).
 TEST(OutputTransaction, FolderWithOtherFilesKeepsThem) {
   const auto dir = freshDir("foreign");
   const fs::path out = dir / "out";
@@ -93,6 +94,8 @@ TEST(OutputTransaction, FolderWithOtherFilesKeepsThem) {
   put((out / "notes.txt").string(), "mine");
   put((out / "a.txt").string(), "old A");
   put((out / ".a.txt.tmp-999999999-7.txt").string(), "debris");
+  fs::create_directories(out / "s");
+  put((out / "s/mine.txt").string(), "also mine");  // beside a file of the run, inside a folder of the run
   const ino_t before = inode(out);
   {
     OutputSet set(out.string());
@@ -101,7 +104,8 @@ TEST(OutputTransaction, FolderWithOtherFilesKeepsThem) {
     set.commit();
   }
   EXPECT_EQ(inode(out), before);
-  EXPECT_EQ(entries(dir), (std::set<std::string>{"out", "out/a.txt", "out/notes.txt", "out/s", "out/s/c.txt"}));
+  EXPECT_EQ(entries(dir), (std::set<std::string>{"out", "out/a.txt", "out/notes.txt", "out/s", "out/s/c.txt",
+                                                 "out/s/mine.txt"}));
   EXPECT_EQ(slurp(out / "notes.txt"), "mine");
   EXPECT_EQ(slurp(out / "a.txt"), "new A");
 }

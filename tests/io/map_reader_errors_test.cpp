@@ -76,6 +76,9 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   }
   EXPECT_EQ(mapError(d / "bad0.yaml"), (d / "bad0.yaml").string() + ": image: expected a file name");
   EXPECT_EQ(mapError(d / "bad5.yaml"), (d / "bad5.yaml").string() + ": mode: expected trinary, scale or raw");
+  // A syntax error: the parser's own diagnosis and line (it printed them to stderr and failed a bare assertion).
+  put(d / "syntax.yaml", "image: m.pgm\nresolution: 0.05\n  origin: [0,0,0\n bad");
+  EXPECT_EQ(mapError(d / "syntax.yaml"), (d / "syntax.yaml").string() + ":2: cannot parse YAML: invalid multiline plain key");
 }
 
 // A header claiming 2 000 000 000² pixels: refused from the header with the file, not an allocator's or OpenCV's

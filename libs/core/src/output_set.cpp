@@ -390,12 +390,20 @@ void OutputSet::commitStage() {
     return;
   }
   if (!S_ISDIR(st.st_mode)) throw std::runtime_error(folder_ + ": cannot write the output folder: it is not a folder");
+  // The run's files, by their paths inside the folder; the old folder is "foreign" when it holds a file the run
+  // does not write (a user's, or an earlier run's with other options: never removed) or a folder where the run
+  // writes a file.
   std::set<std::string> ours;
-  for (const auto& e : fs::directory_iterator(stage)) ours.insert(e.path().filename().string());
+  for (const auto& e : fs::recursive_directory_iterator(stage))
+    if (!e.is_directory()) ours.insert(fs::relative(e.path(), stage).string());
   bool foreign = false;
-  for (const auto& e : fs::directory_iterator(folder)) {
-    const std::string name = e.path().filename().string();
-    if (!ours.count(name) && !isOutputTemporary(name)) foreign = true;
+  for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string rel = fs::relative(it->path(), folder).string();
+    if (isOutputTemporary(it->path().filename().string())) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_directory() && !it->is_symlink() ? ours.count(rel) > 0 : ours.count(rel) == 0) foreign = true;
   }
   // The current folder of this process (or a folder around it) is never swapped: the shell would be left in a
   // removed folder.
@@ -427,31 +435,36 @@ void OutputSet::commitStage() {
     unregisterPath(old_slot);
     return;
   }
-  // A folder with other files: the run's top-level entries are moved in one by one (each one rename), what they
-  // replace moved aside first and put back if one fails.
+  // A folder with other files: the run's files are moved in one by one (each one rename; the folders they need
+  // made), what they replace moved aside first; if one move fails, everything is put back as it was.
   removeStaleTemporaries(folder, ".");
-  std::vector<std::string> names(ours.begin(), ours.end()), backups(names.size());
+  const std::vector<std::string> files(ours.begin(), ours.end());
+  for (const auto& rel : files)
+    if (fs::is_directory(folder / rel)) throw std::runtime_error("output " + (folder / rel).string() + " is a directory");
+  std::vector<std::string> backups(files.size()), made_dirs;
   std::size_t aside = 0, moved = 0;
   try {
-    for (; aside < names.size(); ++aside) {
-      const fs::path target = folder / names[aside];
+    for (const auto& rel : files) createDirectories((folder / rel).parent_path(), made_dirs);
+    for (; aside < files.size(); ++aside) {
+      const fs::path target = folder / files[aside];
       if (!fs::exists(fs::symlink_status(target))) continue;
-      backups[aside] = (folder / ("." + names[aside] + tmpSuffix() + ".previous")).string();
+      backups[aside] = (target.parent_path() / ("." + target.filename().string() + tmpSuffix() + ".previous")).string();
       renameOrThrow(target, backups[aside], target.string());
     }
-    for (; moved < names.size(); ++moved)
-      renameOrThrow(stage / names[moved], folder / names[moved], (folder / names[moved]).string());
+    for (; moved < files.size(); ++moved)
+      renameOrThrow(stage / files[moved], folder / files[moved], (folder / files[moved]).string());
   } catch (...) {
     std::error_code e2;
-    for (std::size_t i = 0; i < moved; ++i) fs::rename(folder / names[i], stage / names[i], e2);
+    for (std::size_t i = 0; i < moved; ++i) fs::rename(folder / files[i], stage / files[i], e2);
     for (std::size_t i = 0; i < aside; ++i)
-      if (!backups[i].empty()) fs::rename(backups[i], folder / names[i], e2);
+      if (!backups[i].empty()) fs::rename(backups[i], folder / files[i], e2);
+    for (auto it = made_dirs.rbegin(); it != made_dirs.rend(); ++it) fs::remove(*it, e2);
     throw;
   }
   for (const auto& b : backups)
     if (!b.empty()) {
       std::error_code rm;
-      fs::remove_all(b, rm);
+      fs::remove(b, rm);
     }
   std::error_code rm;
   fs::remove_all(stage, rm);

@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -194,13 +196,47 @@ RosMapYaml parseRosYaml(const std::string& path) {
   }
 }
 
-RosMapYaml parseRosYamlUnchecked(const std::string& path) {
+// The YAML parser (rapidyaml inside MRPT) prints its diagnosis ("<memory-@0x...>:2:13: error: invalid multiline
+// plain key" and the lines around it) to stderr and then fails an assertion that says nothing: its stderr is
+// captured while it parses, and the diagnosis becomes the error's line and message.
+mrpt::containers::yaml parseYamlFile(const std::string& path) {
+  std::fflush(stderr);
+  std::FILE* capture = std::tmpfile();
+  const int saved = capture ? ::dup(2) : -1;
+  if (saved >= 0) ::dup2(::fileno(capture), 2);
+  std::string failure;
   mrpt::containers::yaml y;
   try {
     y = mrpt::containers::yaml::FromFile(path);
   } catch (const std::exception& e) {
-    throw InputError(path, 0, "", "cannot parse YAML: " + shortReason(e.what()));
+    failure = shortReason(e.what());
   }
+  std::string said;
+  if (saved >= 0) {
+    std::fflush(stderr);
+    ::dup2(saved, 2);
+    ::close(saved);
+    std::rewind(capture);
+    char buf[512];
+    if (std::fgets(buf, sizeof buf, capture)) said = buf;
+  }
+  if (capture) std::fclose(capture);
+  if (failure.empty()) return y;
+  // "<memory-@0x...>:2:13: error: invalid multiline plain key"
+  const auto err = said.find(": error: ");
+  if (err != std::string::npos) {
+    const std::string where = said.substr(0, err);
+    std::size_t line = 0;
+    if (const auto c1 = where.find(">:"); c1 != std::string::npos) line = std::strtoul(where.c_str() + c1 + 2, nullptr, 10);
+    std::string what = said.substr(err + 9);
+    while (!what.empty() && (what.back() == '\n' || what.back() == '\r')) what.pop_back();
+    throw InputError(path, line, "", "cannot parse YAML: " + what);
+  }
+  throw InputError(path, 0, "", "cannot parse YAML: " + failure);
+}
+
+RosMapYaml parseRosYamlUnchecked(const std::string& path) {
+  const mrpt::containers::yaml y = parseYamlFile(path);
   if (!y.isMap()) throw InputError(path, "not a ROS map_server YAML file (expected key: value pairs)");
   RosMapYaml m;
   auto number = [&](const char* key, bool required, double def) {

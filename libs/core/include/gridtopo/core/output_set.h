@@ -7,8 +7,8 @@
 // written into a hidden stage folder beside it (`.OUT.tmp-PID-N`, same file system), and commit() swaps the stage
 // in with one rename (renameat2 RENAME_EXCHANGE; the old folder stays whole until the new one is complete, then
 // is removed). When OUT holds entries the run does not write (a user's files, outputs of an earlier run with other
-// options) it is never replaced: the run's top-level entries are moved into it one by one instead, each with one
-// rename, and put back as they were if one fails. The stage is removed on every error path (destructor), on
+// options) it is never replaced: the run's files are moved into it one by one instead, each with one rename, and
+// everything is put back as it was if one fails. The stage is removed on every error path (destructor), on
 // SIGINT / SIGTERM / SIGHUP once installOutputCleanupOnSignals() ran (every app's runApp does), and a stage left
 // by a process that no longer exists (SIGKILL) is removed by the next set over the same folder. A signal that
 // arrives during commit() waits until the commit is done.
