@@ -76,6 +76,9 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   }
   EXPECT_EQ(mapError(d / "bad0.yaml"), (d / "bad0.yaml").string() + ": image: expected a file name");
   EXPECT_EQ(mapError(d / "bad5.yaml"), (d / "bad5.yaml").string() + ": mode: expected trinary, scale or raw");
+  // Ten bytes on which the YAML parser looped forever (found by map_fuzzer): refused as not text.
+  put(d / "hang.yaml", std::string("%\xc6-P2\0\x99r~\x06", 10));
+  EXPECT_EQ(mapError(d / "hang.yaml"), (d / "hang.yaml").string() + ": not a text YAML file (byte 5 is 0x00)");
   // A syntax error: the parser's own diagnosis and line (it printed them to stderr and failed a bare assertion).
   put(d / "syntax.yaml", "image: m.pgm\nresolution: 0.05\n  origin: [0,0,0\n bad");
   EXPECT_EQ(mapError(d / "syntax.yaml"), (d / "syntax.yaml").string() + ":2: cannot parse YAML: invalid multiline plain key");

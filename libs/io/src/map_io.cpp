@@ -187,6 +187,24 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path);
 RosMapYaml parseRosYaml(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such YAML file");
   if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
+  // YAML allows no control bytes but tab, LF and CR (and the parser can loop forever on a NUL: found by
+  // map_fuzzer); a map's YAML is a few lines.
+  {
+    std::ifstream f(path, std::ios::binary);
+    std::string text(1 << 20, '\0');
+    f.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(f.gcount()));
+    if (f.gcount() == (1 << 20) && f.peek() != EOF)
+      throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const auto c = static_cast<unsigned char>(text[i]);
+      if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02X", c);
+        throw InputError(path, "not a text YAML file (byte " + std::to_string(i) + " is " + hex + ")");
+      }
+    }
+  }
   try {
     return parseRosYamlUnchecked(path);
   } catch (const InputError&) {
