@@ -78,7 +78,12 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   EXPECT_EQ(mapError(d / "bad5.yaml"), (d / "bad5.yaml").string() + ": mode: expected trinary, scale or raw");
   // Ten bytes on which the YAML parser looped forever (found by map_fuzzer): refused as not text.
   put(d / "hang.yaml", std::string("%\xc6-P2\0\x99r~\x06", 10));
-  EXPECT_EQ(mapError(d / "hang.yaml"), (d / "hang.yaml").string() + ": not a text YAML file (byte 5 is 0x00)");
+  EXPECT_EQ(mapError(d / "hang.yaml"), (d / "hang.yaml").string() + ": not a UTF-8 text YAML file (byte 1)");
+  // And on broken UTF-8 (the second input map_fuzzer found): refused too; valid UTF-8 passes the check.
+  put(d / "hang2.yaml", "P2\n# c\n%%%%\xd4\xda\xda%%\n");
+  EXPECT_EQ(mapError(d / "hang2.yaml"), (d / "hang2.yaml").string() + ": not a UTF-8 text YAML file (byte 11)");
+  put(d / "utf8.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n# caf\xc3\xa9\n");
+  EXPECT_EQ(io::readGridMap((d / "utf8.yaml").string())->getSizeX(), 4u);
   // A syntax error: the parser's own diagnosis and line (it printed them to stderr and failed a bare assertion).
   put(d / "syntax.yaml", "image: m.pgm\nresolution: 0.05\n  origin: [0,0,0\n bad");
   EXPECT_EQ(mapError(d / "syntax.yaml"), (d / "syntax.yaml").string() + ":2: cannot parse YAML: invalid multiline plain key");

@@ -198,6 +198,14 @@ RosMapYaml parseRosYaml(const std::string& path) {
       throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
     for (std::size_t i = 0; i < text.size(); ++i) {
       const auto c = static_cast<unsigned char>(text[i]);
+      if (c >= 0x80) {  // UTF-8: a lead byte and its continuation bytes (the parser also loops on broken ones)
+        const std::size_t n = c >= 0xF0 && c < 0xF5 ? 3 : c >= 0xE0 ? (c < 0xF0 ? 2 : 0) : c >= 0xC2 ? 1 : 0;
+        bool ok = n > 0 && i + n < text.size() + 0;
+        for (std::size_t k = 1; ok && k <= n; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+        if (!ok) throw InputError(path, "not a UTF-8 text YAML file (byte " + std::to_string(i) + ")");
+        i += n;
+        continue;
+      }
       if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) {
         char hex[8];
         std::snprintf(hex, sizeof hex, "0x%02X", c);
