@@ -61,6 +61,10 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> errors("e", "errors", "write per-relation errors to this text file", false, "",
                                         "file", cmd);
     TCLAP::SwitchArg skip_bad("", "skip-bad-lines", "skip (and count) malformed lines of CARMEN logs", cmd);
+    TCLAP::SwitchArg partial("", "partial",
+                             "score the relations inside the estimate's time span even when most relations lie "
+                             "outside it (a trajectory of part of the log); without it such a run is refused",
+                             cmd);
     HelpOptionsArg help_options(cmd, eval::relationsMetricOptionsHelp);
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
@@ -69,11 +73,14 @@ int main(int argc, char** argv) {
     spec.relations = relations.getValue(), spec.log = log.getValue(), spec.trajectory = trajectory.getValue();
     spec.corrected_log = gfs.getValue(), spec.baseline_odometry = baseline.getValue();
     spec.read.skip_bad_lines = skip_bad.getValue();
+    spec.partial = partial.getValue();
     eval::configureRelationsRun(spec, given(config), {odometry.isSet() ? odometry.getValue() : "", gfs_match.getValue(),
                                                       gfs_pose.getValue(), interpolate.getValue(),
                                                       interpolate_estimate.getValue(), given(max_gap),
                                                       given(revisit_span)});
 
+    for (const auto* out : {&json, &errors})  // an unusable output is said before the scoring
+      if (!out->getValue().empty()) checkOutputFile(out->getValue());
     const eval::RelationsRun scored = eval::runRelations(spec, std::cerr);
     std::cout << eval::relationsRunText(scored);
     std::cerr << eval::relationsRunWarnings(scored);

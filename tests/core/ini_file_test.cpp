@@ -1,4 +1,9 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_file.h"
@@ -111,4 +116,68 @@ TEST(IniFile, RepeatsAreAllowedUnlessRefused) {
     EXPECT_STREQ(e.what(), "r.ini:4: [run] x: key given twice");
   }
   EXPECT_NO_THROW(IniFile::parse("[run]\nx = 1\n[slam]\nx = 1\n", "r.ini").requireNoRepeats());
+}
+
+// Near misses get a "did you mean" (one edit, two from 8 letters on; a swap of neighbours is one edit); far ones
+// only the list.
+TEST(IniFile, NearMissesGetADidYouMean) {
+  EXPECT_EQ(closestName("particlez", {"seed", "particles"}), "particles");
+  EXPECT_EQ(closestName("slma", {"slam_run", "slam"}), "slam");
+  EXPECT_EQ(closestName("slamm", {"slam_run", "slam"}), "slam");
+  EXPECT_EQ(closestName("partcles", {"particles"}), "particles");
+  EXPECT_EQ(closestName("prticlez", {"particles"}), "particles");  // two edits in 8 letters
+  EXPECT_EQ(closestName("seeds", {"seed"}), "seed");
+  EXPECT_EQ(closestName("output", {"input", "max_scans"}), "");  // two edits in 6 letters: no guess
+  EXPECT_EQ(closestName("zzz", {"seed"}), "");
+  const IniFile ini = IniFile::parse("[slam]\nparticlez = 3\n", "c.ini");
+  try {
+    ini.requireKnownKeys("slam", {"particles", "seed"}, "see config-ini/slam.ini");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "c.ini:2: [slam] particlez: unknown key (did you mean 'particles'? see config-ini/slam.ini)");
+  }
+}
+
+// The checks of a -c options file: other gridtopo apps' sections pass (one INI for several apps), a typo does not,
+// the section the app reads must be there, keys once.
+TEST(IniFile, OptionsFileChecks) {
+  IniFile::parse("[slam]\nparticles = 3\n[topology]\nx = 1\n[relations_metric]\n", "a.ini")
+      .requireOptionsFile({"slam", "loop_closure"}, "slam");
+  try {
+    IniFile::parse("[slam]\nparticles = 3\n\n[slamm]\nparticles = 4\n", "b.ini").requireOptionsFile({"slam"}, "slam");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "b.ini:4: [slamm]: unknown section (did you mean [slam]? this app reads slam)");
+  }
+  try {
+    IniFile::parse("[relaxation]\niterations = 3\n", "c.ini").requireOptionsFile({"topology", "relaxation"}, "topology");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "c.ini: [topology]: section not found");
+  }
+  EXPECT_THROW(IniFile::parse("[slam]\nseed = 1\nseed = 2\n", "d.ini").requireOptionsFile({"slam"}, "slam"),
+               InputError);
+}
+
+// A binary file given as an INI is refused before parsing, naming the file and the first non-text byte; an
+// unreadable one says the system's reason.
+TEST(IniFile, BinaryAndUnreadableFilesAreRefusedUpFront) {
+  const std::string elf = ::testing::TempDir() + "ini_file_test_binary_" + std::to_string(::getpid());
+  {
+    std::ofstream f(elf, std::ios::binary);
+    f << "\x7f" "ELF" << '\x02' << '\x01' << std::string(3, '\0') << "[slam]\n";
+  }
+  try {
+    IniFile::read(elf);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), elf + ": not a text INI file (byte 0 is 0x7F)");
+  }
+  std::remove(elf.c_str());
+  try {
+    IniFile::read("/nonexistent/x.ini");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/x.ini: cannot read the INI file: No such file or directory");
+  }
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include "common/run_app.h"
 #include "gridtopo/io/carmen_log.h"
@@ -139,4 +140,126 @@ TEST(EvalApp, IniFileSetsTheOptions) {
   ASSERT_EQ(r.status, 0) << r.output;
   // The shipped INI keeps the reference settings: ODOM lines (auto), nearest reading, 0.1 s.
   EXPECT_NE(r.output.find("translational error:   0.0723 ± 0.0857 m"), std::string::npos) << r.output;
+}
+
+// issue 36: the -c INI: unknown keys and sections refused with file and line, [relations_metric] required, a
+// binary file refused up front (no MRPT backtrace).
+TEST(EvalApp, OptionsFileTyposAndBinaryFilesAreRefused) {
+  const fs::path ini = tmp("typo.ini");
+  const std::string base = "--relations " + data("intel.relations.gz") + " -t " + ini.string() + " -c ";
+  std::ofstream(ini) << "[relations_metric]\nmax_time_gapp = 3\n";
+  auto r = run(base + ini.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(ini.string() + ":2: [relations_metric] max_time_gapp: unknown key (did you mean "
+                                         "'max_time_gap'?"),
+            std::string::npos)
+      << r.output;
+  std::ofstream(ini) << "[relations_metrics]\nmax_time_gap = 3\n";
+  r = run(base + ini.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(ini.string() + ":1: [relations_metrics]: unknown section (did you mean [relations_metric]?"),
+            std::string::npos)
+      << r.output;
+  std::ofstream(ini) << "[slam]\nparticles = 3\n";
+  r = run(base + ini.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(ini.string() + ": [relations_metric]: section not found"), std::string::npos) << r.output;
+  r = run(base + GRIDTOPO_BIN_DIR + "/gridtopo-eval");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.output, std::string("gridtopo-eval: error: ") + GRIDTOPO_BIN_DIR +
+                          "/gridtopo-eval: not a text INI file (byte 0 is 0x7F)\n");
+}
+
+namespace {
+// The Intel log's laser-line odometry as a trajectory file (the first `n` poses; 0: all).
+fs::path intelOdometryTrajectory(std::size_t n, const std::string& name) {
+  const auto log = gridtopo::io::readCarmenLog(data("intel.clf.gz"));
+  std::vector<gridtopo::TimedPose> traj;
+  for (const auto& s : log.scans)
+    if (n == 0 || traj.size() < n) traj.push_back({s.scan.timestamp, s.odometry});
+  const fs::path t = tmp(name);
+  gridtopo::io::writeTrajectory(t.string(), traj);
+  return t;
+}
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+}  // namespace
+
+// issue 36: inputs that do not belong together are refused with a non-zero exit, not scored. ACES relations
+// against the Intel estimate: no overlap in time. A 199-pose Intel trajectory against all of Intel's relations:
+// most relations outside (scored with --partial, the skipped ones counted). The -l log of another run.
+TEST(EvalApp, MismatchedInputsAreRefused) {
+  auto r = run("--relations " + data("aces.relations.gz") + " --log " + data("intel.clf.gz") + " --gfs " +
+               data("intel.gfs.log.gz") + " --odometry laser");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("gridtopo-eval: error: " + data("aces.relations.gz") +
+                          ": no relation lies in the time span ["),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the relations and the estimate do not belong together"), std::string::npos) << r.output;
+
+  // The first 199 poses end before the first relation begins (976052896.8 s): nothing to score, even with --partial.
+  const fs::path tiny = intelOdometryTrajectory(199, "intel199.txt");
+  r = run("-r " + data("intel.relations.gz") + " -t " + tiny.string() + " --partial");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(": no relation lies in the time span [976052857.33753, 976052895.965408] s of " +
+                          tiny.string() + " (the relations span [976052896.784509, 976055541.107721] s)"),
+            std::string::npos)
+      << r.output;
+  // The first 3000 poses (a fifth of the log): most relations outside, refused; --partial scores the part.
+  const fs::path short_traj = intelOdometryTrajectory(3000, "intel3000.txt");
+  r = run("-r " + data("intel.relations.gz") + " -t " + short_traj.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(" of 2984 relations lie outside the time span"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--partial scores the part"), std::string::npos) << r.output;
+  const fs::path json = tmp("partial.json");
+  r = run("-r " + data("intel.relations.gz") + " -t " + short_traj.string() + " --partial -j " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string j = slurp(json);
+  const auto number = [&](const std::string& key) {
+    const auto p = j.find("\"" + key + "\": ");
+    return p == std::string::npos ? -1.0 : std::stod(j.substr(p + key.size() + 4));
+  };
+  EXPECT_EQ(number("relations_total"), 2984);
+  EXPECT_GT(number("relations_scored"), 0);
+  EXPECT_GT(number("relations_skipped"), 2984 / 2);
+  EXPECT_EQ(number("relations_scored") + number("relations_skipped"), 2984);
+  EXPECT_EQ(number("estimated_poses"), 3000);
+  EXPECT_NE(r.output.find("relations scored: " + std::to_string(static_cast<int>(number("relations_scored"))) +
+                          " of 2984 (0 corrected by odometry, " +
+                          std::to_string(static_cast<int>(number("relations_skipped"))) + " skipped"),
+            std::string::npos)
+      << r.output;
+
+  const fs::path full = intelOdometryTrajectory(0, "intel_all.txt");
+  r = run("-r " + data("aces.relations.gz") + " -t " + full.string() + " -l " + data("aces.clf.gz"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("gridtopo-eval: error: " + data("aces.clf.gz") + ": its times ["), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the trajectory was made from another log"), std::string::npos) << r.output;
+}
+
+// issue 36 item 8: eval.json has every key once and its counts as numbers; scored + skipped = the file's relations.
+TEST(EvalApp, JsonKeysOnceAndNumbersAsNumbers) {
+  const fs::path json = tmp("keys.json");
+  const auto r = run("--relations " + data("intel.relations.gz") + " --log " + data("intel.clf.gz") + " --gfs " +
+                     data("intel.gfs.log.gz") + " --odometry laser --max-gap 0.25 --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string j = slurp(json);
+  for (const char* key : {"\"max_time_gap_s\": 0.25,", "\"estimated_poses\": 910,", "\"relations_total\": 2984,",
+                          "\"relations_scored\": 2984,", "\"relations_skipped\": 0,", "\"largest_time_gap_s\": "})
+    EXPECT_EQ(occurrences(j, key), 1u) << key << "\n" << j;
+  // Every top-level key once.
+  std::vector<std::string> keys;
+  std::istringstream lines(j);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("  \"", 0) == 0) keys.push_back(line.substr(2, line.find("\":") - 1));
+  std::vector<std::string> sorted = keys;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << j;
+  EXPECT_GT(keys.size(), 15u);
+  EXPECT_NE(r.output.find("relations scored: 2984 of 2984 ("), std::string::npos) << r.output;
 }

@@ -106,7 +106,7 @@ TEST(Report, JsonHasInfoStatsAndCounts) {
             "  \"revisit\": {\"count\": 1, \"translational_m\": {\"mean\": 0.02204, \"std\": null, \"min\": 0.02204, "
             "\"max\": 0.02204, \"count\": 1}, \"rotational_deg\": {\"mean\": 0.7, \"std\": null, \"min\": 0.7, "
             "\"max\": 0.7, \"count\": 1}},\n"
-            "  \"max_time_gap_s\": 0.25\n"
+            "  \"largest_time_gap_s\": 0.25\n"
             "}\n");
 }
 
@@ -123,7 +123,7 @@ TEST(Report, JsonEscapesStringsAndWritesNullForUndefinedNumbers) {
   EXPECT_NE(j.find("\"rotational_deg\": {\"mean\": null, \"std\": null, \"min\": 0, \"max\": 0, \"count\": 0}"),
             std::string::npos)
       << j;
-  EXPECT_NE(j.find("\"max_time_gap_s\": null\n}\n"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"largest_time_gap_s\": null\n}\n"), std::string::npos) << j;
   // No info: the object starts with the statistics.
   EXPECT_EQ(formatJson(r, {}).rfind("{\n  \"translational_m\": ", 0), 0u);
 }
@@ -149,4 +149,12 @@ TEST(Report, ErrorsOneLinePerRelationInOrderWithDegrees) {
             "1.5 2.5 1e-12 0 0 0\n");
   EXPECT_EQ(formatErrors(RelationsResult{}),
             "# t1 t2 translational_error_m rotational_error_deg gap1_s gap2_s (relations file order)\n");
+}
+
+// issue 36 item 8: every key of eval.json once: an info or number key that repeats one is refused.
+TEST(Report, JsonRefusesARepeatedKey) {
+  RelationsResult r;
+  EXPECT_THROW(formatJson(r, {{"a", "x"}}, {{"a", 1.0}}), std::invalid_argument);
+  EXPECT_THROW(formatJson(r, {}, {{"largest_time_gap_s", 1.0}}), std::invalid_argument);
+  EXPECT_NE(formatJson(r, {{"a", "x"}}, {{"n", 13631}}).find("  \"n\": 13631,\n"), std::string::npos);
 }

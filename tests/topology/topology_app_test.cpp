@@ -180,9 +180,9 @@ TEST(TopologyApp, RunIniErrorsNameFileLineSectionAndKey) {
               ":3: [topology_run] model: no such file '/nonexistent/model.yml'");
   expectError("[topology_run]\nmap = " + map + "\n", ":1: [topology_run] output: missing");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "maps = x\n",
-              ":4: [topology_run] maps: unknown key (expected map, model, output, trajectory)");
+              ":4: [topology_run] maps: unknown key (did you mean 'map'? expected map, model, output, trajectory)");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[topolgy]\n",
-              ":4: [topolgy]: unknown section (expected topology_run, topology, relaxation, correction)");
+              ":4: [topolgy]: unknown section (did you mean [topology]? expected topology_run, topology, relaxation, correction)");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[correction]\nmin_room = 3\n",
               ":5: [correction] min_room: unknown key");
   expectError("[topology_run]\nmap = " + map + "\n" + out + "[topology]\n\nthreads = 0\n",
@@ -318,4 +318,26 @@ TEST(TopologyCompareApp, ScoresAMapInAnotherFrameAgainstTheReference) {
             0);
   EXPECT_NE(slurp(d / "bad.txt").find("/nonexistent/ref.png"), std::string::npos) << slurp(d / "bad.txt");
   EXPECT_FALSE(fs::exists(d / "bad.json"));
+}
+
+// issue 36: the -c INI is read as strictly as a RUN.ini: typos refused with file, line and a "did you mean",
+// [topology] required (as gridtopo-slam requires [slam]), a binary file refused up front; nothing written.
+TEST(TopologyApp, OptionsFileTyposMissingSectionAndBinaryFilesAreRefused) {
+  const fs::path d = fresh("options_file");
+  const std::string map = kData + "/places/maps/lab_intel.png";
+  const std::string ini = (d / "opts.ini").string();
+  auto expectError = [&](const std::string& ini_path, const std::string& message) {
+    EXPECT_EQ(run(map + " -o " + (d / "out").string() + " -c " + ini_path, d / "err"), 1 << 8) << slurp(d / "err");
+    EXPECT_EQ(slurp(d / "err"), "gridtopo-topology: error: " + ini_path + message + "\n");
+    EXPECT_FALSE(fs::exists(d / "out"));
+  };
+  std::ofstream(ini) << "[topology]\nthreadz = 2\n";
+  expectError(ini, ":2: [topology] threadz: unknown key (did you mean 'threads'? not an option of this section; see "
+                   "config-ini/topology.ini)");
+  std::ofstream(ini) << "[topology]\nthreads = 2\n[relaxatoin]\n";
+  expectError(ini, ":3: [relaxatoin]: unknown section (did you mean [relaxation]? this app reads topology, "
+                   "relaxation, correction)");
+  std::ofstream(ini) << "[relaxation]\n";
+  expectError(ini, ": [topology]: section not found");
+  expectError(kBin, ": not a text INI file (byte 0 is 0x7F)");
 }

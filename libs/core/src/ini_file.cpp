@@ -1,6 +1,9 @@
 #include "gridtopo/core/ini_file.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -21,14 +24,63 @@ std::string joined(const std::vector<std::string>& words) {
   for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
   return s;
 }
+
+// Edits (insert, delete, replace, swap of two neighbours) from a to b.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+std::string didYouMean(const std::string& word, const std::vector<std::string>& known, const std::string& open,
+                       const std::string& close) {
+  const std::string best = closestName(word, known);
+  return best.empty() ? std::string() : "did you mean " + open + best + close + "? ";
+}
 }  // namespace
 
+const std::vector<std::string>& gridtopoIniSections() {
+  static const std::vector<std::string> sections = {
+      "slam_run", "slam", "loop_closure", "topology_run", "topology", "relaxation", "correction", "map_run",
+      "topology_builder", "relations_metric", "scan_simulation", "features", "training"};
+  return sections;
+}
+
+std::string closestName(const std::string& word, const std::vector<std::string>& candidates) {
+  // One edit for a name of up to 7 letters, two from 8 on.
+  const std::size_t allowed = word.size() >= 8 ? 2 : 1;
+  std::string best;
+  std::size_t best_d = allowed + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = editDistance(word, c);
+    if (d < best_d) best = c, best_d = d;
+  }
+  return best;
+}
+
 IniFile IniFile::read(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "cannot read the INI file");
+  errno = 0;
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(path, std::string("cannot read the INI file: ") + std::strerror(errno ? errno : ENOENT));
   std::ostringstream text;
   text << f.rdbuf();
-  return parse(text.str(), path);
+  if (f.bad()) throw InputError(path, std::string("cannot read the INI file: ") + std::strerror(errno ? errno : EIO));
+  const std::string s = text.str();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f') || c == 0x7F) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", c);
+      throw InputError(path, "not a text INI file (byte " + std::to_string(i) + " is " + hex + ")");
+    }
+  }
+  return parse(s, path);
 }
 
 IniFile IniFile::parse(const std::string& text, const std::string& name) {
@@ -116,7 +168,8 @@ void IniFile::requireNoRepeats() const {
 void IniFile::requireKnownSections(const std::vector<std::string>& known) const {
   for (const auto& e : entries_)
     if (e.key.empty() && std::find(known.begin(), known.end(), e.section) == known.end())
-      throw InputError(name_, e.line, "[" + e.section + "]", "unknown section (expected " + joined(known) + ")");
+      throw InputError(name_, e.line, "[" + e.section + "]",
+                       "unknown section (" + didYouMean(e.section, known, "[", "]") + "expected " + joined(known) + ")");
 }
 
 void IniFile::requireKnownKeys(const std::string& section, const std::vector<std::string>& known,
@@ -124,7 +177,25 @@ void IniFile::requireKnownKeys(const std::string& section, const std::vector<std
   for (const auto& e : entries_)
     if (!e.key.empty() && e.section == section && std::find(known.begin(), known.end(), e.key) == known.end())
       throw InputError(name_, e.line, "[" + section + "] " + e.key,
-                       "unknown key (" + (where_listed.empty() ? "expected " + joined(known) : where_listed) + ")");
+                       "unknown key (" + didYouMean(e.key, known, "'", "'") +
+                           (where_listed.empty() ? "expected " + joined(known) : where_listed) + ")");
+}
+
+void IniFile::requireSection(const std::string& section) const {
+  if (!hasSection(section)) throw InputError(name_, 0, "[" + section + "]", "section not found");
+}
+
+void IniFile::requireOptionsFile(const std::vector<std::string>& read_here, const std::string& required) const {
+  requireNoRepeats();
+  std::vector<std::string> known = read_here;
+  for (const auto& s : gridtopoIniSections())
+    if (std::find(known.begin(), known.end(), s) == known.end()) known.push_back(s);
+  for (const auto& e : entries_)
+    if (e.key.empty() && std::find(known.begin(), known.end(), e.section) == known.end())
+      throw InputError(name_, e.line, "[" + e.section + "]",
+                       "unknown section (" + didYouMean(e.section, known, "[", "]") + "this app reads " +
+                           joined(read_here) + ")");
+  if (!required.empty()) requireSection(required);
 }
 
 }  // namespace gridtopo

@@ -129,6 +129,7 @@ RelationsResult evaluateRelations(const std::vector<TimedPose>& estimate, const 
     err.rotational = std::abs(mrpt::math::wrapToPi(err.estimated_delta.phi - rel.delta.phi));
     err.gap1 = a.gap;
     err.gap2 = b.gap;
+    err.corrected = a.corrected || b.corrected;
     te.push_back(err.translational);
     te2.push_back(err.translational * err.translational);
     const double deg = err.rotational * kRadToDeg;

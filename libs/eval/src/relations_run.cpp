@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFile.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -17,10 +18,13 @@ namespace gridtopo::eval {
 RelationsMetricOptions loadRelationsMetricIni(const std::string& path) {
   RelationsMetricOptions opt;
   if (!std::filesystem::exists(path)) throw InputError(path, "cannot open INI file");
+  const IniFile ini = IniFile::read(path);
+  ini.requireOptionsFile({"relations_metric"}, "relations_metric");
+  ini.requireKnownKeys("relations_metric", relationsMetricOptionSchema().keys(), "see config-ini/eval.ini");
   try {
     opt.loadFromConfigFile(mrpt::config::CConfigFile(path), "relations_metric");
   } catch (const InputError& e) {
-    throw IniFile::read(path).withLine(e);  // the table names "[relations_metric] key" without the line
+    throw ini.withLine(e);  // the table names "[relations_metric] key" without the line
   }
   return opt;
 }
@@ -101,7 +105,7 @@ RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
   }
   info.emplace_back("odometry_interpolated", opt.interpolate_odometry ? "true" : "false");
   info.emplace_back("estimate_interpolated", opt.interpolate_estimate ? "true" : "false");
-  info.emplace_back("max_time_gap_s", io::formatDouble(opt.max_time_gap));
+  run.numbers.emplace_back("max_time_gap_s", opt.max_time_gap);
 
   std::vector<TimedPose> estimate;
   if (!spec.trajectory.empty()) {
@@ -122,8 +126,54 @@ RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
     if (estimate.empty()) throw InputError(spec.log, "the log has no odometry in its laser lines");
     info.emplace_back("trajectory", "baseline: odometry of the laser lines of " + spec.log);
   }
-  info.emplace_back("estimated_poses", std::to_string(estimate.size()));
-  run.result = evaluateRelations(estimate, rels, odom.empty() ? nullptr : &odom, opt);
+  run.numbers.emplace_back("estimated_poses", static_cast<double>(estimate.size()));
+
+  // Inputs that do not belong together are refused, not scored: the estimate's time span against the raw log's
+  // and the relations'.
+  double first = estimate.front().timestamp, last = first;
+  for (const auto& p : estimate) first = std::min(first, p.timestamp), last = std::max(last, p.timestamp);
+  run.estimate_first = first, run.estimate_last = last;
+  const std::string estimate_name = !spec.trajectory.empty() ? spec.trajectory
+                                    : !spec.corrected_log.empty() ? spec.corrected_log
+                                                                  : spec.log;
+  const auto span = [](double a, double b) { return "[" + io::formatDouble(a) + ", " + io::formatDouble(b) + "] s"; };
+  if (!spec.log.empty() && !raw.scans.empty() && spec.trajectory == estimate_name) {
+    double log_first = raw.scans.front().scan.timestamp, log_last = log_first;
+    for (const auto& s : raw.scans)
+      log_first = std::min(log_first, s.scan.timestamp), log_last = std::max(log_last, s.scan.timestamp);
+    std::size_t inside = 0;
+    for (const auto& p : estimate) inside += p.timestamp >= log_first - 1.0 && p.timestamp <= log_last + 1.0;
+    if (2 * inside < estimate.size())
+      throw InputError(spec.log, "its times " + span(log_first, log_last) + " do not match the trajectory's " +
+                                     span(first, last) + " (" + std::to_string(inside) + " of " +
+                                     std::to_string(estimate.size()) +
+                                     " poses in the log's span): the trajectory was made from another log");
+  }
+  const double tol = opt.max_time_gap;
+  std::vector<Relation> within;
+  double rel_first = rels.front().t1, rel_last = rel_first;
+  for (const auto& r : rels) {
+    rel_first = std::min({rel_first, r.t1, r.t2}), rel_last = std::max({rel_last, r.t1, r.t2});
+    if (std::min(r.t1, r.t2) >= first - tol && std::max(r.t1, r.t2) <= last + tol) within.push_back(r);
+  }
+  run.relations_scored = within.size();
+  run.relations_skipped = rels.size() - within.size();
+  if (within.empty())
+    throw InputError(spec.relations, "no relation lies in the time span " + span(first, last) + " of " +
+                                         estimate_name + " (the relations span " + span(rel_first, rel_last) +
+                                         "): the relations and the estimate do not belong together");
+  if (2 * run.relations_skipped > rels.size() && !spec.partial)
+    throw InputError(spec.relations, std::to_string(run.relations_skipped) + " of " + std::to_string(rels.size()) +
+                                         " relations lie outside the time span " + span(first, last) + " of " +
+                                         estimate_name +
+                                         ": most cannot be scored (an estimate of another log, or of part of "
+                                         "it: --partial scores the part)");
+  run.result = evaluateRelations(estimate, within, odom.empty() ? nullptr : &odom, opt);
+  for (const auto& e : run.result.errors) run.relations_corrected += e.corrected;
+  run.numbers.emplace_back("relations_total", static_cast<double>(rels.size()));
+  run.numbers.emplace_back("relations_scored", static_cast<double>(run.relations_scored));
+  run.numbers.emplace_back("relations_corrected", static_cast<double>(run.relations_corrected));
+  run.numbers.emplace_back("relations_skipped", static_cast<double>(run.relations_skipped));
   return run;
 }
 
@@ -132,6 +182,12 @@ std::string relationsRunText(const RelationsRun& run) {
   o << "relations:  " << run.info.front().second << " (" << run.relation_count << ")\n";
   for (const auto& [k, v] : run.info)
     if (k != "relations") o << k << ": " << v << "\n";
+  for (const auto& [k, v] : run.numbers)
+    if (k == "max_time_gap_s" || k == "estimated_poses") o << k << ": " << io::formatDouble(v) << "\n";
+  o << "relations scored: " << run.relations_scored << " of " << run.relation_count << " ("
+    << run.relations_corrected << " corrected by odometry, " << run.relations_skipped
+    << " skipped: outside the estimate's time span [" << io::formatDouble(run.estimate_first) << ", "
+    << io::formatDouble(run.estimate_last) << "] s)\n";
   o << formatSummary(run.result);
   return o.str();
 }
@@ -139,7 +195,7 @@ std::string relationsRunText(const RelationsRun& run) {
 void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
                            const std::string& errors_path) {
   if (!json_path.empty()) {
-    const std::string text = formatJson(run.result, run.info);
+    const std::string text = formatJson(run.result, run.info, run.numbers);
     outputs.write(json_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
   }
   if (!errors_path.empty()) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
+#include <stdexcept>
 
 #include "gridtopo/core/option_schema.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -94,9 +96,18 @@ std::string formatSummary(const RelationsResult& r) {
   return s;
 }
 
-std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std::string, std::string>>& info) {
+std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std::string, std::string>>& info,
+                       const std::vector<std::pair<std::string, double>>& numbers) {
+  std::set<std::string> keys = {"translational_m", "translational_squared_m2", "rotational_deg",
+                                "rotational_squared_deg2", "endpoints_direct", "endpoints_corrected",
+                                "endpoints_interpolated", "endpoints_uncorrected", "revisit_span_s", "local",
+                                "revisit", "largest_time_gap_s"};
+  auto once = [&](const std::string& k) {
+    if (!keys.insert(k).second) throw std::invalid_argument("formatJson: the key '" + k + "' is given twice");
+  };
   std::string s = "{\n";
-  for (const auto& [k, v] : info) s += "  " + jsonString(k) + ": " + jsonString(v) + ",\n";
+  for (const auto& [k, v] : info) once(k), s += "  " + jsonString(k) + ": " + jsonString(v) + ",\n";
+  for (const auto& [k, v] : numbers) once(k), s += "  " + jsonString(k) + ": " + jsonNumber(v) + ",\n";
   s += "  \"translational_m\": " + jsonStats(r.translational) + ",\n";
   s += "  \"translational_squared_m2\": " + jsonStats(r.translational_squared) + ",\n";
   s += "  \"rotational_deg\": " + jsonStats(r.rotational) + ",\n";
@@ -108,7 +119,7 @@ std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std
   s += "  \"revisit_span_s\": " + jsonNumber(r.revisit_span) + ",\n";
   s += "  \"local\": " + jsonSplit(r.local) + ",\n";
   s += "  \"revisit\": " + jsonSplit(r.revisit) + ",\n";
-  s += "  \"max_time_gap_s\": " + jsonNumber(r.max_gap) + "\n";
+  s += "  \"largest_time_gap_s\": " + jsonNumber(r.max_gap) + "\n";
   return s + "}\n";
 }
 

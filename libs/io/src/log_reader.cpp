@@ -1,10 +1,15 @@
 #include "gridtopo/io/log_reader.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <numeric>
 
@@ -23,8 +28,18 @@ double wrapToPi(double a) {
 
 // Up to `n` leading bytes of the file, decompressed if it is gzip (zlib reads plain files as they are).
 std::string leadingBytes(const std::string& path, std::size_t n) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) throw InputError(path, "cannot open log file");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, std::string("cannot open the log file: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    throw InputError(path, std::string("cannot open the log file: ") + std::strerror(EISDIR));
+  }
+  gzFile f = gzdopen(fd, "rb");
+  if (!f) {
+    ::close(fd);
+    throw InputError(path, std::string("cannot open the log file: ") + std::strerror(errno ? errno : ENOMEM));
+  }
   std::string buf(n, '\0');
   const int got = gzread(f, buf.data(), static_cast<unsigned>(n));
   gzclose(f);

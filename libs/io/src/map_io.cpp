@@ -5,13 +5,20 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -81,10 +88,86 @@ void fillFromImage(COccupancyGridMap2D& g, const cv::Mat& img,
   }
 }
 
-cv::Mat loadGrey(const std::string& path) {
+// The first line of a library's message that says what went wrong: without MRPT's banner, source location and
+// call stack, or OpenCV's "OpenCV(4.x) file:line: error: (-215:...) ... in function ..." frame.
+std::string shortReason(const std::string& what) {
+  if (what.find("Message:") != std::string::npos) return innermostMrptMessage(what);
+  std::istringstream in(what);
+  std::string line, best;
+  while (std::getline(in, line)) {
+    const auto a = line.find_first_not_of(" \t");
+    if (a == std::string::npos || line.compare(a, 4, "====") == 0 || line.find("Call stack") != std::string::npos ||
+        std::isdigit(static_cast<unsigned char>(line[a])) || line[a] == '[')
+      continue;
+    best = line.substr(a);
+    break;
+  }
+  if (best.empty()) best = what.substr(0, what.find('\n'));
+  // "file.cpp:123: [func] message" / "OpenCV(4.6.0) file:1: error: (-215:Assertion failed) x in function 'f'"
+  if (const auto p = best.find("] "); p != std::string::npos && best.find(": [") != std::string::npos && p < 200)
+    best = best.substr(p + 2);
+  if (const auto p = best.find(") error: "); p != std::string::npos) best = best.substr(p + 9);
+  if (const auto p = best.find(" in function "); p != std::string::npos) best = best.substr(0, p);
+  if (best.size() > 200) best = best.substr(0, 200) + "...";
+  return best;
+}
+
+// The width and height that an image file's header claims, read without decoding the image: PNG (IHDR) and the
+// PNM family (P1..P6, PGM among them). Nothing for other formats.
+std::optional<std::pair<unsigned long long, unsigned long long>> imageHeaderSize(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::string head(4096, '\0');
+  f.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(f.gcount()));
+  const auto u8 = [&](std::size_t i) { return static_cast<unsigned long long>(static_cast<unsigned char>(head[i])); };
+  if (head.size() >= 24 && head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && head.compare(12, 4, "IHDR") == 0)
+    return std::make_pair((u8(16) << 24) | (u8(17) << 16) | (u8(18) << 8) | u8(19),
+                          (u8(20) << 24) | (u8(21) << 16) | (u8(22) << 8) | u8(23));
+  if (head.size() >= 2 && head[0] == 'P' && head[1] >= '1' && head[1] <= '6') {
+    std::size_t i = 2;
+    unsigned long long v[2] = {0, 0};
+    for (auto& x : v) {
+      for (;;) {  // white space and comments
+        while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+        if (i < head.size() && head[i] == '#')
+          while (i < head.size() && head[i] != '\n') ++i;
+        else
+          break;
+      }
+      if (i >= head.size() || !std::isdigit(static_cast<unsigned char>(head[i]))) return std::nullopt;
+      while (i < head.size() && std::isdigit(static_cast<unsigned char>(head[i])) && x < (1ULL << 40))
+        x = x * 10 + static_cast<unsigned long long>(head[i++] - '0');
+    }
+    return std::make_pair(v[0], v[1]);
+  }
+  return std::nullopt;
+}
+
+cv::Mat loadGrey(const std::string& path, std::size_t max_cells) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such image file");
-  cv::Mat img = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read the image: ") + std::strerror(errno));
+  // The header's size against the cell budget before anything is allocated.
+  if (const auto size = imageHeaderSize(path)) {
+    const auto [w, h] = *size;
+    if (w == 0 || h == 0) throw InputError(path, 0, "size", "the image header says " + std::to_string(w) + " x " +
+                                                                std::to_string(h) + " pixels: no cells");
+    if (w > max_cells || h > max_cells || w * h > max_cells)
+      throw InputError(path, 0, "size",
+                       "the image header says " + std::to_string(w) + " x " + std::to_string(h) +
+                           " pixels, more than the budget of " + std::to_string(max_cells) +
+                           " cells (MapReadOptions::max_cells)");
+  }
+  cv::Mat img;
+  try {
+    img = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  } catch (const std::exception& e) {
+    throw InputError(path, "cannot decode the image: " + shortReason(e.what()));
+  }
   if (img.empty()) throw InputError(path, "cannot decode the image (not a PNG/PGM/JPG/BMP file?)");
+  if (static_cast<std::size_t>(img.total()) > max_cells)
+    throw InputError(path, 0, "size",
+                     std::to_string(img.cols) + " x " + std::to_string(img.rows) + " pixels, more than the budget of " +
+                         std::to_string(max_cells) + " cells (MapReadOptions::max_cells)");
   return img;
 }
 
@@ -97,13 +180,89 @@ struct RosMapYaml {
   std::string mode = "trinary";
 };
 
+RosMapYaml parseRosYamlUnchecked(const std::string& path);
+
+// Every failure of the YAML library (a malformed document, a key of the wrong kind) as "file: what is wrong",
+// never the library's banner and call stack.
 RosMapYaml parseRosYaml(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path, "no such YAML file");
+  if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
+  // YAML allows no control bytes but tab, LF and CR (and the parser can loop forever on a NUL: found by
+  // map_fuzzer); a map's YAML is a few lines.
+  {
+    std::ifstream f(path, std::ios::binary);
+    std::string text(1 << 20, '\0');
+    f.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(f.gcount()));
+    if (f.gcount() == (1 << 20) && f.peek() != EOF)
+      throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const auto c = static_cast<unsigned char>(text[i]);
+      if (c >= 0x80) {  // UTF-8: a lead byte and its continuation bytes (the parser also loops on broken ones)
+        const std::size_t n = c >= 0xF0 && c < 0xF5 ? 3 : c >= 0xE0 ? (c < 0xF0 ? 2 : 0) : c >= 0xC2 ? 1 : 0;
+        bool ok = n > 0 && i + n < text.size() + 0;
+        for (std::size_t k = 1; ok && k <= n; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+        if (!ok) throw InputError(path, "not a UTF-8 text YAML file (byte " + std::to_string(i) + ")");
+        i += n;
+        continue;
+      }
+      if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02X", c);
+        throw InputError(path, "not a text YAML file (byte " + std::to_string(i) + " is " + hex + ")");
+      }
+    }
+  }
+  try {
+    return parseRosYamlUnchecked(path);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, "not a ROS map_server YAML file: " + shortReason(e.what()));
+  }
+}
+
+// The YAML parser (rapidyaml inside MRPT) prints its diagnosis ("<memory-@0x...>:2:13: error: invalid multiline
+// plain key" and the lines around it) to stderr and then fails an assertion that says nothing: its stderr is
+// captured while it parses, and the diagnosis becomes the error's line and message.
+mrpt::containers::yaml parseYamlFile(const std::string& path) {
+  std::fflush(stderr);
+  std::FILE* capture = std::tmpfile();
+  const int saved = capture ? ::dup(2) : -1;
+  if (saved >= 0) ::dup2(::fileno(capture), 2);
+  std::string failure;
   mrpt::containers::yaml y;
   try {
     y = mrpt::containers::yaml::FromFile(path);
   } catch (const std::exception& e) {
-    throw InputError(path, 0, "", std::string("cannot parse YAML: ") + e.what());
+    failure = shortReason(e.what());
   }
+  std::string said;
+  if (saved >= 0) {
+    std::fflush(stderr);
+    ::dup2(saved, 2);
+    ::close(saved);
+    std::rewind(capture);
+    char buf[512];
+    if (std::fgets(buf, sizeof buf, capture)) said = buf;
+  }
+  if (capture) std::fclose(capture);
+  if (failure.empty()) return y;
+  // "<memory-@0x...>:2:13: error: invalid multiline plain key"
+  const auto err = said.find(": error: ");
+  if (err != std::string::npos) {
+    const std::string where = said.substr(0, err);
+    std::size_t line = 0;
+    if (const auto c1 = where.find(">:"); c1 != std::string::npos) line = std::strtoul(where.c_str() + c1 + 2, nullptr, 10);
+    std::string what = said.substr(err + 9);
+    while (!what.empty() && (what.back() == '\n' || what.back() == '\r')) what.pop_back();
+    throw InputError(path, line, "", "cannot parse YAML: " + what);
+  }
+  throw InputError(path, 0, "", "cannot parse YAML: " + failure);
+}
+
+RosMapYaml parseRosYamlUnchecked(const std::string& path) {
+  const mrpt::containers::yaml y = parseYamlFile(path);
   if (!y.isMap()) throw InputError(path, "not a ROS map_server YAML file (expected key: value pairs)");
   RosMapYaml m;
   auto number = [&](const char* key, bool required, double def) {
@@ -121,7 +280,11 @@ RosMapYaml parseRosYaml(const std::string& path) {
     return v;
   };
   if (!y.has("image")) throw InputError(path, 0, "image", "missing");
-  m.image = y["image"].as<std::string>();
+  try {
+    m.image = y["image"].as<std::string>();
+  } catch (const std::exception&) {
+    throw InputError(path, 0, "image", "expected a file name");
+  }
   if (m.image.empty()) throw InputError(path, 0, "image", "empty image file name");
   m.resolution = number("resolution", true, 0);
   if (!(m.resolution > 0)) throw InputError(path, 0, "resolution", "must be positive");
@@ -145,7 +308,11 @@ RosMapYaml parseRosYaml(const std::string& path) {
   m.free_thresh = number("free_thresh", false, 0.196);
   if (!(m.free_thresh >= 0 && m.free_thresh < m.occupied_thresh && m.occupied_thresh <= 1))
     throw InputError(path, 0, "free_thresh", "need 0 <= free_thresh < occupied_thresh <= 1");
-  if (y.has("mode")) m.mode = y["mode"].as<std::string>();
+  if (y.has("mode")) try {
+      m.mode = y["mode"].as<std::string>();
+    } catch (const std::exception&) {
+      throw InputError(path, 0, "mode", "expected trinary, scale or raw");
+    }
   if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw")
     throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + m.mode + "'");
   return m;
@@ -175,14 +342,15 @@ std::array<COccupancyGridMap2D::cellType, 256> rosLut(const RosMapYaml& m) {
   return lut;
 }
 
-COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, const std::string& image_override = "") {
+COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t max_cells,
+                                    const std::string& image_override = "") {
   const RosMapYaml m = parseRosYaml(yaml_path);
   std::string image = image_override;
   if (image.empty()) {
     const fs::path ip(m.image);
     image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
   }
-  const cv::Mat img = loadGrey(image);
+  const cv::Mat img = loadGrey(image, max_cells);
   auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
                     static_cast<float>(m.origin[1]));
   fillFromImage(*g, img, rosLut(m));
@@ -291,13 +459,13 @@ MapImage readMap(const std::string& path, const MapReadOptions& options) {
 
 mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const MapReadOptions& options) {
   const std::string l = lower(path);
-  if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path);
+  if (endsWith(l, ".yaml") || endsWith(l, ".yml")) return readRosMap(path, options.max_cells);
   if (mapFileKind(path) == MapKind::ProbabilisticGrid) return readGridmapFile(path);
   // An image: a ROS YAML with the same stem beside it gives resolution, origin and thresholds.
-  if (const std::string yaml = yamlBeside(path); !yaml.empty()) return readRosMap(yaml, path);
+  if (const std::string yaml = yamlBeside(path); !yaml.empty()) return readRosMap(yaml, options.max_cells, path);
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
-  const cv::Mat img = loadGrey(path);
+  const cv::Mat img = loadGrey(path, options.max_cells);
   auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution), static_cast<float>(options.origin_x),
                     static_cast<float>(options.origin_y));
   // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.

@@ -1,7 +1,10 @@
 #include "gridtopo/io/trajectory_io.h"
 
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -33,8 +36,11 @@ void writeTrajectory(const std::string& path, const std::vector<TimedPose>& pose
 }
 
 std::vector<TimedPose> readTrajectory(const std::string& path) {
+  errno = 0;
   std::ifstream f(path);
-  if (!f) throw InputError(path, "cannot open trajectory file");
+  if (!f || std::filesystem::is_directory(path))
+    throw InputError(path, std::string("cannot open the trajectory file: ") +
+                               std::strerror(std::filesystem::is_directory(path) ? EISDIR : errno ? errno : ENOENT));
   std::vector<TimedPose> out;
   std::string line;
   std::size_t lineno = 0;
@@ -48,6 +54,8 @@ std::vector<TimedPose> readTrajectory(const std::string& path) {
     const char* end = line.data() + line.size();
     for (int i = 0; i < 4; ++i) {
       while (p < end && (*p == ' ' || *p == '\t')) ++p;
+      if (p == end || *p == '\r')
+        throw InputError(path, lineno, kFields[i], "missing (each line is 'timestamp x y theta')");
       const auto res = std::from_chars(p, end, v[i]);
       if (res.ec != std::errc() || !std::isfinite(v[i]))
         throw InputError(path, lineno, kFields[i], "expected a finite number");

@@ -32,6 +32,7 @@ std::string topologyOutputDir(const MapRunSpec& spec) { return (fs::path(spec.ou
 
 MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   checkMapRunSpec(spec);
+  checkOutputFolder(spec.output);  // an unusable -o is said now, not after the run
   const auto t0 = std::chrono::steady_clock::now();
   MapRunSummary summary;
   io::ScanLogInfo info;
@@ -96,7 +97,7 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
   // Both output sets and the run's INI, committed together. Each set's options.ini reproduces its half alone:
   // gridtopo-slam OUT/slam/options.ini, gridtopo-topology OUT/topology/options.ini (on OUT/slam/map.gridmap.gz).
   const MapTopology& t = *summary.topology;
-  OutputSet set;
+  OutputSet set(spec.output);  // one transaction for OUT: slam/, topology/ and options.ini swapped in together
   slam::addSlamOutputs(set, slam_spec.output, slam_out);
   topology::addTopologyOutputs(set, topo_spec.output, t.occ, t.topo, t.labelling.labels, spec.topology.overlay_scale,
                                topology::topologyRunIni(topo_spec));

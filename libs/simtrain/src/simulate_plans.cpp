@@ -62,7 +62,8 @@ std::vector<SimulatedPlan> simulatePlans(
       throw InputError("--maps", 0, n, "not a standard labelled map of " + places_dir);
   const double res = 0.05;  // every plan of datasets/places (datasets/README.md)
   std::vector<SimulatedPlan> out;
-  OutputSet outputs;
+  checkOutputFolder(out_dir);
+  OutputSet outputs(out_dir);
   for (const auto& f : files) {
     const cv::Mat grey = cv::imread(f.map, cv::IMREAD_UNCHANGED);
     if (grey.empty()) throw InputError(f.map, "cannot read map image");

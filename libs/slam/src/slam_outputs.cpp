@@ -2,7 +2,6 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -51,7 +50,7 @@ std::string statsRow(const StepStats& s) {
 }
 
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
-  OutputSet out;
+  OutputSet out(dir);
   addSlamOutputs(out, dir, o);
   out.commit();
 }
@@ -67,16 +66,19 @@ void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o
   });
   out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(o.grid, p); });
   {
-    // The ROS pair names its image inside the YAML: written side by side in a scratch directory, then moved in
-    // with the others.
-    const fs::path scratch = fs::temp_directory_path() / ("gridtopo-slam-outputs-" + std::to_string(::getpid()));
-    fs::create_directories(scratch);
-    io::writeRosMap(o.grid, (scratch / "map").string());
-    for (const char* ext : {".pgm", ".yaml"})
-      out.write((d / (std::string("map") + ext)).string(), [&](const std::string& p) {
-        fs::copy_file(scratch / (std::string("map") + ext), p, fs::copy_options::overwrite_existing);
-      });
-    fs::remove_all(scratch);
+    // The ROS pair names its image inside the YAML: both staged under their final names in the set's stage folder.
+    const std::string pgm = out.add((d / "map.pgm").string()), yaml = out.add((d / "map.yaml").string());
+    const fs::path stage_dir = fs::path(pgm).parent_path();
+    if (fs::path(pgm).filename() != "map.pgm" || fs::path(yaml) != stage_dir / "map.yaml")
+      throw std::logic_error("addSlamOutputs: the OutputSet must be a folder transaction around " + dir);
+    try {
+      io::writeRosMap(o.grid, (stage_dir / "map").string());
+    } catch (const std::exception& e) {
+      std::string what = e.what();
+      for (std::size_t pos; (pos = what.find(stage_dir.string())) != std::string::npos;)
+        what.replace(pos, stage_dir.string().size(), d.string());
+      throw std::runtime_error(what);
+    }
   }
   out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(o.simplemap, p); });
   out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.options_ini); });

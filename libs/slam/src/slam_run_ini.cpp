@@ -69,7 +69,8 @@ SlamRunSpec loadSlamRunIni(const std::string& path, const std::string& options_s
 SlamOptions loadSlamOptionsIni(const std::string& path, const std::string& section) {
   if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
   const IniFile ini = IniFile::read(path);
-  if (!ini.hasSection(section)) throw InputError(path, 0, "[" + section + "]", "section not found");
+  ini.requireOptionsFile({section, LoopClosureOptions::kSection}, section);
+  ini.requireKnownKeys(section, slamOptionKeys(), "not an option of the filter; see config-ini/slam.ini");
   ini.requireKnownKeys(LoopClosureOptions::kSection, loopClosureOptionSchema().keys(),
                        "not an option of the loop closure; see config-ini/slam.ini");
   return loadOptions(path, ini, section);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/core/progress.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/trajectory_io.h"
@@ -14,6 +15,7 @@
 namespace gridtopo::topology {
 
 void runTopologyOnMapFile(const TopologyRunSpec& spec, bool quiet, std::ostream& log) {
+  checkOutputFolder(spec.output);  // an unusable -o is said now, not after the run
   const TopologyOptions& opt = spec.options;
   const auto t0 = std::chrono::steady_clock::now();
   const places::PlacesModel model = places::PlacesModel::load(spec.model);

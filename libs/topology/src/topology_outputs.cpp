@@ -13,7 +13,7 @@ namespace gridtopo::topology {
 
 void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& occ, const TopologyResult& topo,
                           const cv::Mat& labels_before_correction, int overlay_scale, const std::string& options_ini) {
-  OutputSet outs;
+  OutputSet outs(dir);
   addTopologyOutputs(outs, dir, occ, topo, labels_before_correction, overlay_scale, options_ini);
   outs.commit();
 }

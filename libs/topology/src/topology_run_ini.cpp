@@ -72,6 +72,20 @@ TopologyRunSpec loadTopologyRunIni(const std::string& path) {
   return spec;
 }
 
+TopologyOptions loadTopologyOptionsIni(const std::string& path) {
+  if (path.empty()) return TopologyOptions();
+  if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
+  const IniFile ini = IniFile::read(path);
+  ini.requireOptionsFile({"topology", "relaxation", "correction"}, "topology");
+  for (const char* s : kTopologyOptionSections)
+    ini.requireKnownKeys(s, topologyOptionKeys(s), "not an option of this section; see config-ini/topology.ini");
+  try {
+    return loadTopologyOptions(path);
+  } catch (const InputError& e) {
+    throw ini.withLine(e);
+  }
+}
+
 void overrideRun(TopologyRunSpec& spec, const TopologyRunFlags& f) {
   spec.lines.overrideWith(f.model, spec.model, "model");
   spec.lines.overrideWith(f.output, spec.output, "output");
@@ -113,7 +127,7 @@ TopologyRunSpec topologyRunOfCommandLine(const std::string& first, const std::op
   TopologyRunSpec spec = has_run_ini ? loadTopologyRunIni(first) : TopologyRunSpec{};
   if (!has_run_ini) {
     spec.map = first;
-    spec.options = loadTopologyOptions(options_ini.value_or(""));
+    spec.options = loadTopologyOptionsIni(options_ini.value_or(""));
   }
   overrideRun(spec, flags);
   spec.model = placesModelPath(spec.model);

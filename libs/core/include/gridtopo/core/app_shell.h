@@ -16,6 +16,7 @@
 #include <string>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/output_set.h"
 
 namespace gridtopo {
 
@@ -48,6 +49,7 @@ class HelpOptionsArg {
 };
 
 inline int runApp(const std::string& app, const std::function<int()>& body) {
+  installOutputCleanupOnSignals();  // SIGINT / SIGTERM / SIGHUP remove the uncommitted outputs' temporaries
   try {
     return body();
   } catch (const TCLAP::ExitException& e) {  // --help, --version

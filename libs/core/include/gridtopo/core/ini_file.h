@@ -14,9 +14,18 @@
 
 namespace gridtopo {
 
+/// Every INI section that some gridtopo app reads (the option tables' sections and the RUN.ini run sections).
+const std::vector<std::string>& gridtopoIniSections();
+
+/// The closest of `candidates` to `word` (one edit: insert, delete, replace or swap two neighbours; two for a word of
+/// 8 letters or more), else empty.
+std::string closestName(const std::string& word, const std::vector<std::string>& candidates);
+
 class IniFile {
  public:
-  /// Reads `path`; InputError(path, "cannot read the INI file") if it cannot be opened.
+  /// Reads `path`; InputError(path, "cannot read the INI file: <system's reason>") if it cannot be read, and
+  /// InputError(path, "not a text INI file (byte N is 0xXX)") for a file with a NUL, DEL or another control byte than
+  /// tab, CR, LF or form feed (an executable or an image given by mistake): refused before anything is parsed.
   static IniFile read(const std::string& path);
   /// Parses `text`; `name` stands for the file in error messages.
   static IniFile parse(const std::string& text, const std::string& name);
@@ -54,13 +63,21 @@ class IniFile {
   /// Throws InputError(name, line, "[section]", "section given twice") or (name, line, "[section] key", "key given
   /// twice") for the first repeated section header or key (MRPT merges them; a strict file refuses them).
   void requireNoRepeats() const;
-  /// Throws InputError(name, line, "[section]", "unknown section (expected ...)") for the first section that is not
-  /// in `known`.
+  /// Throws InputError(name, line, "[section]", "unknown section (did you mean [x]? expected ...)") for the first
+  /// section that is not in `known` ("did you mean" for a name within two edits of a known one).
   void requireKnownSections(const std::vector<std::string>& known) const;
-  /// Throws InputError(name, line, "[section] key", "unknown key (expected ...)") for the first key of `section`
-  /// that is not in `known`; `where_listed` (e.g. "see config-ini/slam.ini") replaces the list of a long table.
+  /// Throws InputError(name, line, "[section] key", "unknown key (did you mean 'x'? expected ...)") for the first key
+  /// of `section` that is not in `known`; `where_listed` (e.g. "see config-ini/slam.ini") replaces the list of a
+  /// long table.
   void requireKnownKeys(const std::string& section, const std::vector<std::string>& known,
                         const std::string& where_listed = "") const;
+  /// Throws InputError(name, 0, "[section]", "section not found") when the file has no `[section]`: the one message
+  /// of every app whose options INI lacks the section it reads.
+  void requireSection(const std::string& section) const;
+  /// The checks of an options INI given with `-c`: no repeated key; every section one that this app reads
+  /// (`read_here`) or another gridtopo app's (gridtopoIniSections(): one INI may serve several apps), else refused
+  /// as unknown with a "did you mean"; `required` present.
+  void requireOptionsFile(const std::vector<std::string>& read_here, const std::string& required) const;
 
  private:
   struct Entry {

@@ -60,6 +60,7 @@ struct RelationError {
   double translational = 0.0;  ///< m
   double rotational = 0.0;     ///< rad, in [0, π]
   double gap1 = 0.0, gap2 = 0.0;  ///< |time of the estimated pose used − relation timestamp| for t1 and t2
+  bool corrected = false;  ///< an endpoint was carried over a gap by odometry
 };
 
 /// The errors of a subset of the relations (its count: translational.count == rotational.count).

@@ -25,6 +25,9 @@ struct RelationsRunSpec {
   RelationsMetricOptions metric;
   CorrectedLogOptions corrected;
   io::CarmenReadOptions read;  ///< how the CARMEN logs are read (skip_bad_lines)
+  /// Score the relations inside the estimate's time span even when most relations fall outside it (a trajectory
+  /// of part of the log; --partial). Without it such a run is refused.
+  bool partial = false;
 };
 
 /// The [relations_metric] section of an INI file (config-ini/eval.ini); InputError naming the file and the key.
@@ -54,16 +57,26 @@ void configureRelationsRun(RelationsRunSpec& spec, const std::optional<std::stri
                            const RelationsFlags& flags);
 
 struct RelationsRun {
-  std::size_t relation_count = 0;
-  /// What was scored, in order: relations, log, odometry (the source used), interpolation flags, max gap, the
-  /// estimate (trajectory / gfs + its time match and pose), estimated_poses.
+  std::size_t relation_count = 0;  ///< relations in the file
+  std::size_t relations_scored = 0;     ///< inside the estimate's time span: scored
+  std::size_t relations_corrected = 0;  ///< of those, with an endpoint carried over a gap by the log's odometry
+  std::size_t relations_skipped = 0;    ///< outside the estimate's time span: not scored
+  double estimate_first = 0.0, estimate_last = 0.0;  ///< the estimate's time span (s)
+  /// What was scored, in order: relations, log, odometry (the source used), interpolation flags, the estimate
+  /// (trajectory / gfs + its time match and pose).
   std::vector<std::pair<std::string, std::string>> info;
+  /// The numbers of the run, in order: max_time_gap_s (the option), estimated_poses, relations_total,
+  /// relations_scored, relations_corrected, relations_skipped (JSON numbers).
+  std::vector<std::pair<std::string, double>> numbers;
   RelationsResult result;
 };
 
 /// Reads the relations, the raw log (its ODOM lines or laser-line odometry as spec.metric.odometry says; skipped
-/// malformed lines are reported to `log`) and the estimate, then evaluateRelations. InputError for an empty
-/// relations file, an estimate without poses, or --odometry odom on a log without ODOM lines.
+/// malformed lines are reported to `log`) and the estimate, then evaluateRelations on the relations whose two
+/// times lie in the estimate's time span (± max_time_gap); the others are skipped and counted. InputError for an
+/// empty relations file, an estimate without poses, --odometry odom on a log without ODOM lines, relations that do
+/// not overlap the estimate in time, most relations outside it (unless spec.partial), or a raw log whose times do
+/// not cover the estimate's (a log of another run).
 RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log);
 
 /// What gridtopo-eval prints on stdout: the relations line, the info lines and formatSummary.

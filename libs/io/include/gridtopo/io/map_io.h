@@ -15,6 +15,9 @@ struct MapReadOptions {
   double resolution = 0.05;  ///< metres per pixel, for plain images without a YAML file
   double origin_x = 0.0;     ///< world x of the image's lower-left corner, for plain images
   double origin_y = 0.0;     ///< world y of the image's lower-left corner, for plain images
+  /// The largest image (width x height cells) read: a larger one is refused from its header (PNG, PGM/PNM)
+  /// before any pixel is allocated. 10^8 cells: a 500 m x 500 m map at 5 cm.
+  std::size_t max_cells = 100'000'000;
 };
 
 /// Reads .png/.pgm/.jpg (with a ROS .yaml beside it if there is one), a ROS .yaml, or .gridmap / .gridmap.gz.

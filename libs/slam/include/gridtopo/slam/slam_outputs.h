@@ -44,6 +44,8 @@ struct SlamOutputs {
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& out);
 /// Writes the set's files into `dir` as temporary files of `set`, which the caller commits with its other files
 /// (gridtopo-map: the SLAM and the topology output sets land together or not at all).
+/// The set must be a folder transaction (OutputSet(folder)) with `dir` inside or equal to its folder: the ROS
+/// map pair is written side by side under its final names in the set's stage folder.
 void addSlamOutputs(OutputSet& set, const std::string& dir, const SlamOutputs& out);
 
 }  // namespace gridtopo::slam

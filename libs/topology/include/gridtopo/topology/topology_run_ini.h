@@ -59,6 +59,11 @@ std::string topologyRunOptionsHelp();
 /// unreadable file, another section, an unknown key or a bad value.
 TopologyRunSpec loadTopologyRunIni(const std::string& path);
 
+/// Reads an options INI given with `-c` (config-ini/topology.ini) strictly: a text file; [topology] required;
+/// unknown sections (any but a gridtopo app's) and unknown keys of [topology], [relaxation], [correction] refused
+/// with file, line and a "did you mean"; value errors with their line. An empty path gives the defaults.
+TopologyOptions loadTopologyOptionsIni(const std::string& path);
+
 /// The command line's values over a run (gridtopo-topology -m, -o, -t, -r, --threads); unset = keep.
 struct TopologyRunFlags {
   std::optional<std::string> model, output, trajectory;
