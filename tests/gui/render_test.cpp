@@ -313,4 +313,11 @@ TEST(Render, ClosureIsALineWithDotsDashedWhenRejected) {
   cv::Mat off = screen(80, 60);
   session::drawClosure(off, v, {100, 100}, {200, 100}, false);
   EXPECT_EQ(pixelsOf(off, session::kClosureColour), 0);
+
+  // A global closure: the same solid line, in its own colour.
+  cv::Mat g = screen(80, 60);
+  session::drawClosure(g, v, {1, 1}, {6, 1}, false, true);
+  EXPECT_EQ(pixelsOf(g, session::kClosureColour), 0);
+  EXPECT_EQ(pixelsOf(g, session::kGlobalClosureColour), pixelsOf(s, session::kClosureColour));
+  EXPECT_EQ(g.at<cv::Vec3b>(40, 35), cv::Vec3b(0, 140, 255));
 }

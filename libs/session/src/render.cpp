@@ -148,13 +148,13 @@ void drawPose(cv::Mat& screen, const ViewTransform& v, double x, double y, doubl
 }
 
 void drawClosure(cv::Mat& screen, const ViewTransform& v, const cv::Point2d& a, const cv::Point2d& b,
-                 bool rejected) {
+                 bool rejected, bool global) {
   auto pixel = [](const cv::Point2d& q) {  // clamped: a far point must not overflow int
     return cv::Point(static_cast<int>(std::lround(std::clamp(q.x, -1e6, 1e6))),
                      static_cast<int>(std::lround(std::clamp(q.y, -1e6, 1e6))));
   };
   const cv::Point pa = pixel(v.toScreen(a.x, a.y)), pb = pixel(v.toScreen(b.x, b.y));
-  const cv::Scalar& c = rejected ? kRejectedClosureColour : kClosureColour;
+  const cv::Scalar& c = rejected ? kRejectedClosureColour : global ? kGlobalClosureColour : kClosureColour;
   // Clipped to the screen first, so that a dashed line zoomed far in costs the screen's length, not the line's.
   cv::Point p = pa, q = pb;
   if (cv::clipLine(cv::Rect(-4, -4, screen.cols + 8, screen.rows + 8), p, q)) {

@@ -590,7 +590,7 @@ void Session::render(cv::Mat& screen, ViewMode mode, const ViewTransform& v, con
         for (const bool rejected : {true, false})
           for (const auto& c : s->closures)
             if (c.rejected == rejected)
-              drawClosure(screen, v, {c.submap.x, c.submap.y}, {c.newest.x, c.newest.y}, c.rejected);
+              drawClosure(screen, v, {c.submap.x, c.submap.y}, {c.newest.x, c.newest.y}, c.rejected, c.global);
       }
       if (layers.scan && s->scans_fed > 0 && runner_) {
         const auto& rec = runner_->scans()[s->last_scan];

@@ -158,7 +158,8 @@ void SlamRunner::publish(bool with_trajectory, bool idle) {
     // for the 251 closures of Intel's first 3000 scans.
     const auto& graph = closer->graph();
     for (const auto& c : closer->closures())
-      s->closures.push_back({c.node, c.submap_node, graph.pose(c.node), graph.pose(c.submap_node), c.rejected});
+      s->closures.push_back({c.node, c.submap_node, graph.pose(c.node), graph.pose(c.submap_node), c.rejected,
+                              c.global});
   }
   if (with_trajectory || fed == limit_) {
     last_trajectory_poses_ = run_->trajectory();

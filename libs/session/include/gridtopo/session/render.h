@@ -59,12 +59,16 @@ void drawPath(cv::Mat& screen, const ViewTransform& v, const std::vector<cv::Poi
 void drawPose(cv::Mat& screen, const ViewTransform& v, double x, double y, double theta, const cv::Scalar& c,
               int r = 3);
 
-/// The colours of the loop closure's edges (BGR): accepted closures magenta, those the optimisation rejected grey.
+/// The colours of the loop closure's edges (BGR): accepted closures magenta, global ones (found beyond the drift
+/// window by the place signatures) orange, those the optimisation rejected grey.
 inline const cv::Scalar kClosureColour(255, 0, 255);
+inline const cv::Scalar kGlobalClosureColour(0, 140, 255);
 inline const cv::Scalar kRejectedClosureColour(170, 170, 170);
 /// A loop-closure edge between world points `a` (the older submap) and `b` (the scan that closed the loop): a 2 px
-/// line with a dot at each end, in kClosureColour; dashed in kRejectedClosureColour when `rejected`. Drawn without
-/// anti-aliasing, so its pixels have exactly that colour (tests count them).
-void drawClosure(cv::Mat& screen, const ViewTransform& v, const cv::Point2d& a, const cv::Point2d& b, bool rejected);
+/// line with a dot at each end, in kClosureColour (kGlobalClosureColour when `global`); dashed in
+/// kRejectedClosureColour when `rejected`. Drawn without anti-aliasing, so its pixels have exactly that colour (tests
+/// count them).
+void drawClosure(cv::Mat& screen, const ViewTransform& v, const cv::Point2d& a, const cv::Point2d& b, bool rejected,
+                 bool global = false);
 
 }  // namespace gridtopo::session

@@ -40,6 +40,7 @@ struct ClosureView {
   std::size_t submap_node = 0;  ///< the first node of the older submap it matched
   slam::Pose2 newest, submap;   ///< their poses in the graph now (they move with every optimisation)
   bool rejected = false;        ///< left out of the graph by an optimisation (an outlier)
+  bool global = false;          ///< found by the global search beyond the drift window (LoopClosureRecord::global)
 };
 
 struct SlamSnapshot {
