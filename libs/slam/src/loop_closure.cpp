@@ -425,25 +425,35 @@ void LoopCloser::searchForClosures(LoopClosureStep& step) {
         continue;
       }
     }
-    PoseGraphEdge e;
-    e.a = sm.first;
-    e.b = i;
-    e.z = m.pose;
-    e.sqrt_information = closureSqrtInformation(grid, query, m.pose, dtheta);
-    e.robust = true;
-    LoopClosureRecord rec;
-    rec.edge = graph_.addEdge(e);
-    rec.node = i;
-    rec.scan_index = cur.scan_index;
-    rec.timestamp = cur.timestamp;
-    rec.submap_node = sm.first;
-    rec.score = m.score;
-    rec.window_xy = w.xy;
-    rec.offset_xy = std::hypot(m.pose.x - w.center.x, m.pose.y - w.center.y);
-    rec.offset_theta = std::abs(wrapAngle(m.pose.theta - w.center.theta));
-    closures_.push_back(rec);
+    addClosure(sm.first, i, m.pose, closureSqrtInformation(grid, query, m.pose, dtheta), m.score, w.xy,
+               std::hypot(m.pose.x - w.center.x, m.pose.y - w.center.y),
+               std::abs(wrapAngle(m.pose.theta - w.center.theta)), false);
     ++step.accepted;
   }
+}
+
+void LoopCloser::addClosure(std::size_t from, std::size_t node, const Pose2& z, const Eigen::Matrix3d& sqrt_information,
+                            double score, double window_xy, double offset_xy, double offset_theta, bool global) {
+  // Windowed closures carry the Huber loss; verified global ones do not (the stiff motion edges would otherwise hold
+  // a large correction back).
+  PoseGraphEdge e;
+  e.a = from;
+  e.b = node;
+  e.z = z;
+  e.sqrt_information = sqrt_information;
+  e.robust = !global;
+  LoopClosureRecord rec;
+  rec.edge = graph_.addEdge(e);
+  rec.node = node;
+  rec.scan_index = nodes_[node].scan_index;
+  rec.timestamp = nodes_[node].timestamp;
+  rec.submap_node = from;
+  rec.score = score;
+  rec.window_xy = window_xy;
+  rec.offset_xy = offset_xy;
+  rec.offset_theta = offset_theta;
+  rec.global = global;
+  closures_.push_back(rec);
 }
 
 void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
@@ -649,7 +659,6 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
     g.z = m.pose;
     g.sqrt_information = closureSqrtInformation(grid, query, m.pose, dtheta);
     g.score = m.score;
-    g.signature_distance = cand.distance;
     g.offset_xy = off_xy;
     g.offset_theta = off_theta;
     pending_.push_back(g);
@@ -746,24 +755,8 @@ void LoopCloser::verifyGlobalClosures(LoopClosureStep& step, const std::vector<P
       GlobalMatch& g = pending_[m];
       if (g.accepted) continue;
       g.accepted = true;
-      PoseGraphEdge e;
-      e.a = g.place;
-      e.b = g.node;
-      e.z = g.z;
-      e.sqrt_information = g.sqrt_information;
-      e.robust = false;
-      LoopClosureRecord rec;
-      rec.edge = graph_.addEdge(e);
-      rec.node = g.node;
-      rec.scan_index = nodes_[g.node].scan_index;
-      rec.timestamp = nodes_[g.node].timestamp;
-      rec.submap_node = g.place;
-      rec.score = g.score;
-      rec.window_xy = o_.global_window_xy;
-      rec.offset_xy = g.offset_xy;
-      rec.offset_theta = g.offset_theta;
-      rec.global = true;
-      closures_.push_back(rec);
+      addClosure(g.place, g.node, g.z, g.sqrt_information, g.score, o_.global_window_xy, g.offset_xy, g.offset_theta,
+                 true);
       ++step.accepted;
       optimize_now_ = true;
     }

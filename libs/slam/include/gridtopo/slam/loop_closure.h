@@ -132,6 +132,9 @@ class LoopCloser {
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                        const Pose2* odometry, const PreparedScan& scan);
   void searchForClosures(LoopClosureStep& step);
+  /// Adds the closure edge from node `from` to `node` (z: node in from's frame) and its record.
+  void addClosure(std::size_t from, std::size_t node, const Pose2& z, const Eigen::Matrix3d& sqrt_information,
+                  double score, double window_xy, double offset_xy, double offset_theta, bool global);
   /// A stretch of trajectory: the nodes whose travel lies within [travel(centre) − back, travel(centre) + ahead].
   std::pair<std::size_t, std::size_t> stretchOf(std::size_t centre, double back, double ahead) const;
   /// The points of nodes [first, last] in the frame of node `centre`, thinned to one per `voxel`.
@@ -154,7 +157,7 @@ class LoopCloser {
     std::size_t node, place;  ///< the query's middle node, the place's node
     Pose2 z;                  ///< the node in the place's frame
     Eigen::Matrix3d sqrt_information;
-    double score, signature_distance, offset_xy, offset_theta;
+    double score, offset_xy, offset_theta;
     bool accepted = false;
   };
   /// The two matches agree: the loop they close with the trajectory between their queries and between their
