@@ -505,6 +505,13 @@ TEST(LoopClosure, AKilometreLoopThirtyMetresOffAtTheReturnClosesThroughTheGlobal
   EXPECT_GT(counts.global_accepted, 2u);
   EXPECT_LT(on.closed_xy, 0.10);
   EXPECT_LT(on.closed_th, 0.01);
+  // The summary's largest correction is the return's: the closure turns the newest pose back by the heading drift
+  // and moves it by tens of metres (43 m here: it swings about a pivot between the place and the query, so not by
+  // the whole 58 m), never by more than the drift.
+  std::printf("largest correction %.2f m %.3f rad\n", counts.largest_correction_xy, counts.largest_correction_theta);
+  EXPECT_GT(counts.largest_correction_xy, 0.5 * on.drift_xy);
+  EXPECT_LT(counts.largest_correction_xy, 1.2 * on.drift_xy);
+  EXPECT_NEAR(counts.largest_correction_theta, on.drift_th, 0.1);
   // Every global closure joins two poses that are truly at the same place.
   for (const auto& c : closures)
     if (c.global) {

@@ -460,6 +460,12 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   const std::size_t i = nodes_.size() - 1;
   const Pose2 before = graph_.pose(i);
   adoptFilterPath();
+  // Where the filter's motions since the last optimisation put the newest node (adoptFilterPath may have changed
+  // them: a new best particle): the closures' correction is measured from there, not from the poses chained from
+  // an older best particle (the hospital: 122 m "corrections" that were a change of best particle, not a closure).
+  Pose2 chained = graph_.pose(last_optimized_node_);
+  for (std::size_t k = last_optimized_node_ + 1; k <= i; ++k)
+    chained = compose(chained, graph_.edges()[nodes_[k].motion_edge].z);
   PoseGraphSolveOptions so = solveOptions();
   // A new global closure can bend the graph far from where it stands: more iterations for that optimisation.
   bool global = false;
@@ -487,8 +493,8 @@ void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {
   const Pose2 after = graph_.pose(i);
   const Pose2 d = relative(before, after);
   for (std::size_t k = pending_from_; k < closures_.size(); ++k) {
-    closures_[k].correction_xy = std::hypot(after.x - before.x, after.y - before.y);
-    closures_[k].correction_theta = std::abs(d.theta);
+    closures_[k].correction_xy = std::hypot(after.x - chained.x, after.y - chained.y);
+    closures_[k].correction_theta = std::abs(wrapAngle(after.theta - chained.theta));
   }
   pending_from_ = closures_.size();
   last_optimized_node_ = i;
@@ -552,6 +558,12 @@ void LoopCloser::signOlderPlaces(const std::vector<Pose2>& geometry) {
   }
 }
 
+CorrelationGrid LoopCloser::placeGrid(std::size_t j, const std::vector<Pose2>& geometry) const {
+  const auto [t0, t1] = stretchOf(j, o_.global_query_m, o_.global_query_m);
+  return CorrelationGrid(stretchPoints(j, t0, t1, geometry, o_.resolution), o_.resolution, o_.field_sigma, o_.depth,
+                         o_.refine_sigma);
+}
+
 void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
   const std::size_t i = nodes_.size() - 1;
   const double half = 0.5 * o_.global_query_m;
@@ -604,9 +616,7 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
     if (!distinct) continue;
     tried.push_back(j);
     // The exact match: the query against the place's stretches both ways, around the signature's heading.
-    const auto [t0, t1] = stretchOf(j, o_.global_query_m, o_.global_query_m);
-    const CorrelationGrid grid(stretchPoints(j, t0, t1, geometry, o_.resolution), o_.resolution, o_.field_sigma,
-                               o_.depth, o_.refine_sigma);
+    const CorrelationGrid grid = placeGrid(j, geometry);
     SearchWindow w;
     w.center = {0.0, 0.0, cand.yaw};
     w.xy = o_.global_window_xy;
@@ -774,6 +784,10 @@ LoopClosureCounts LoopCloser::counts() const {
   for (const LoopClosureRecord& r : closures_) {
     (r.rejected ? c.rejected : c.accepted) += 1;
     if (r.global) ++c.global_accepted;
+    if (!r.rejected) {
+      c.largest_correction_xy = std::max(c.largest_correction_xy, r.correction_xy);
+      c.largest_correction_theta = std::max(c.largest_correction_theta, r.correction_theta);
+    }
   }
   c.global_searches = global_searches_;
   c.global_proposed = global_proposed_;
@@ -799,7 +813,9 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
       << " suspect_steps " << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks
       << " global_searches " << n.global_searches << " global_proposed " << n.global_proposed
       << " global_accepted " << n.global_accepted
-      << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped << '\n';
+      << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped
+      << " largest_correction_xy " << n.largest_correction_xy << " largest_correction_theta "
+      << n.largest_correction_theta << '\n';
   return out.str();
 }
 

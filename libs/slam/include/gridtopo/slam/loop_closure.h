@@ -67,6 +67,9 @@ struct LoopClosureCounts {
   /// place and the query contradicts them, matches accepted (after agreement), matches dropped for want of agreement.
   std::size_t global_searches = 0, global_proposed = 0, global_contradicted = 0, global_accepted = 0,
               global_dropped = 0;
+  /// The largest move of the newest pose by an optimisation with new accepted closures (m, rad), from where the
+  /// filter's motions since the previous optimisation put it.
+  double largest_correction_xy = 0.0, largest_correction_theta = 0.0;
 };
 
 /// What one step of the loop closure did.
@@ -138,6 +141,8 @@ class LoopCloser {
   /// A stretch of trajectory: the nodes whose travel lies within [travel(centre) − back, travel(centre) + ahead].
   std::pair<std::size_t, std::size_t> stretchOf(std::size_t centre, double back, double ahead) const;
   /// The points of nodes [first, last] in the frame of node `centre`, thinned to one per `voxel`.
+  /// The correlation grid a global query is matched against: the place's stretches global_query_m both ways.
+  CorrelationGrid placeGrid(std::size_t place_node, const std::vector<Pose2>& geometry) const;
   std::vector<Point2> stretchPoints(std::size_t centre, std::size_t first, std::size_t last,
                                     const std::vector<Pose2>& geometry, double voxel) const;
   PlaceSignatureShape signatureShape() const;
