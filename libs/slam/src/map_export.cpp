@@ -56,9 +56,11 @@ cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector
   for (std::size_t i = 1; i < trajectory.size(); ++i)
     cv::line(img, toPixel(trajectory[i - 1].pose), toPixel(trajectory[i].pose), cv::Scalar(0, 0, 220), 1,
              cv::LINE_AA);
-  for (const ClosureLine& c : closures)
-    cv::line(img, toPixel({c.from.x, c.from.y, c.from.theta}), toPixel({c.to.x, c.to.y, c.to.theta}),
-             cv::Scalar(200, 0, 200), 1, cv::LINE_AA);
+  for (const bool global : {false, true})
+    for (const ClosureLine& c : closures)
+      if (c.global == global)
+        cv::line(img, toPixel({c.from.x, c.from.y, c.from.theta}), toPixel({c.to.x, c.to.y, c.to.theta}),
+                 global ? cv::Scalar(0, 140, 255) : cv::Scalar(200, 0, 200), global ? 3 : 1, cv::LINE_AA);
   if (!trajectory.empty()) cv::circle(img, toPixel(trajectory.front().pose), 4, cv::Scalar(0, 170, 0), -1);
   return img;
 }

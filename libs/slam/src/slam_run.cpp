@@ -223,7 +223,7 @@ std::vector<ClosureLine> SlamRun::closureLines(const std::vector<Pose2>& poses) 
   if (!closer_) return lines;
   for (const LoopClosureRecord& c : closer_->closures())
     if (!c.rejected && c.node < poses.size() && c.submap_node < poses.size())
-      lines.push_back({poses[c.submap_node], poses[c.node]});
+      lines.push_back({poses[c.submap_node], poses[c.node], c.global});
   return lines;
 }
 

@@ -21,8 +21,10 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map);
 /// A loop closure drawn on the map: the two poses it joins (the matched submap's first scan, the closing scan).
 struct ClosureLine {
   Pose2 from, to;
+  bool global = false;  ///< found by the global search (drawn orange, as in the GUI)
 };
-/// The map (grey), the trajectory (red, its start a green dot) and the accepted loop closures (magenta lines).
+/// The map (grey), the trajectory (red, its start a green dot) and the accepted loop closures (windowed ones thin
+/// magenta lines, global ones thick orange lines on top).
 cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {},
                   const std::vector<ClosureLine>& closures = {});
 
