@@ -58,9 +58,12 @@ cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector
              cv::LINE_AA);
   for (const bool global : {false, true})
     for (const ClosureLine& c : closures)
-      if (c.global == global)
-        cv::line(img, toPixel({c.from.x, c.from.y, c.from.theta}), toPixel({c.to.x, c.to.y, c.to.theta}),
-                 global ? cv::Scalar(0, 140, 255) : cv::Scalar(200, 0, 200), global ? 3 : 1, cv::LINE_AA);
+      if (c.global == global) {
+        const cv::Point a = toPixel({c.from.x, c.from.y, c.from.theta}), b = toPixel({c.to.x, c.to.y, c.to.theta});
+        cv::line(img, a, b, global ? cv::Scalar(0, 140, 255) : cv::Scalar(200, 0, 200), global ? 3 : 1, cv::LINE_AA);
+        // A global closure joins two poses at one place (the place and the query's centre): a ring marks it.
+        if (global) cv::circle(img, b, 8, cv::Scalar(0, 140, 255), 2, cv::LINE_AA);
+      }
   if (!trajectory.empty()) cv::circle(img, toPixel(trajectory.front().pose), 4, cv::Scalar(0, 170, 0), -1);
   return img;
 }

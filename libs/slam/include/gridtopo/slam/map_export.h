@@ -24,7 +24,7 @@ struct ClosureLine {
   bool global = false;  ///< found by the global search (drawn orange, as in the GUI)
 };
 /// The map (grey), the trajectory (red, its start a green dot) and the accepted loop closures (windowed ones thin
-/// magenta lines, global ones thick orange lines on top).
+/// magenta lines, global ones thick orange lines with a ring at the query's end, on top).
 cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {},
                   const std::vector<ClosureLine>& closures = {});
 
