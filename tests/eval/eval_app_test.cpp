@@ -93,6 +93,42 @@ TEST(EvalApp, LocalAndRevisitSplitWithTheRevisitSpanFlagAndJson) {
   EXPECT_NE(r.output.find("--revisit-span must be > 0"), std::string::npos) << r.output;
 }
 
+TEST(EvalApp, TheRunsLoopClosureSummaryFromTheStatsBesideTheTrajectory) {
+  // gridtopo-slam writes trajectory.txt and stats.txt into one folder: the score comes with what the loop closure
+  // did (text and JSON); a malformed summary line is refused with its file and line; no stats.txt, no summary.
+  const fs::path dir = tmp("lc_run");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path rel = dir / "r.relations", traj = dir / "trajectory.txt", json = dir / "e.json",
+                 stats = dir / "stats.txt";
+  std::ofstream(rel) << "0 10 1.1 0 0 0 0 0\n0 100 0 2 0 0 0 0\n";
+  std::ofstream(traj) << "0 0 0 0\n10 1 0 0\n100 0 0 0\n";
+  auto r = run("-r " + rel.string() + " -t " + traj.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("loop closure"), std::string::npos) << r.output;
+  std::ofstream(stats) << "# step scan_index timestamp\n0 0 0\n"
+                       << "# loop_closure: nodes 1963 searches 1193 closures 168 rejected 2 ambiguous 12 on_border 3 "
+                          "suspect_steps 27 optimisations 51 feedbacks 0 global_searches 515 global_proposed 32 "
+                          "global_accepted 28 global_contradicted 4 global_dropped 1 largest_correction_xy 95.66 "
+                          "largest_correction_theta 0.6816\n";
+  r = run("-r " + rel.string() + " -t " + traj.string() + " --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("loop closure (" + stats.string() +
+                          "): 168 accepted (28 global), 2 switched off, largest correction 95.66 m / 0.6816 rad; "
+                          "global search: 515 searches, 32 proposed, 4 contradicted, 1 dropped\n"),
+            std::string::npos)
+      << r.output;
+  const std::string j = slurp(json);
+  EXPECT_NE(j.find("\"loop_closure_closures\": 168,"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"loop_closure_largest_correction_xy\": 95.66,"), std::string::npos) << j;
+  std::ofstream(stats) << "# step scan_index timestamp\n0 0 0\n# loop_closure: nodes 10 closures x7\n";
+  r = run("-r " + rel.string() + " -t " + traj.string() + " --json " + json.string() + "2");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(stats.string() + ":3: closures: expected a number, found 'x7'"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(json.string() + "2"));
+}
+
 TEST(EvalApp, BadInputGivesFileLineFieldAndNonZeroExit) {
   const fs::path rel = tmp("bad.relations");
   std::ofstream(rel) << "1 2 3 4 0 0 0 0.1\n1 2 3 4 0 0 0 0.1\n1 2 3 nan 0 0 0 0.1\n";

@@ -127,6 +127,11 @@ RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
     info.emplace_back("trajectory", "baseline: odometry of the laser lines of " + spec.log);
   }
   run.numbers.emplace_back("estimated_poses", static_cast<double>(estimate.size()));
+  if (!spec.trajectory.empty()) {
+    run.loop_closure = readLoopClosureSummary(statsBesideTrajectory(spec.trajectory));
+    if (run.loop_closure)
+      for (const auto& [k, v] : run.loop_closure->values) run.numbers.emplace_back("loop_closure_" + k, v);
+  }
 
   // Inputs that do not belong together are refused, not scored: the estimate's time span against the raw log's
   // and the relations'.
@@ -189,6 +194,7 @@ std::string relationsRunText(const RelationsRun& run) {
     << " skipped: outside the estimate's time span [" << io::formatDouble(run.estimate_first) << ", "
     << io::formatDouble(run.estimate_last) << "] s)\n";
   o << formatSummary(run.result);
+  if (run.loop_closure) o << loopClosureSummaryText(*run.loop_closure);
   return o.str();
 }
 

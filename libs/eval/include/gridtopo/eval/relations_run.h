@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/corrected_log.h"
+#include "gridtopo/eval/loop_closure_summary.h"
 #include "gridtopo/eval/relations.h"
 #include "gridtopo/eval/relations_metric.h"
 #include "gridtopo/io/carmen_log.h"
@@ -69,6 +70,9 @@ struct RelationsRun {
   /// relations_scored, relations_corrected, relations_skipped (JSON numbers).
   std::vector<std::pair<std::string, double>> numbers;
   RelationsResult result;
+  /// What the loop closure did in the run that made the trajectory (its stats.txt beside it), when there is one;
+  /// its counts are also in `numbers` as "loop_closure_KEY".
+  std::optional<LoopClosureSummary> loop_closure;
 };
 
 /// Reads the relations, the raw log (its ODOM lines or laser-line odometry as spec.metric.odometry says; skipped
