@@ -84,6 +84,30 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   EXPECT_EQ(mapError(d / "hang2.yaml"), (d / "hang2.yaml").string() + ": not a UTF-8 text YAML file (byte 11)");
   put(d / "utf8.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n# caf\xc3\xa9\n");
   EXPECT_EQ(io::readGridMap((d / "utf8.yaml").string())->getSizeX(), 4u);
+  // Found by map_fuzzer (libFuzzer, ASan + UBSan): numbers MRPT's as<double>() could not read went on to its integer
+  // conversion, which casts DBL_MAX to long long (undefined behaviour); numbers are now parsed here.
+  put(d / "hexnum.yaml", "image: m.pgm\nresolution: 0x1G\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hexnum.yaml"), (d / "hexnum.yaml").string() + ": resolution: expected a number");
+  put(d / "hugenum.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1e999, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugenum.yaml"), (d / "hugenum.yaml").string() + ": origin: expected finite numbers");
+  put(d / "numbers.yaml", "image: m.pgm\nresolution: 5e-2\norigin: [ -1.5 , 2, 0x0]\nnegate: 1\nfree_thresh: .1\n");
+  const auto g = io::readGridMap((d / "numbers.yaml").string());
+  EXPECT_FLOAT_EQ(g->getResolution(), 0.05f);
+  EXPECT_NEAR(g->getXMin(), -1.5, 1e-6);
+  EXPECT_NEAR(g->getYMin(), 2.0, 1e-6);
+  // An image named by an absolute path that does not exist: the YAML's error (it named only the image before).
+  put(d / "absimg.yaml", "image: /no/such/dir/m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "absimg.yaml"),
+            (d / "absimg.yaml").string() + ": image: no such image file: /no/such/dir/m.pgm");
+  // A YAML of more than 1 MiB is no map's YAML: refused before parsing; 1 MiB of comment lines is read.
+  std::string big = "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
+  while (big.size() < (1u << 20)) big += "# " + std::string(std::min<std::size_t>(1000, (1u << 20) - big.size()), 'x') + "\n";
+  big.resize(1u << 20);
+  big.back() = '\n';
+  put(d / "mib.yaml", big);
+  EXPECT_EQ(io::readGridMap((d / "mib.yaml").string())->getSizeX(), 4u);
+  put(d / "over.yaml", big + "#");
+  EXPECT_EQ(mapError(d / "over.yaml"), (d / "over.yaml").string() + ": not a ROS map_server YAML file (larger than 1 MiB)");
   // A syntax error: the parser's own diagnosis and line (it printed them to stderr and failed a bare assertion).
   put(d / "syntax.yaml", "image: m.pgm\nresolution: 0.05\n  origin: [0,0,0\n bad");
   EXPECT_EQ(mapError(d / "syntax.yaml"), (d / "syntax.yaml").string() + ":2: cannot parse YAML: invalid multiline plain key");

@@ -190,12 +190,14 @@ RosMapYaml parseRosYaml(const std::string& path) {
   // YAML allows no control bytes but tab, LF and CR (and the parser can loop forever on a NUL: found by
   // map_fuzzer); a map's YAML is a few lines.
   {
+    // Read in 64 KiB blocks up to 1 MiB (a zero-filled 1 MiB buffer per read made map_fuzzer page-fault bound).
     std::ifstream f(path, std::ios::binary);
-    std::string text(1 << 20, '\0');
-    f.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(f.gcount()));
-    if (f.gcount() == (1 << 20) && f.peek() != EOF)
-      throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    std::string text;
+    char block[1 << 16];
+    while (f.read(block, sizeof block), f.gcount() > 0) {
+      text.append(block, static_cast<std::size_t>(f.gcount()));
+      if (text.size() > (1 << 20)) throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    }
     for (std::size_t i = 0; i < text.size(); ++i) {
       const auto c = static_cast<unsigned char>(text[i]);
       if (c >= 0x80) {  // UTF-8: a lead byte and its continuation bytes (the parser also loops on broken ones)
@@ -261,6 +263,28 @@ mrpt::containers::yaml parseYamlFile(const std::string& path) {
   throw InputError(path, 0, "", "cannot parse YAML: " + failure);
 }
 
+// A YAML scalar as a number, parsed here: MRPT's as<double>() falls through to its integer conversion when the
+// text is no decimal number ("0x1G", "1e999") and there casts DBL_MAX to long long (undefined behaviour, found by
+// map_fuzzer under UBSan). The whole text must be the number; nullopt if it is not one (a map, a list, a word).
+std::optional<double> yamlNumber(const mrpt::containers::yaml& node) {
+  if (!node.isScalar()) return std::nullopt;
+  std::string text;
+  try {
+    text = node.as<std::string>();
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const char* begin = text.c_str();
+  while (*begin == ' ' || *begin == '\t') ++begin;
+  if (*begin == '\0') return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (end == begin) return std::nullopt;
+  while (*end == ' ' || *end == '\t') ++end;
+  if (*end != '\0') return std::nullopt;
+  return v;
+}
+
 RosMapYaml parseRosYamlUnchecked(const std::string& path) {
   const mrpt::containers::yaml y = parseYamlFile(path);
   if (!y.isMap()) throw InputError(path, "not a ROS map_server YAML file (expected key: value pairs)");
@@ -270,12 +294,9 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
       if (required) throw InputError(path, 0, key, "missing");
       return def;
     }
-    double v = 0;
-    try {
-      v = y[key].as<double>();
-    } catch (const std::exception&) {
-      throw InputError(path, 0, key, "expected a number");
-    }
+    const auto n = yamlNumber(y[key]);
+    if (!n) throw InputError(path, 0, key, "expected a number");
+    const double v = *n;
     if (!std::isfinite(v)) throw InputError(path, 0, key, "expected a finite number");
     return v;
   };
@@ -293,11 +314,9 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
     const auto& o = y["origin"];
     if (!o.isSequence() || o.asSequence().size() != 3) throw InputError(path, 0, "origin", "expected [x, y, yaw]");
     for (int i = 0; i < 3; ++i) {
-      try {
-        m.origin[i] = o.asSequence()[i].as<double>();
-      } catch (const std::exception&) {
-        throw InputError(path, 0, "origin", "expected three numbers [x, y, yaw]");
-      }
+      const auto n = yamlNumber(o.asSequence()[i]);
+      if (!n) throw InputError(path, 0, "origin", "expected three numbers [x, y, yaw]");
+      m.origin[i] = *n;
       if (!std::isfinite(m.origin[i])) throw InputError(path, 0, "origin", "expected finite numbers");
     }
     if (std::abs(m.origin[2]) > 1e-9)
@@ -349,6 +368,9 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t ma
   if (image.empty()) {
     const fs::path ip(m.image);
     image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
+    // The YAML names the image: a missing one is the YAML's error (an absolute path elsewhere would otherwise be
+    // reported without the file that names it: found by map_fuzzer).
+    if (!fs::is_regular_file(image)) throw InputError(yaml_path, 0, "image", "no such image file: " + image);
   }
   const cv::Mat img = loadGrey(image, max_cells);
   auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
