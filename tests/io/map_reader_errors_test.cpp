@@ -99,6 +99,10 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   put(d / "absimg.yaml", "image: /no/such/dir/m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
   EXPECT_EQ(mapError(d / "absimg.yaml"),
             (d / "absimg.yaml").string() + ": image: no such image file: /no/such/dir/m.pgm");
+  // A quoted value holding a line break is quoted on one line, escaped (the message stays one line).
+  put(d / "mode.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: \"tri\\nary\"\n");
+  EXPECT_EQ(mapError(d / "mode.yaml"),
+            (d / "mode.yaml").string() + ": mode: expected trinary, scale or raw, not 'tri\\x0Aary'");
   // A YAML of more than 1 MiB is no map's YAML: refused before parsing; 1 MiB of comment lines is read.
   std::string big = "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
   while (big.size() < (1u << 20)) big += "# " + std::string(std::min<std::size_t>(1000, (1u << 20) - big.size()), 'x') + "\n";

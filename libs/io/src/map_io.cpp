@@ -263,6 +263,23 @@ mrpt::containers::yaml parseYamlFile(const std::string& path) {
   throw InputError(path, 0, "", "cannot parse YAML: " + failure);
 }
 
+// A value from the file as it may appear in a one-line message: control bytes escaped (a quoted YAML scalar may
+// hold "\n"), at most `max` bytes.
+std::string printable(const std::string& v, std::size_t max = 40) {
+  std::string out;
+  for (const char ch : v.substr(0, max)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c != 0x7F) {
+      out += ch;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+    }
+  }
+  return v.size() > max ? out + "..." : out;
+}
+
 // A YAML scalar as a number, parsed here: MRPT's as<double>() falls through to its integer conversion when the
 // text is no decimal number ("0x1G", "1e999") and there casts DBL_MAX to long long (undefined behaviour, found by
 // map_fuzzer under UBSan). The whole text must be the number; nullopt if it is not one (a map, a list, a word).
@@ -333,7 +350,7 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
       throw InputError(path, 0, "mode", "expected trinary, scale or raw");
     }
   if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw")
-    throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + m.mode + "'");
+    throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + printable(m.mode) + "'");
   return m;
 }
 
@@ -370,7 +387,7 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t ma
     image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
     // The YAML names the image: a missing one is the YAML's error (an absolute path elsewhere would otherwise be
     // reported without the file that names it: found by map_fuzzer).
-    if (!fs::is_regular_file(image)) throw InputError(yaml_path, 0, "image", "no such image file: " + image);
+    if (!fs::is_regular_file(image)) throw InputError(yaml_path, 0, "image", "no such image file: " + printable(image, 300));
   }
   const cv::Mat img = loadGrey(image, max_cells);
   auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
