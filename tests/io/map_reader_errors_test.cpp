@@ -95,6 +95,22 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   EXPECT_FLOAT_EQ(g->getResolution(), 0.05f);
   EXPECT_NEAR(g->getXMin(), -1.5, 1e-6);
   EXPECT_NEAR(g->getYMin(), 2.0, 1e-6);
+  // A resolution or origin that MRPT's float limits cannot hold (found by map_fuzzer: 3.3e126 m became inf, the
+  // grid had no cells and the image was written through a null pointer): refused with the field.
+  put(d / "hugeres.yaml", "image: m.pgm\nresolution: 3.3e126\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugeres.yaml"),
+            (d / "hugeres.yaml").string() +
+                ": resolution: 4 x 4 cells of 3.3e+126 m at (0, 0): the resolution is out of the range a grid can hold");
+  put(d / "tinyres.yaml", "image: m.pgm\nresolution: 1e-300\norigin: [0, 0, 0]\n");
+  EXPECT_NE(mapError(d / "tinyres.yaml").find(": resolution: 4 x 4 cells of 1e-300 m at (0, 0): the resolution is out"),
+            std::string::npos);
+  put(d / "hugeorigin.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1e39, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugeorigin.yaml"),
+            (d / "hugeorigin.yaml").string() +
+                ": origin: 4 x 4 cells of 0.05 m at (1e+39, 0): the map's limits are out of the range a grid can hold");
+  io::MapReadOptions huge_resolution;
+  huge_resolution.resolution = 1e200;
+  EXPECT_NE(mapError(d / "m.pgm", huge_resolution).find("m.pgm: resolution: 4 x 4 cells of 1e+200 m"), std::string::npos);
   // An image named by an absolute path that does not exist: the YAML's error (it named only the image before).
   put(d / "absimg.yaml", "image: /no/such/dir/m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
   EXPECT_EQ(mapError(d / "absimg.yaml"),

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -25,6 +26,7 @@
 #include "gridtopo/core/error.h"
 #include "isolated_parse.h"
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
@@ -64,16 +66,28 @@ struct GridLimits : COccupancyGridMap2D {
 };
 
 /// A grid of `width` x `height` cells of `resolution` m whose lower-left corner is (x_min, y_min), exactly.
-COccupancyGridMap2D::Ptr makeGrid(int width, int height, float resolution, float x_min, float y_min) {
+/// InputError(path, field, ...) when MRPT's float limits cannot hold it: a resolution that is not a normal positive
+/// float (3.3e126 m became inf and gave a grid of no cells, into which the image was written: a null-pointer store
+/// found by map_fuzzer), or limits that overflow.
+COccupancyGridMap2D::Ptr makeGrid(const std::string& path, int width, int height, double resolution, double x_min,
+                                  double y_min) {
+  const float res = static_cast<float>(resolution), x0 = static_cast<float>(x_min), y0 = static_cast<float>(y_min);
+  const auto describe = [&] {
+    return std::to_string(width) + " x " + std::to_string(height) + " cells of " + formatDouble(resolution) +
+           " m at (" + formatDouble(x_min) + ", " + formatDouble(y_min) + ")";
+  };
+  if (!(res >= std::numeric_limits<float>::min()) || !std::isfinite(static_cast<float>(width) * res) ||
+      !std::isfinite(static_cast<float>(height) * res))
+    throw InputError(path, 0, "resolution", describe() + ": the resolution is out of the range a grid can hold");
+  if (!std::isfinite(x0 + static_cast<float>(width) * res) || !std::isfinite(y0 + static_cast<float>(height) * res))
+    throw InputError(path, 0, "origin", describe() + ": the map's limits are out of the range a grid can hold");
+  // The cell count from limits that start at 0 (from the origin's, rounding could change it), then the exact origin.
   auto g = COccupancyGridMap2D::Create();
-  g->setSize(x_min, x_min + static_cast<float>(width) * resolution, y_min,
-             y_min + static_cast<float>(height) * resolution, resolution, 0.5f);
-  if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height)) {
-    // setSize() computed the cell count from rounded limits; force the exact one.
-    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution, resolution,
-               0.5f);
-  }
-  GridLimits::set(*g, x_min, y_min);
+  g->setSize(0.0f, static_cast<float>(width) * res, 0.0f, static_cast<float>(height) * res, res, 0.5f);
+  if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height))
+    throw InputError(path, 0, "resolution", describe() + ": a grid of " + std::to_string(g->getSizeX()) + " x " +
+                                                std::to_string(g->getSizeY()) + " cells came out");
+  GridLimits::set(*g, x0, y0);
   return g;
 }
 
@@ -390,8 +404,7 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t ma
     if (!fs::is_regular_file(image)) throw InputError(yaml_path, 0, "image", "no such image file: " + printable(image, 300));
   }
   const cv::Mat img = loadGrey(image, max_cells);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
-                    static_cast<float>(m.origin[1]));
+  auto g = makeGrid(yaml_path, img.cols, img.rows, m.resolution, m.origin[0], m.origin[1]);
   fillFromImage(*g, img, rosLut(m));
   return g;
 }
@@ -505,8 +518,7 @@ mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const 
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
   const cv::Mat img = loadGrey(path, options.max_cells);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution), static_cast<float>(options.origin_x),
-                    static_cast<float>(options.origin_y));
+  auto g = makeGrid(path, img.cols, img.rows, options.resolution, options.origin_x, options.origin_y);
   // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.
   std::array<COccupancyGridMap2D::cellType, 256> lut{};
   for (int v = 0; v < 256; ++v) lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(v) / 255.0f);
