@@ -119,6 +119,20 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   put(d / "mode.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: \"tri\\nary\"\n");
   EXPECT_EQ(mapError(d / "mode.yaml"),
             (d / "mode.yaml").string() + ": mode: expected trinary, scale or raw, not 'tri\\x0Aary'");
+  // An image name longer than the system allows (found by map_fuzzer: std::filesystem threw "File name too long"):
+  // the YAML's error with the system's reason; the same for a map file named so.
+  put(d / "longname.yaml", "image: " + std::string(300, 'b') + ".pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "longname.yaml")
+                .rfind((d / "longname.yaml").string() + ": image: cannot open the image file (File name too long): " +
+                           (d / "bbbb").string(),
+                       0),
+            0u)
+      << mapError(d / "longname.yaml");
+  EXPECT_EQ(mapError(d / "longname.yaml").find('\n'), std::string::npos);
+  const fs::path long_png = d / (std::string(300, 'c') + ".png");
+  EXPECT_EQ(mapError(long_png), long_png.string() + ": cannot open the image file: File name too long");
+  const fs::path long_yaml = d / (std::string(300, 'c') + ".yaml");
+  EXPECT_EQ(mapError(long_yaml), long_yaml.string() + ": cannot open the YAML file: File name too long");
   // A YAML of more than 1 MiB is no map's YAML: refused before parsing; 1 MiB of comment lines is read.
   std::string big = "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
   while (big.size() < (1u << 20)) big += "# " + std::string(std::min<std::size_t>(1000, (1u << 20) - big.size()), 'x') + "\n";

@@ -5,6 +5,7 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -50,6 +51,16 @@ std::string formatFloat(float v) {
   std::string s(buf, res.ptr);
   if (s.find_first_of(".e") == std::string::npos) s += ".0";
   return s;
+}
+
+// Whether `path` is a regular file, never throwing: std::filesystem's throwing overload fails on a name longer
+// than the system allows ("File name too long", found by map_fuzzer). `why` gets the system's reason when the
+// path cannot be looked at at all.
+bool isRegularFile(const std::string& path, std::string* why = nullptr) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) return S_ISREG(st.st_mode);
+  if (why && errno != ENOENT && errno != ENOTDIR) *why = std::strerror(errno);
+  return false;
 }
 
 // MRPT's COccupancyGridMap2D::setSize() rounds the grid's limits to whole multiples of the resolution. Maps
@@ -158,7 +169,8 @@ std::optional<std::pair<unsigned long long, unsigned long long>> imageHeaderSize
 }
 
 cv::Mat loadGrey(const std::string& path, std::size_t max_cells) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such image file");
+  if (std::string why; !isRegularFile(path, &why))
+    throw InputError(path, why.empty() ? "no such image file" : "cannot open the image file: " + why);
   if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read the image: ") + std::strerror(errno));
   // The header's size against the cell budget before anything is allocated.
   if (const auto size = imageHeaderSize(path)) {
@@ -199,7 +211,8 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path);
 // Every failure of the YAML library (a malformed document, a key of the wrong kind) as "file: what is wrong",
 // never the library's banner and call stack.
 RosMapYaml parseRosYaml(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such YAML file");
+  if (std::string why; !isRegularFile(path, &why))
+    throw InputError(path, why.empty() ? "no such YAML file" : "cannot open the YAML file: " + why);
   if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
   // YAML allows no control bytes but tab, LF and CR (and the parser can loop forever on a NUL: found by
   // map_fuzzer); a map's YAML is a few lines.
@@ -401,7 +414,10 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t ma
     image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
     // The YAML names the image: a missing one is the YAML's error (an absolute path elsewhere would otherwise be
     // reported without the file that names it: found by map_fuzzer).
-    if (!fs::is_regular_file(image)) throw InputError(yaml_path, 0, "image", "no such image file: " + printable(image, 300));
+    if (std::string why; !isRegularFile(image, &why))
+      throw InputError(yaml_path, 0, "image",
+                       (why.empty() ? "no such image file: " : "cannot open the image file (" + why + "): ") +
+                           printable(image, 300));
   }
   const cv::Mat img = loadGrey(image, max_cells);
   auto g = makeGrid(yaml_path, img.cols, img.rows, m.resolution, m.origin[0], m.origin[1]);
@@ -444,7 +460,7 @@ void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
 
 COccupancyGridMap2D::Ptr parseGridmapFile(const std::string& path) {
   mrpt::io::CFileGZInputStream in;
-  if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
+  if (!isRegularFile(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
   mrpt::serialization::CSerializable::Ptr obj;
   try {
     obj = mrpt::serialization::archiveFrom(in).ReadObject();
@@ -462,7 +478,7 @@ COccupancyGridMap2D::Ptr parseGridmapFile(const std::string& path) {
 }
 
 COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "cannot open gridmap file");
+  if (!isRegularFile(path)) throw InputError(path, "cannot open gridmap file");
   // MRPT's deserialiser may crash or allocate gigabytes on corrupted data: parse in a child process first.
   checkParsesInChild(path, [&](volatile std::uint64_t*) { parseGridmapFile(path); });
   return parseGridmapFile(path);
@@ -482,7 +498,7 @@ namespace {
 std::string yamlBeside(const std::string& path) {
   for (const char* ext : {".yaml", ".yml"}) {
     const fs::path yaml = fs::path(path).replace_extension(ext);
-    if (fs::is_regular_file(yaml)) return yaml.string();
+    if (isRegularFile(yaml.string())) return yaml.string();
   }
   return "";
 }
