@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
     const io::RawlogWriteOptions wopt = io::rawlogWriteOptions(io_opt);
 
     const bool quiet = quiet_arg.getValue();
+    // The outputs writable before the log is read (not after it).
+    if (!out_arg.getValue().empty()) checkOutputFile(out_arg.getValue());
+    if (!gt_arg.getValue().empty()) checkOutputFile(gt_arg.getValue());
     OutputSet outputs;  // the rawlog and the ground truth appear together or not at all
     const sim::ImportSource source =
         sim::readImportSource(given(in_arg), given(sim_arg), seed_arg.getValue(), given(gt_arg), ropt, outputs);

@@ -40,13 +40,20 @@ int main(int argc, char** argv) {
     spec.input = input.getValue(), spec.trajectory = traj.getValue(), spec.config = config.getValue();
     spec.resolution = resolution.getValue(), spec.center = given(center), spec.loop_closure = loop.isSet();
     spec.size = size.getValue(), spec.min_travel = min_travel.getValue();
+    checkOutputFile(output.getValue());  // before the rendering, not after it
+    if (json.isSet()) checkOutputFile(json.getValue());
     const slam::RenderRun run = slam::renderRun(spec);
     std::cout << run.loop_text;
     OutputSet out;
     out.write(output.getValue(), [&](const std::string& p) {
       if (!cv::imwrite(p, run.image)) throw std::runtime_error("cannot write " + p);
     });
-    if (json.isSet()) out.write(json.getValue(), [&](const std::string& p) { std::ofstream(p) << run.report_json; });
+    if (json.isSet())
+      out.write(json.getValue(), [&](const std::string& p) {
+        std::ofstream f(p);
+        f << run.report_json;
+        if (!f.flush()) throw std::runtime_error("cannot write " + p);
+      });
     out.commit();
     std::cout << "rendered " << run.image.cols << " x " << run.image.rows << " cells of " << spec.resolution << " m -> "
               << output.getValue() << "\n";

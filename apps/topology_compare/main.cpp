@@ -15,6 +15,7 @@
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/reference_comparison.h"
 #include "gridtopo/eval/topology_agreement.h"
+#include "gridtopo/topology/topology_run_ini.h"
 
 using namespace gridtopo;
 
@@ -53,6 +54,11 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
+    // Before any computation: the options INI as strictly as gridtopo-topology -c reads it, and the outputs
+    // writable.
+    const topology::TopologyOptions options = topology::loadTopologyOptionsIni(ini.getValue());
+    for (const auto* a : {&json, &overlay, &errors})
+      if (!a->getValue().empty()) checkOutputFile(a->getValue());
     const bool plan = ref_map.isSet() || ref_labels.isSet() || ref_seg.isSet();
     if (ref_topo.isSet()) {
       if (plan) throw UsageError("give a reference plan or --reference-topology, not both");
@@ -60,7 +66,7 @@ int main(int argc, char** argv) {
         throw UsageError("--reference-topology is given twice: the reference's map, then its topology directory");
       const auto a = eval::compareTopologies({map_arg.getValue(), dir_arg.getValue()},
                                              {ref_topo.getValue()[0], ref_topo.getValue()[1]},
-                                             topology::loadTopologyOptions(ini.getValue()));
+                                             options);
       if (errors.isSet()) throw UsageError("--errors needs a reference plan");
       OutputSet outs;
       if (!json.getValue().empty())
@@ -79,7 +85,7 @@ int main(int argc, char** argv) {
 
     const auto c = eval::compareWithReference(map_arg.getValue(), dir_arg.getValue(),
                                               {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue()},
-                                              topology::loadTopologyOptions(ini.getValue()));
+                                              options);
     OutputSet outs;
     const auto png = [&](const std::string& path, const cv::Mat& img) {
       outs.write(path, [&](const std::string& p) {

@@ -9,6 +9,7 @@
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/eval/leave_one_map_out.h"
 #include "gridtopo/eval/lomo_report.h"
+#include "gridtopo/topology/topology_run_ini.h"
 
 using namespace gridtopo;
 
@@ -46,8 +47,13 @@ int main(int argc, char** argv) {
     cmd.setExceptionHandling(false);
     cmd.parse(argc, argv);
 
+    // Before any computation: the options INIs as strictly as gridtopo-topology -c reads them, and the outputs
+    // writable.
     eval::LomoOptions o;
-    o.topology = topology::loadTopologyOptions(ini.getValue());
+    o.topology = topology::loadTopologyOptionsIni(ini.getValue());
+    for (const auto* a : {&json_arg, &md_arg})
+      if (!a->getValue().empty()) checkOutputFile(a->getValue());
+    if (!dump_arg.getValue().empty()) checkOutputFolder(dump_arg.getValue());
     o.training = places::loadTrainingConfig(train_ini.getValue());
     if (!order_arg.getValue().empty()) o.training.training.order = order_arg.getValue();
     if (!model_arg.getValue().empty()) o.fixed_model = places::PlacesModel::load(model_arg.getValue());
@@ -60,9 +66,13 @@ int main(int argc, char** argv) {
     const eval::LomoResult result = eval::runLeaveOneMapOut(maps, o, std::cerr);
 
     const std::string json = eval::lomoJson(result), md = eval::lomoMarkdown(result);
-    if (!json_arg.getValue().empty()) writeTextFileAtomically(json_arg.getValue(), json);
-    else std::cout << json;
-    if (!md_arg.getValue().empty()) writeTextFileAtomically(md_arg.getValue(), md);
+    OutputSet outs;  // the JSON and the Markdown table appear together or not at all
+    if (!json_arg.getValue().empty())
+      outs.write(json_arg.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, json); });
+    if (!md_arg.getValue().empty())
+      outs.write(md_arg.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, md); });
+    outs.commit();
+    if (json_arg.getValue().empty()) std::cout << json;
     std::cerr << md;
     return 0;
   });

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/output_set.h"
 #include "gridtopo/places/features.h"
 #include "gridtopo/places/train_run.h"
 
@@ -37,13 +38,15 @@ int main(int argc, char** argv) {
       return 0;
     }
 
+    checkOutputFile(out.getValue());  // before the training (minutes), not after it
     places::TrainRunSpec spec;
     spec.places_dir = dir.getValue(), spec.pairs = pairs.getValue(), spec.ini = ini.getValue();
     spec.resolution = res.getValue(), spec.threads = threads.getValue();
     const places::PlacesModel model =
         places::trainPlacesModel(spec, [](const std::string& m) { std::cerr << m << "\n"; });
-    if (fs::path(out.getValue()).has_parent_path()) fs::create_directories(fs::path(out.getValue()).parent_path());
-    model.save(out.getValue());
+    OutputSet outs;  // a hidden temporary beside the model (same extension: save picks the format by it), renamed
+    outs.write(out.getValue(), [&](const std::string& p) { model.save(p); });
+    outs.commit();
     std::cerr << "wrote " << out.getValue() << " (decision list " << places::orderName(model.order) << ", "
               << model.first.stumps.size() << " + " << model.second.stumps.size() << " stumps)\n";
     return 0;

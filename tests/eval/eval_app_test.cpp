@@ -298,4 +298,9 @@ TEST(EvalApp, JsonKeysOnceAndNumbersAsNumbers) {
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << j;
   EXPECT_GT(keys.size(), 15u);
   EXPECT_NE(r.output.find("relations scored: 2984 of 2984 ("), std::string::npos) << r.output;
+  // Yes/no options as JSON booleans, never as the strings "true" / "false".
+  EXPECT_EQ(occurrences(j, "\"odometry_interpolated\": false,"), 1u) << j;
+  EXPECT_EQ(occurrences(j, "\"estimate_interpolated\": false,"), 1u) << j;
+  EXPECT_EQ(occurrences(j, "\"true\""), 0u) << j;
+  EXPECT_EQ(occurrences(j, "\"false\""), 0u) << j;
 }

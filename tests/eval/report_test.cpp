@@ -158,3 +158,16 @@ TEST(Report, JsonRefusesARepeatedKey) {
   EXPECT_THROW(formatJson(r, {}, {{"largest_time_gap_s", 1.0}}), std::invalid_argument);
   EXPECT_NE(formatJson(r, {{"a", "x"}}, {{"n", 13631}}).find("  \"n\": 13631,\n"), std::string::npos);
 }
+
+// Yes/no options are JSON booleans (they were the strings "true" / "false"), after the info, each key once.
+TEST(Report, JsonFlagsAreBooleans) {
+  RelationsResult r;
+  const std::string j = formatJson(r, {{"relations", "x"}}, {{"n", 2}},
+                                   {{"odometry_interpolated", true}, {"estimate_interpolated", false}});
+  EXPECT_EQ(j.rfind("{\n  \"relations\": \"x\",\n  \"odometry_interpolated\": true,\n"
+                    "  \"estimate_interpolated\": false,\n  \"n\": 2,\n",
+                    0),
+            0u)
+      << j;
+  EXPECT_THROW(formatJson(r, {{"a", "x"}}, {}, {{"a", true}}), std::invalid_argument);
+}

@@ -307,3 +307,45 @@ TEST(SessionFiles, SlamOptionTableKeepsTheLoopClosureSection) {
   EXPECT_TRUE(s2.slamOptions().loop_closure.enabled);
   EXPECT_EQ(s2.slamOptions().loop_closure.submap_nodes, 15);
 }
+
+// The GUI reads option INIs as strictly as the apps' -c (issue 36): a typo in a key or a section is refused with
+// the file, the line and a "did you mean", a binary file is refused, and the session keeps its options.
+TEST(SessionFiles, OptionIniTyposAreRefusedWithFileLineAndDidYouMean) {
+  guitest::TempDir tmp;
+  session::Session s;
+  const int particles = s.slamOptions().particles;
+  const std::string threads = s.topologyOptionTable().find("topology", "threads")->value;
+  const auto error = [&](const std::string& name, const std::string& text, bool topology) {
+    const std::string path = tmp / name;
+    write(path, text);
+    try {
+      if (topology)
+        s.openTopologyIni(path);
+      else
+        s.open(path);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const InputError& e) {
+      const std::string w = e.what();
+      EXPECT_EQ(w.rfind(path, 0), 0u) << w;
+      return w.substr(path.size());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error("typo.ini", "[slam]\nparticlez = 30\n", false),
+            ":2: [slam] particlez: unknown key (did you mean 'particles'? not an option of the filter; see "
+            "config-ini/slam.ini)");
+  EXPECT_EQ(error("section.ini", "[slam]\nparticles = 30\n[loop_closre]\nenabled = true\n", false),
+            ":3: [loop_closre]: unknown section (did you mean [loop_closure]? this app reads slam, loop_closure)");
+  EXPECT_EQ(error("ttypo.ini", "[topology]\nthreadz = 2\n", true),
+            ":2: [topology] threadz: unknown key (did you mean 'threads'? not an option of this section; see "
+            "config-ini/topology.ini)");
+  EXPECT_EQ(error("nosection.ini", "[relaxation]\nmax_iterations = 3\n", true), ": [topology]: section not found");
+  EXPECT_EQ(error("binary.ini", std::string("[topology]\n\x01\x02", 13), true),
+            ": not a text INI file (byte 11 is 0x01)");
+  EXPECT_EQ(s.slamOptions().particles, particles);
+  EXPECT_EQ(s.topologyOptionTable().find("topology", "threads")->value, threads);
+  // A correct file still opens.
+  write(tmp / "good.ini", "[slam]\nparticles = 30\n");
+  s.open(tmp / "good.ini");
+  EXPECT_EQ(s.slamOptions().particles, 30);
+}

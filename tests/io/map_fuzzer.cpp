@@ -3,7 +3,9 @@
 //   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 //         -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined" -DGRIDTOPO_BUILD_FUZZERS=ON
 //   cmake --build build-fuzz -j2 --target map_fuzzer
-//   build-fuzz/bin/map_fuzzer -runs=1000000 -max_len=4096 corpus-map/   (doc/guarantees.md has the figure)
+//   ASAN_OPTIONS=detect_leaks=0:quarantine_size_mb=16:malloc_context_size=5 UBSAN_OPTIONS=halt_on_error=1 \
+//   build-fuzz/bin/map_fuzzer -jobs=5 -workers=1 -runs=100000 -max_len=4096 corpus/ tests/io/map_fuzz_seeds
+// (doc/guarantees.md, "Fuzzing the map readers": why these options, the run's figures and what it found).
 #include <unistd.h>
 
 #include <cstddef>

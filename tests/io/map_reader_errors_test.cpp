@@ -84,6 +84,64 @@ TEST(MapReaderErrors, MalformedYamlSaysFileAndWhatIsWrong) {
   EXPECT_EQ(mapError(d / "hang2.yaml"), (d / "hang2.yaml").string() + ": not a UTF-8 text YAML file (byte 11)");
   put(d / "utf8.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n# caf\xc3\xa9\n");
   EXPECT_EQ(io::readGridMap((d / "utf8.yaml").string())->getSizeX(), 4u);
+  // Found by map_fuzzer (libFuzzer, ASan + UBSan): numbers MRPT's as<double>() could not read went on to its integer
+  // conversion, which casts DBL_MAX to long long (undefined behaviour); numbers are now parsed here.
+  put(d / "hexnum.yaml", "image: m.pgm\nresolution: 0x1G\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hexnum.yaml"), (d / "hexnum.yaml").string() + ": resolution: expected a number");
+  put(d / "hugenum.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1e999, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugenum.yaml"), (d / "hugenum.yaml").string() + ": origin: expected finite numbers");
+  put(d / "numbers.yaml", "image: m.pgm\nresolution: 5e-2\norigin: [ -1.5 , 2, 0x0]\nnegate: 1\nfree_thresh: .1\n");
+  const auto g = io::readGridMap((d / "numbers.yaml").string());
+  EXPECT_FLOAT_EQ(g->getResolution(), 0.05f);
+  EXPECT_NEAR(g->getXMin(), -1.5, 1e-6);
+  EXPECT_NEAR(g->getYMin(), 2.0, 1e-6);
+  // A resolution or origin that MRPT's float limits cannot hold (found by map_fuzzer: 3.3e126 m became inf, the
+  // grid had no cells and the image was written through a null pointer): refused with the field.
+  put(d / "hugeres.yaml", "image: m.pgm\nresolution: 3.3e126\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugeres.yaml"),
+            (d / "hugeres.yaml").string() +
+                ": resolution: 4 x 4 cells of 3.3e+126 m at (0, 0): the resolution is out of the range a grid can hold");
+  put(d / "tinyres.yaml", "image: m.pgm\nresolution: 1e-300\norigin: [0, 0, 0]\n");
+  EXPECT_NE(mapError(d / "tinyres.yaml").find(": resolution: 4 x 4 cells of 1e-300 m at (0, 0): the resolution is out"),
+            std::string::npos);
+  put(d / "hugeorigin.yaml", "image: m.pgm\nresolution: 0.05\norigin: [1e39, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "hugeorigin.yaml"),
+            (d / "hugeorigin.yaml").string() +
+                ": origin: 4 x 4 cells of 0.05 m at (1e+39, 0): the map's limits are out of the range a grid can hold");
+  io::MapReadOptions huge_resolution;
+  huge_resolution.resolution = 1e200;
+  EXPECT_NE(mapError(d / "m.pgm", huge_resolution).find("m.pgm: resolution: 4 x 4 cells of 1e+200 m"), std::string::npos);
+  // An image named by an absolute path that does not exist: the YAML's error (it named only the image before).
+  put(d / "absimg.yaml", "image: /no/such/dir/m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "absimg.yaml"),
+            (d / "absimg.yaml").string() + ": image: no such image file: /no/such/dir/m.pgm");
+  // A quoted value holding a line break is quoted on one line, escaped (the message stays one line).
+  put(d / "mode.yaml", "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: \"tri\\nary\"\n");
+  EXPECT_EQ(mapError(d / "mode.yaml"),
+            (d / "mode.yaml").string() + ": mode: expected trinary, scale or raw, not 'tri\\x0Aary'");
+  // An image name longer than the system allows (found by map_fuzzer: std::filesystem threw "File name too long"):
+  // the YAML's error with the system's reason; the same for a map file named so.
+  put(d / "longname.yaml", "image: " + std::string(300, 'b') + ".pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(mapError(d / "longname.yaml")
+                .rfind((d / "longname.yaml").string() + ": image: cannot open the image file (File name too long): " +
+                           (d / "bbbb").string(),
+                       0),
+            0u)
+      << mapError(d / "longname.yaml");
+  EXPECT_EQ(mapError(d / "longname.yaml").find('\n'), std::string::npos);
+  const fs::path long_png = d / (std::string(300, 'c') + ".png");
+  EXPECT_EQ(mapError(long_png), long_png.string() + ": cannot open the image file: File name too long");
+  const fs::path long_yaml = d / (std::string(300, 'c') + ".yaml");
+  EXPECT_EQ(mapError(long_yaml), long_yaml.string() + ": cannot open the YAML file: File name too long");
+  // A YAML of more than 1 MiB is no map's YAML: refused before parsing; 1 MiB of comment lines is read.
+  std::string big = "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
+  while (big.size() < (1u << 20)) big += "# " + std::string(std::min<std::size_t>(1000, (1u << 20) - big.size()), 'x') + "\n";
+  big.resize(1u << 20);
+  big.back() = '\n';
+  put(d / "mib.yaml", big);
+  EXPECT_EQ(io::readGridMap((d / "mib.yaml").string())->getSizeX(), 4u);
+  put(d / "over.yaml", big + "#");
+  EXPECT_EQ(mapError(d / "over.yaml"), (d / "over.yaml").string() + ": not a ROS map_server YAML file (larger than 1 MiB)");
   // A syntax error: the parser's own diagnosis and line (it printed them to stderr and failed a bare assertion).
   put(d / "syntax.yaml", "image: m.pgm\nresolution: 0.05\n  origin: [0,0,0\n bad");
   EXPECT_EQ(mapError(d / "syntax.yaml"), (d / "syntax.yaml").string() + ":2: cannot parse YAML: invalid multiline plain key");

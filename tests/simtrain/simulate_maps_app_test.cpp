@@ -62,6 +62,18 @@ TEST(SimulateMapsApp, BadInputExitsOneAndWritesNothing) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("missing.ini"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out / "x"));
+  // The -c INI is read as strictly as gridtopo-slam's: a typo is refused with file, line and a "did you mean".
+  const std::string typo = (out / "typo.ini").string();
+  std::ofstream(typo) << "[slam]\nparticles = 30\nmax_usable_rangee = 20\n";
+  r = runApp("gridtopo-simulate-maps", "-d " + kData + "/places -o " + (out / "x").string() + " -c " + typo +
+                                           " --maps lab_ipa");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("gridtopo-simulate-maps: error: " + typo + ":3: [slam] max_usable_rangee: unknown key (did "
+                           "you mean 'max_usable_range'?",
+                           0),
+            0u)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out / "x"));
   r = runApp("gridtopo-simulate-maps", "--variant drifted -d " + kData + "/places -o " + (out / "x").string() +
                                            " -c " + kSlamIni + " --maps lab_ipa");
   EXPECT_EQ(r.status, 1) << r.output;

@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "common/same_outputs.h"
 #include "common/scratch.h"
@@ -82,4 +84,36 @@ TEST(SlamLogRun, ParticlesThatCannotFitAreRefusedBeforeTheRun) {
   EXPECT_THROW(gridtopo::slam::checkSlamMemory(o, 24'000'000'000ULL), gridtopo::InputError);
   o.particles = 30;
   gridtopo::slam::checkSlamMemory(o, 1'000'000'000ULL);
+}
+
+// The guard during the run: the resident memory is read after every scan and the run stops at 90% of the limit,
+// with the scans done, the particles and the figures, and no output folder. The test process holds 160 MB of
+// ballast (touched, so resident) and runs 4 particles under a limit of 120 MB: the estimate (101.1 MB) passes the
+// check before the run, the resident memory (more than 160 MB) passes 90% (108 MB) after the first scan.
+TEST(SlamLogRun, TheRunStopsAtNinetyPercentOfTheMemoryLimit) {
+  const fs::path dir = test::scratch("log_run_memory");
+  slam::SlamRunSpec spec = pillarRoomRun(dir, 0);
+  constexpr std::size_t kLimit = 120'000'000;
+  ASSERT_LE(slam::slamMemoryEstimateBytes(spec.options), kLimit / 10 * 9);  // passes the check before the run
+  std::vector<char> ballast(160'000'000);
+  for (std::size_t i = 0; i < ballast.size(); i += 4096) ballast[i] = static_cast<char>(i);
+  std::ostringstream log;
+  try {
+    slam::runSlamOnLog(spec, true, log, kLimit);
+    ADD_FAILURE() << "the run did not stop";
+  } catch (const std::runtime_error& e) {
+    const std::string w = e.what();
+    EXPECT_EQ(w.rfind("stopped at 90% of the memory this process may use after 1 of 120 scans with 4 particles "
+                      "(resident 0.",
+                      0),
+              0u)
+        << w;
+    EXPECT_NE(w.find(" GB, limit 0.1 GB): run with fewer particles (doc/guarantees.md, memory)"), std::string::npos)
+        << w;
+  }
+  EXPECT_GT(ballast[4096 * 7], -128);  // the ballast stays alive (and resident) through the run
+  EXPECT_FALSE(fs::exists(spec.output));
+  // The same run under a limit it fits in (the test process stays far below 90% of 100 GB) completes.
+  EXPECT_EQ(slam::runSlamOnLog(spec, true, log, 100'000'000'000ULL).scans, 120u);
+  EXPECT_TRUE(fs::exists(fs::path(spec.output) / "trajectory.txt"));
 }

@@ -103,8 +103,8 @@ RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
   } else {
     info.emplace_back("odometry", "none");
   }
-  info.emplace_back("odometry_interpolated", opt.interpolate_odometry ? "true" : "false");
-  info.emplace_back("estimate_interpolated", opt.interpolate_estimate ? "true" : "false");
+  run.flags.emplace_back("odometry_interpolated", opt.interpolate_odometry);
+  run.flags.emplace_back("estimate_interpolated", opt.interpolate_estimate);
   run.numbers.emplace_back("max_time_gap_s", opt.max_time_gap);
 
   std::vector<TimedPose> estimate;
@@ -185,8 +185,11 @@ RelationsRun runRelations(const RelationsRunSpec& spec, std::ostream& log) {
 std::string relationsRunText(const RelationsRun& run) {
   std::ostringstream o;
   o << "relations:  " << run.info.front().second << " (" << run.relation_count << ")\n";
-  for (const auto& [k, v] : run.info)
+  for (const auto& [k, v] : run.info) {
     if (k != "relations") o << k << ": " << v << "\n";
+    if (k == "odometry")  // the flags after the odometry source, as before they were booleans
+      for (const auto& [f, on] : run.flags) o << f << ": " << (on ? "true" : "false") << "\n";
+  }
   for (const auto& [k, v] : run.numbers)
     if (k == "max_time_gap_s" || k == "estimated_poses") o << k << ": " << io::formatDouble(v) << "\n";
   o << "relations scored: " << run.relations_scored << " of " << run.relation_count << " ("
@@ -201,7 +204,7 @@ std::string relationsRunText(const RelationsRun& run) {
 void stageRelationsOutputs(OutputSet& outputs, const RelationsRun& run, const std::string& json_path,
                            const std::string& errors_path) {
   if (!json_path.empty()) {
-    const std::string text = formatJson(run.result, run.info, run.numbers);
+    const std::string text = formatJson(run.result, run.info, run.numbers, run.flags);
     outputs.write(json_path, [&](const std::string& tmp) { writeTextFileAtomically(tmp, text); });
   }
   if (!errors_path.empty()) {

@@ -97,7 +97,8 @@ std::string formatSummary(const RelationsResult& r) {
 }
 
 std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std::string, std::string>>& info,
-                       const std::vector<std::pair<std::string, double>>& numbers) {
+                       const std::vector<std::pair<std::string, double>>& numbers,
+                       const std::vector<std::pair<std::string, bool>>& flags) {
   std::set<std::string> keys = {"translational_m", "translational_squared_m2", "rotational_deg",
                                 "rotational_squared_deg2", "endpoints_direct", "endpoints_corrected",
                                 "endpoints_interpolated", "endpoints_uncorrected", "revisit_span_s", "local",
@@ -107,6 +108,7 @@ std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std
   };
   std::string s = "{\n";
   for (const auto& [k, v] : info) once(k), s += "  " + jsonString(k) + ": " + jsonString(v) + ",\n";
+  for (const auto& [k, v] : flags) once(k), s += "  " + jsonString(k) + ": " + (v ? "true" : "false") + ",\n";
   for (const auto& [k, v] : numbers) once(k), s += "  " + jsonString(k) + ": " + jsonNumber(v) + ",\n";
   s += "  \"translational_m\": " + jsonStats(r.translational) + ",\n";
   s += "  \"translational_squared_m2\": " + jsonStats(r.translational_squared) + ",\n";

@@ -5,6 +5,7 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -25,6 +27,7 @@
 #include "gridtopo/core/error.h"
 #include "isolated_parse.h"
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
@@ -50,6 +53,16 @@ std::string formatFloat(float v) {
   return s;
 }
 
+// Whether `path` is a regular file, never throwing: std::filesystem's throwing overload fails on a name longer
+// than the system allows ("File name too long", found by map_fuzzer). `why` gets the system's reason when the
+// path cannot be looked at at all.
+bool isRegularFile(const std::string& path, std::string* why = nullptr) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) return S_ISREG(st.st_mode);
+  if (why && errno != ENOENT && errno != ENOTDIR) *why = std::strerror(errno);
+  return false;
+}
+
 // MRPT's COccupancyGridMap2D::setSize() rounds the grid's limits to whole multiples of the resolution. Maps
 // whose origin is not such a multiple (ROS maps often sit half a cell off) get their exact limits back through
 // this accessor of the protected members.
@@ -64,16 +77,28 @@ struct GridLimits : COccupancyGridMap2D {
 };
 
 /// A grid of `width` x `height` cells of `resolution` m whose lower-left corner is (x_min, y_min), exactly.
-COccupancyGridMap2D::Ptr makeGrid(int width, int height, float resolution, float x_min, float y_min) {
+/// InputError(path, field, ...) when MRPT's float limits cannot hold it: a resolution that is not a normal positive
+/// float (3.3e126 m became inf and gave a grid of no cells, into which the image was written: a null-pointer store
+/// found by map_fuzzer), or limits that overflow.
+COccupancyGridMap2D::Ptr makeGrid(const std::string& path, int width, int height, double resolution, double x_min,
+                                  double y_min) {
+  const float res = static_cast<float>(resolution), x0 = static_cast<float>(x_min), y0 = static_cast<float>(y_min);
+  const auto describe = [&] {
+    return std::to_string(width) + " x " + std::to_string(height) + " cells of " + formatDouble(resolution) +
+           " m at (" + formatDouble(x_min) + ", " + formatDouble(y_min) + ")";
+  };
+  if (!(res >= std::numeric_limits<float>::min()) || !std::isfinite(static_cast<float>(width) * res) ||
+      !std::isfinite(static_cast<float>(height) * res))
+    throw InputError(path, 0, "resolution", describe() + ": the resolution is out of the range a grid can hold");
+  if (!std::isfinite(x0 + static_cast<float>(width) * res) || !std::isfinite(y0 + static_cast<float>(height) * res))
+    throw InputError(path, 0, "origin", describe() + ": the map's limits are out of the range a grid can hold");
+  // The cell count from limits that start at 0 (from the origin's, rounding could change it), then the exact origin.
   auto g = COccupancyGridMap2D::Create();
-  g->setSize(x_min, x_min + static_cast<float>(width) * resolution, y_min,
-             y_min + static_cast<float>(height) * resolution, resolution, 0.5f);
-  if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height)) {
-    // setSize() computed the cell count from rounded limits; force the exact one.
-    g->setSize(0.0f, static_cast<float>(width) * resolution, 0.0f, static_cast<float>(height) * resolution, resolution,
-               0.5f);
-  }
-  GridLimits::set(*g, x_min, y_min);
+  g->setSize(0.0f, static_cast<float>(width) * res, 0.0f, static_cast<float>(height) * res, res, 0.5f);
+  if (g->getSizeX() != static_cast<unsigned>(width) || g->getSizeY() != static_cast<unsigned>(height))
+    throw InputError(path, 0, "resolution", describe() + ": a grid of " + std::to_string(g->getSizeX()) + " x " +
+                                                std::to_string(g->getSizeY()) + " cells came out");
+  GridLimits::set(*g, x0, y0);
   return g;
 }
 
@@ -144,7 +169,8 @@ std::optional<std::pair<unsigned long long, unsigned long long>> imageHeaderSize
 }
 
 cv::Mat loadGrey(const std::string& path, std::size_t max_cells) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such image file");
+  if (std::string why; !isRegularFile(path, &why))
+    throw InputError(path, why.empty() ? "no such image file" : "cannot open the image file: " + why);
   if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read the image: ") + std::strerror(errno));
   // The header's size against the cell budget before anything is allocated.
   if (const auto size = imageHeaderSize(path)) {
@@ -185,17 +211,20 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path);
 // Every failure of the YAML library (a malformed document, a key of the wrong kind) as "file: what is wrong",
 // never the library's banner and call stack.
 RosMapYaml parseRosYaml(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such YAML file");
+  if (std::string why; !isRegularFile(path, &why))
+    throw InputError(path, why.empty() ? "no such YAML file" : "cannot open the YAML file: " + why);
   if (::access(path.c_str(), R_OK) != 0) throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
   // YAML allows no control bytes but tab, LF and CR (and the parser can loop forever on a NUL: found by
   // map_fuzzer); a map's YAML is a few lines.
   {
+    // Read in 64 KiB blocks up to 1 MiB (a zero-filled 1 MiB buffer per read made map_fuzzer page-fault bound).
     std::ifstream f(path, std::ios::binary);
-    std::string text(1 << 20, '\0');
-    f.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(f.gcount()));
-    if (f.gcount() == (1 << 20) && f.peek() != EOF)
-      throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    std::string text;
+    char block[1 << 16];
+    while (f.read(block, sizeof block), f.gcount() > 0) {
+      text.append(block, static_cast<std::size_t>(f.gcount()));
+      if (text.size() > (1 << 20)) throw InputError(path, "not a ROS map_server YAML file (larger than 1 MiB)");
+    }
     for (std::size_t i = 0; i < text.size(); ++i) {
       const auto c = static_cast<unsigned char>(text[i]);
       if (c >= 0x80) {  // UTF-8: a lead byte and its continuation bytes (the parser also loops on broken ones)
@@ -261,6 +290,45 @@ mrpt::containers::yaml parseYamlFile(const std::string& path) {
   throw InputError(path, 0, "", "cannot parse YAML: " + failure);
 }
 
+// A value from the file as it may appear in a one-line message: control bytes escaped (a quoted YAML scalar may
+// hold "\n"), at most `max` bytes.
+std::string printable(const std::string& v, std::size_t max = 40) {
+  std::string out;
+  for (const char ch : v.substr(0, max)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c != 0x7F) {
+      out += ch;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+    }
+  }
+  return v.size() > max ? out + "..." : out;
+}
+
+// A YAML scalar as a number, parsed here: MRPT's as<double>() falls through to its integer conversion when the
+// text is no decimal number ("0x1G", "1e999") and there casts DBL_MAX to long long (undefined behaviour, found by
+// map_fuzzer under UBSan). The whole text must be the number; nullopt if it is not one (a map, a list, a word).
+std::optional<double> yamlNumber(const mrpt::containers::yaml& node) {
+  if (!node.isScalar()) return std::nullopt;
+  std::string text;
+  try {
+    text = node.as<std::string>();
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const char* begin = text.c_str();
+  while (*begin == ' ' || *begin == '\t') ++begin;
+  if (*begin == '\0') return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (end == begin) return std::nullopt;
+  while (*end == ' ' || *end == '\t') ++end;
+  if (*end != '\0') return std::nullopt;
+  return v;
+}
+
 RosMapYaml parseRosYamlUnchecked(const std::string& path) {
   const mrpt::containers::yaml y = parseYamlFile(path);
   if (!y.isMap()) throw InputError(path, "not a ROS map_server YAML file (expected key: value pairs)");
@@ -270,12 +338,9 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
       if (required) throw InputError(path, 0, key, "missing");
       return def;
     }
-    double v = 0;
-    try {
-      v = y[key].as<double>();
-    } catch (const std::exception&) {
-      throw InputError(path, 0, key, "expected a number");
-    }
+    const auto n = yamlNumber(y[key]);
+    if (!n) throw InputError(path, 0, key, "expected a number");
+    const double v = *n;
     if (!std::isfinite(v)) throw InputError(path, 0, key, "expected a finite number");
     return v;
   };
@@ -293,11 +358,9 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
     const auto& o = y["origin"];
     if (!o.isSequence() || o.asSequence().size() != 3) throw InputError(path, 0, "origin", "expected [x, y, yaw]");
     for (int i = 0; i < 3; ++i) {
-      try {
-        m.origin[i] = o.asSequence()[i].as<double>();
-      } catch (const std::exception&) {
-        throw InputError(path, 0, "origin", "expected three numbers [x, y, yaw]");
-      }
+      const auto n = yamlNumber(o.asSequence()[i]);
+      if (!n) throw InputError(path, 0, "origin", "expected three numbers [x, y, yaw]");
+      m.origin[i] = *n;
       if (!std::isfinite(m.origin[i])) throw InputError(path, 0, "origin", "expected finite numbers");
     }
     if (std::abs(m.origin[2]) > 1e-9)
@@ -314,7 +377,7 @@ RosMapYaml parseRosYamlUnchecked(const std::string& path) {
       throw InputError(path, 0, "mode", "expected trinary, scale or raw");
     }
   if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw")
-    throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + m.mode + "'");
+    throw InputError(path, 0, "mode", "expected trinary, scale or raw, not '" + printable(m.mode) + "'");
   return m;
 }
 
@@ -349,10 +412,15 @@ COccupancyGridMap2D::Ptr readRosMap(const std::string& yaml_path, std::size_t ma
   if (image.empty()) {
     const fs::path ip(m.image);
     image = ip.is_absolute() ? ip.string() : (fs::path(yaml_path).parent_path() / ip).string();
+    // The YAML names the image: a missing one is the YAML's error (an absolute path elsewhere would otherwise be
+    // reported without the file that names it: found by map_fuzzer).
+    if (std::string why; !isRegularFile(image, &why))
+      throw InputError(yaml_path, 0, "image",
+                       (why.empty() ? "no such image file: " : "cannot open the image file (" + why + "): ") +
+                           printable(image, 300));
   }
   const cv::Mat img = loadGrey(image, max_cells);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(m.resolution), static_cast<float>(m.origin[0]),
-                    static_cast<float>(m.origin[1]));
+  auto g = makeGrid(yaml_path, img.cols, img.rows, m.resolution, m.origin[0], m.origin[1]);
   fillFromImage(*g, img, rosLut(m));
   return g;
 }
@@ -392,7 +460,7 @@ void restoreExactLimits(const std::string& path, COccupancyGridMap2D& g) {
 
 COccupancyGridMap2D::Ptr parseGridmapFile(const std::string& path) {
   mrpt::io::CFileGZInputStream in;
-  if (!fs::is_regular_file(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
+  if (!isRegularFile(path) || !in.open(path)) throw InputError(path, "cannot open gridmap file");
   mrpt::serialization::CSerializable::Ptr obj;
   try {
     obj = mrpt::serialization::archiveFrom(in).ReadObject();
@@ -410,7 +478,7 @@ COccupancyGridMap2D::Ptr parseGridmapFile(const std::string& path) {
 }
 
 COccupancyGridMap2D::Ptr readGridmapFile(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "cannot open gridmap file");
+  if (!isRegularFile(path)) throw InputError(path, "cannot open gridmap file");
   // MRPT's deserialiser may crash or allocate gigabytes on corrupted data: parse in a child process first.
   checkParsesInChild(path, [&](volatile std::uint64_t*) { parseGridmapFile(path); });
   return parseGridmapFile(path);
@@ -430,7 +498,7 @@ namespace {
 std::string yamlBeside(const std::string& path) {
   for (const char* ext : {".yaml", ".yml"}) {
     const fs::path yaml = fs::path(path).replace_extension(ext);
-    if (fs::is_regular_file(yaml)) return yaml.string();
+    if (isRegularFile(yaml.string())) return yaml.string();
   }
   return "";
 }
@@ -466,8 +534,7 @@ mrpt::maps::COccupancyGridMap2D::Ptr readGridMap(const std::string& path, const 
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw InputError(path, 0, "resolution", "must be a positive number of metres per pixel");
   const cv::Mat img = loadGrey(path, options.max_cells);
-  auto g = makeGrid(img.cols, img.rows, static_cast<float>(options.resolution), static_cast<float>(options.origin_x),
-                    static_cast<float>(options.origin_y));
+  auto g = makeGrid(path, img.cols, img.rows, options.resolution, options.origin_x, options.origin_y);
   // Plain images: grey level = p_free * 255 (white free, black occupied), as MRPT's own image loader.
   std::array<COccupancyGridMap2D::cellType, 256> lut{};
   for (int v = 0; v < 256; ++v) lut[v] = COccupancyGridMap2D::p2l(static_cast<float>(v) / 255.0f);

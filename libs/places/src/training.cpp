@@ -103,13 +103,21 @@ TrainingConfig loadTrainingConfig(const std::string& ini_path) {
   TrainingConfig c;
   if (ini_path.empty()) return c;
   if (!std::filesystem::is_regular_file(ini_path)) throw InputError(ini_path, "INI file not found");
+  // As strict as every -c file (IniFile): a text file, no key twice, unknown sections and keys refused with the
+  // line and a "did you mean". Each section may be missing (its defaults).
+  const IniFile layout = IniFile::read(ini_path);
+  layout.requireOptionsFile({"scan_simulation", "features", "training"}, "");
+  const std::string listed = "not an option of this section; see config-ini/topology_train.ini";
+  layout.requireKnownKeys("scan_simulation", scanSimulationOptionSchema().keys(), listed);
+  layout.requireKnownKeys("features", featureOptionSchema().keys(), listed);
+  layout.requireKnownKeys("training", trainingOptionSchema().keys(), listed);
   const mrpt::config::CConfigFile f(ini_path);
   try {
     trainingOptionSchema().load(c.training, f, "training");
     scanSimulationOptionSchema().load(c.scan, f, "scan_simulation");
     featureOptionSchema().load(c.features, f, "features");
   } catch (const InputError& e) {
-    throw IniFile::read(ini_path).withLine(e);  // the tables name "[section] key" without the line
+    throw layout.withLine(e);  // the tables name "[section] key" without the line
   }
   return c;
 }

@@ -21,6 +21,7 @@
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/slam_run_ini.h"
 #include "gridtopo/session/topology_drawing.h"
+#include "gridtopo/topology/topology_run_ini.h"
 
 namespace gridtopo::session {
 
@@ -196,18 +197,15 @@ std::string Session::modelDescription() const {
   return "place model: " + model_path_ + (model_is_default_ ? " (default)" : "");
 }
 
+// The GUI reads option INIs as strictly as the apps' -c (IniFile: unknown sections and keys refused with file,
+// line and a "did you mean"; non-text files refused; the section required).
 void Session::openSlamIni(const std::string& path, const std::string& section) {
-  if (!fs::is_regular_file(path)) throw InputError(path, "no such INI file");
-  mrpt::config::CConfigFile ini(path);
-  if (!ini.sectionExists(section)) throw InputError(path, 0, "[" + section + "]", "section not found");
-  slam::SlamOptions o;
-  o.loadFromConfigFile(ini, section);
-  slam_options_ = o;
+  slam_options_ = slam::loadSlamOptionsIni(path, section);
   slam_ini_path_ = path;
 }
 
 void Session::openTopologyIni(const std::string& path) {
-  topology_options_ = topology::loadTopologyOptions(path);
+  topology_options_ = topology::loadTopologyOptionsIni(path);  // "" gives the defaults
 }
 
 void Session::openLabelImage(const std::string& path) {

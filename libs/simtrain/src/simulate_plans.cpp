@@ -13,18 +13,15 @@
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/places/training.h"
 #include "gridtopo/slam/slam_options.h"
+#include "gridtopo/slam/slam_run_ini.h"
 
 namespace gridtopo::simtrain {
 
 void loadSlamMapOptions(const std::string& slam_ini, TrainingMapOptions& o) {
   if (slam_ini.empty()) return;
   if (!std::filesystem::is_regular_file(slam_ini)) throw InputError(slam_ini, "SLAM INI file not found");
-  slam::SlamOptions s;
-  try {
-    s.loadFromConfigFile(mrpt::config::CConfigFile(slam_ini), "slam");
-  } catch (const InputError& e) {
-    throw InputError(slam_ini, 0, e.file() + " " + e.field(), e.message());
-  }
+  // As strictly as gridtopo-slam -c (unknown sections and keys refused with the line and a "did you mean").
+  const slam::SlamOptions s = slam::loadSlamOptionsIni(slam_ini, "slam");
   o.slam = s;
   o.map = s.map;
   o.beams = s.beams;

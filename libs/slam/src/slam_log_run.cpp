@@ -69,8 +69,12 @@ void checkSlamMemory(const SlamOptions& o, std::size_t limit_bytes) {
 }
 
 SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream& log) {
+  return runSlamOnLog(spec, quiet, log, memoryLimitBytes());
+}
+
+SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream& log, std::size_t limit) {
   checkOutputFolder(spec.output);  // an unusable -o is said now, not after the run
-  checkSlamMemory(spec.options, memoryLimitBytes());  // and a run that cannot fit
+  checkSlamMemory(spec.options, limit);  // and a run that cannot fit
   if (!quiet) log << "options: " << (std::filesystem::path(spec.output) / "options.ini").string() << "\n";
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -89,7 +93,6 @@ SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream
   SlamRun run(std::move(records), spec.options);
   ProgressBar bar(run.scanLimit(), "slam", "scans", quiet ? 0 : -1);
   // A run that outgrows the memory stops with a message, before the allocator fails somewhere inside it.
-  const std::size_t limit = memoryLimitBytes();
   const auto out_of_memory = [&](const std::string& how) {
     return std::runtime_error(how + " after " + std::to_string(run.scansFed()) + " of " +
                               std::to_string(run.scanLimit()) + " scans with " +

@@ -63,9 +63,11 @@ struct RelationsRun {
   std::size_t relations_corrected = 0;  ///< of those, with an endpoint carried over a gap by the log's odometry
   std::size_t relations_skipped = 0;    ///< outside the estimate's time span: not scored
   double estimate_first = 0.0, estimate_last = 0.0;  ///< the estimate's time span (s)
-  /// What was scored, in order: relations, log, odometry (the source used), interpolation flags, the estimate
-  /// (trajectory / gfs + its time match and pose).
+  /// What was scored, in order: relations, log, odometry (the source used), the estimate (trajectory / gfs + its
+  /// time match and pose).
   std::vector<std::pair<std::string, std::string>> info;
+  /// The yes/no options: odometry_interpolated, estimate_interpolated (JSON booleans).
+  std::vector<std::pair<std::string, bool>> flags;
   /// The numbers of the run, in order: max_time_gap_s (the option), estimated_poses, relations_total,
   /// relations_scored, relations_corrected, relations_skipped (JSON numbers).
   std::vector<std::pair<std::string, double>> numbers;

@@ -15,10 +15,11 @@ std::string formatSummary(const RelationsResult& r);
 /// JSON object with `info` (string key/values, e.g. inputs), then `numbers` (key/values written as JSON numbers,
 /// null when not finite), the four statistics, the endpoint counts, then "revisit_span_s" and the split "local" /
 /// "revisit" ({"count", "translational_m", "rotational_deg"}; an empty side's statistics are null), last the
-/// largest time gap met ("largest_time_gap_s"). Every key once: std::invalid_argument if `info` or `numbers`
-/// repeat a key or use one of the result's.
+/// largest time gap met ("largest_time_gap_s"). `flags` (yes/no options) follow `info` as JSON booleans. Every key
+/// once: std::invalid_argument if `info`, `flags` or `numbers` repeat a key or use one of the result's.
 std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std::string, std::string>>& info,
-                       const std::vector<std::pair<std::string, double>>& numbers = {});
+                       const std::vector<std::pair<std::string, double>>& numbers = {},
+                       const std::vector<std::pair<std::string, bool>>& flags = {});
 /// One line per relation: "t1 t2 translational_m rotational_deg gap1 gap2".
 std::string formatErrors(const RelationsResult& r);
 

@@ -33,6 +33,8 @@ void checkSlamMemory(const SlamOptions& options, std::size_t limit_bytes);
 /// particles cannot fit in this process's memory (checkSlamMemory: the least of the machine's memory, the cgroup's
 /// limit and RLIMIT_AS); stops with a message (std::runtime_error) when the run's resident memory passes 90% of it.
 SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream& log);
+/// The same with `memory_limit_bytes` in place of what this process may use (the guards' test).
+SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream& log, std::size_t memory_limit_bytes);
 
 /// "gridtopo-slam: N scans, M processed, read R s, slam S s, total T s, peak RSS P MB, output in DIR", newline.
 std::string slamLogRunSummaryLine(const SlamLogRunSummary& summary, const std::string& output);
