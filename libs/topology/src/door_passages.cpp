@@ -1,0 +1,175 @@
+#include "gridtopo/topology/door_passages.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gridtopo/places/place_label.h"
+
+namespace gridtopo::topology {
+
+namespace {
+constexpr unsigned char kDoorway = static_cast<unsigned char>(places::PlaceLabel::Doorway);
+
+bool isGap(const cv::Point2d& p) { return std::isnan(p.x); }
+
+// Distance (cells) from `p` along the unit vector `n` to the first cell that is no place (or off the image),
+// marching half a cell at a time; at most `cap`.
+double rayToWall(const cv::Mat& places, cv::Point2d p, cv::Point2d n, double cap) {
+  for (double t = 0.5;; t += 0.5) {
+    if (t >= cap) return cap;
+    const int x = static_cast<int>(std::floor(p.x + t * n.x)), y = static_cast<int>(std::floor(p.y + t * n.y));
+    if (x < 0 || y < 0 || x >= places.cols || y >= places.rows || !places.at<unsigned char>(y, x)) return t;
+  }
+}
+
+struct Chord {
+  double width = std::numeric_limits<double>::quiet_NaN();  // cells; NaN when the point is no place
+  cv::Point2d a, b;
+};
+
+// The shortest chord through `p` within `max_angle` (radians) of the normal to `dir`.
+Chord shortestChord(const cv::Mat& places, cv::Point2d p, cv::Point2d dir, double max_angle, double cap) {
+  Chord c;
+  const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
+  if (x < 0 || y < 0 || x >= places.cols || y >= places.rows || !places.at<unsigned char>(y, x)) return c;
+  const double step = 5.0 * M_PI / 180.0;
+  const int k = static_cast<int>(std::floor(max_angle / step + 1e-9));
+  const cv::Point2d normal(-dir.y, dir.x);
+  for (int i = -k; i <= k; ++i) {
+    const double an = i * step, cs = std::cos(an), sn = std::sin(an);
+    const cv::Point2d n(cs * normal.x - sn * normal.y, sn * normal.x + cs * normal.y);
+    const double plus = rayToWall(places, p, n, cap), minus = rayToWall(places, p, -n, cap);
+    if (std::isnan(c.width) || plus + minus < c.width) {
+      c.width = plus + minus;
+      c.a = p - minus * n;
+      c.b = p + plus * n;
+    }
+  }
+  return c;
+}
+
+// Which side of the line through a and b the point q lies on.
+double side(cv::Point2d a, cv::Point2d b, cv::Point2d q) { return (b - a).cross(q - a); }
+}  // namespace
+
+std::vector<cv::Point2d> samplePath(const std::vector<cv::Point2d>& path, double step, double max_jump) {
+  std::vector<cv::Point2d> out;
+  if (path.empty()) return out;
+  const cv::Point2d gap(std::numeric_limits<double>::quiet_NaN(), 0);
+  out.push_back(path.front());
+  double carried = 0;  // arc length since the last sample
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const cv::Point2d p = path[i - 1], q = path[i];
+    const double len = cv::norm(q - p);
+    if (len > max_jump) {
+      out.push_back(gap);
+      out.push_back(q);
+      carried = 0;
+      continue;
+    }
+    double t = step - carried;  // arc length along this segment of the next sample
+    for (; t <= len; t += step) out.push_back(p + (q - p) * (t / len));
+    carried = len - (t - step);
+  }
+  return out;
+}
+
+std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vector<cv::Point2d>& path,
+                                          double resolution, const DoorPassageOptions& o) {
+  std::vector<DoorPassage> found;
+  if (places.empty() || path.size() < 2) return found;
+  const std::vector<cv::Point2d> s = samplePath(path);
+  const std::size_t n = s.size();
+  const double cap = (o.max_width + o.wider_by) / resolution;
+  const int half_dir = std::max(1, static_cast<int>(std::lround(0.25 / resolution)));  // travel direction over ±0.25 m
+  const double max_angle = o.max_angle * M_PI / 180.0;
+  // The start of every sample's piece and the piece's end (one past).
+  std::vector<std::size_t> piece_begin(n), piece_end(n);
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    while (j < n && !isGap(s[j])) ++j;
+    for (std::size_t k = i; k < j; ++k) piece_begin[k] = i, piece_end[k] = j;
+    if (j < n) piece_begin[j] = piece_end[j] = j;
+    i = j + 1;
+  }
+  std::vector<Chord> chord(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (isGap(s[i])) continue;
+    const std::size_t lo = std::max(piece_begin[i], i >= static_cast<std::size_t>(half_dir) ? i - half_dir : 0);
+    const std::size_t hi = std::min(piece_end[i] - 1, i + half_dir);
+    const cv::Point2d d = s[hi] - s[lo];
+    const double len = cv::norm(d);
+    if (len < 1e-9) continue;
+    chord[i] = shortestChord(places, s[i], d / len, max_angle, cap);
+  }
+  const auto width_m = [&](std::size_t i) { return chord[i].width * resolution; };
+  const auto narrow = [&](std::size_t i) { return !std::isnan(chord[i].width) && width_m(i) <= o.max_width; };
+  const std::size_t context = static_cast<std::size_t>(std::ceil(o.context / resolution));
+  const std::size_t max_run = static_cast<std::size_t>(std::floor(o.max_length / resolution)) + 1;
+  for (std::size_t i = 0; i < n;) {
+    if (!narrow(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < n && narrow(j)) ++j;  // [i, j): a narrow stretch (gaps are never narrow)
+    const std::size_t begin = i, end = j;
+    i = j;
+    if (end - begin > max_run) continue;
+    std::size_t best = begin;
+    for (std::size_t k = begin; k < end; ++k)
+      if (chord[k].width < chord[best].width) best = k;
+    const double w = width_m(best);
+    if (w < o.min_width) continue;
+    // Wider before and after, within `context` along the path of the stretch's ends.
+    const std::size_t before_lo = begin >= piece_begin[begin] + context ? begin - context : piece_begin[begin];
+    const std::size_t after_hi = std::min(piece_end[begin], end + context);  // one past
+    double wide_before = 0, wide_after = 0;
+    for (std::size_t k = before_lo; k < begin; ++k)
+      if (!std::isnan(chord[k].width)) wide_before = std::max(wide_before, width_m(k));
+    for (std::size_t k = end; k < after_hi; ++k)
+      if (!std::isnan(chord[k].width)) wide_after = std::max(wide_after, width_m(k));
+    if (wide_before < w + o.wider_by || wide_after < w + o.wider_by) continue;
+    // Through the door: the path's ends of the window lie on opposite sides of the chord.
+    const Chord& c = chord[best];
+    if (before_lo == begin || after_hi == end) continue;
+    if (side(c.a, c.b, s[before_lo]) * side(c.a, c.b, s[after_hi - 1]) >= 0) continue;
+    const cv::Point centre(static_cast<int>(std::floor(s[best].x)), static_cast<int>(std::floor(s[best].y)));
+    bool merged = false;
+    for (DoorPassage& d : found) {
+      const double reach = std::max(d.width, w) / resolution;
+      if (cv::norm(cv::Point2d(d.centre - centre)) > reach) continue;
+      ++d.passes;
+      if (w < d.width) d.a = c.a, d.b = c.b, d.centre = centre, d.width = w, d.sample = best;
+      merged = true;
+      break;
+    }
+    if (!merged) found.push_back({c.a, c.b, centre, w, best, 1});
+  }
+  return found;
+}
+
+cv::Mat addDoorPassages(const cv::Mat& labels, const std::vector<cv::Point2d>& path, double resolution,
+                        const DoorPassageOptions& o, std::vector<DoorPassage>* found) {
+  cv::Mat out = labels.clone();
+  std::vector<DoorPassage> doors;
+  if (o.enabled && !path.empty()) {
+    const cv::Mat places = labels < places::kNumLabels;
+    doors = findDoorPassages(places, path, resolution, o);
+    cv::Mat drawn = cv::Mat::zeros(labels.size(), CV_8U);
+    const int thickness = std::max(1, static_cast<int>(std::lround(o.depth / resolution)));
+    const auto cell = [](cv::Point2d p) {
+      return cv::Point(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)));
+    };
+    for (const DoorPassage& d : doors) cv::line(drawn, cell(d.a), cell(d.b), cv::Scalar(255), thickness, cv::LINE_8);
+    drawn &= places;
+    out.setTo(kDoorway, drawn);
+  }
+  if (found) *found = std::move(doors);
+  return out;
+}
+
+}  // namespace gridtopo::topology
