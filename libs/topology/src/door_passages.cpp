@@ -11,6 +11,7 @@
 namespace gridtopo::topology {
 
 namespace {
+constexpr double kMaxJump = 3.0;  // m: a longer step between two poses is a gap in the trajectory
 constexpr unsigned char kDoorway = static_cast<unsigned char>(places::PlaceLabel::Doorway);
 
 bool isGap(const cv::Point2d& p) { return std::isnan(p.x); }
@@ -81,7 +82,7 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
                                           double resolution, const DoorPassageOptions& o) {
   std::vector<DoorPassage> found;
   if (places.empty() || path.size() < 2) return found;
-  const std::vector<cv::Point2d> s = samplePath(path);
+  const std::vector<cv::Point2d> s = samplePath(path, 1.0, kMaxJump / resolution);
   const std::size_t n = s.size();
   const double cap = (o.max_width + o.wider_by) / resolution;
   const int half_dir = std::max(1, static_cast<int>(std::lround(0.25 / resolution)));  // travel direction over ±0.25 m

@@ -41,7 +41,8 @@ struct DoorPassage {
 };
 
 /// The path (cells, as pathInCells) resampled every `step` cells along its polyline; jumps longer than
-/// `max_jump` cells (a gap in the trajectory) start a new piece: pieces are separated by a NaN point.
+/// `max_jump` cells (a gap in the trajectory; findDoorPassages: 3 m) start a new piece: pieces are separated by a
+/// NaN point.
 std::vector<cv::Point2d> samplePath(const std::vector<cv::Point2d>& path, double step = 1.0, double max_jump = 40.0);
 
 /// The doors that `path` (cells of the map, pathInCells) went through in `places` (CV_8U, non-zero = a place,
