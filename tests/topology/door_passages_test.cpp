@@ -181,3 +181,37 @@ TEST(DoorPassages, OptionsAreCheckedAgainstEachOther) {
   o.door_passages.max_width = 1.5;
   EXPECT_NO_THROW(topologyOptionSchema().validate(o, "t.ini", "topology"));
 }
+
+TEST(DoorPassages, ARoomEnteredWhereTheMapShowsNoWallGetsItsDoorway) {
+  // A corridor (x 1..19 m, y 8..10 m) and room D above it (x 5..11 m, y 3..8 m) open onto it along 3 m (x 6..9 m):
+  // the wall between them was seen in part only. The classifier labels room and corridor.
+  cv::Mat labels(ci(11), ci(20), CV_8U, cv::Scalar(places::kNoLabel));
+  labels(cv::Rect(cv::Point(ci(1), ci(8)), cv::Point(ci(19), ci(10)))).setTo(kCorridor);
+  labels(cv::Rect(cv::Point(ci(5), ci(3)), cv::Point(ci(11), ci(7.8)))).setTo(kRoom);
+  labels(cv::Rect(cv::Point(ci(6), ci(7.8)), cv::Point(ci(9), ci(8)))).setTo(kRoom);
+  const std::vector<cv::Point2d> into = poses({{c(2), c(9)}, {c(7.5), c(9)}, {c(7.5), c(5)}, {c(7.5), c(9)}, {c(18), c(9)}});
+  const TopologyOptions o;
+  const TopologyResult without = buildTopology(labels, kRes, o);
+  EXPECT_TRUE(doorwaysBetween(without.graph).empty());
+  // The opening is too wide for a door passage; the step from the corridor into the room is a room entry.
+  const TopologyResult with = buildTopology(labels, kRes, o, nullptr, {0, 0}, into);
+  EXPECT_TRUE(with.door_passages.empty());
+  ASSERT_EQ(with.room_entries.size(), 1u);  // in and out at the same place: one entry
+  EXPECT_NEAR(with.room_entries[0].x * kRes, 7.5, 0.1);
+  EXPECT_NEAR(with.room_entries[0].y * kRes, 7.95, 0.3);
+  int door_nodes = 0;
+  for (const GraphNode& n : with.graph.nodes) door_nodes += n.label == kDoor;
+  EXPECT_EQ(door_nodes, 1);
+  // The doorway: room cells within door_passage_depth (0.25 m) of the corridor, door_passage_max_width (1.4 m)
+  // along the border around the step.
+  const int cells = cv::countNonZero(with.labels == kDoor);
+  EXPECT_GT(cells, 0.9 * ci(1.4) * ci(0.25));
+  EXPECT_LT(cells, 1.2 * ci(1.4) * (ci(0.25) + 1));
+  // Along the corridor only, or with room entries off: no doorway.
+  EXPECT_TRUE(buildTopology(labels, kRes, o, nullptr, {0, 0}, poses({{c(2), c(9)}, {c(18), c(9)}})).room_entries.empty());
+  TopologyOptions off;
+  off.door_passages.room_entries = false;
+  const TopologyResult no_entries = buildTopology(labels, kRes, off, nullptr, {0, 0}, into);
+  EXPECT_TRUE(no_entries.room_entries.empty());
+  EXPECT_EQ(cv::countNonZero(no_entries.labels == kDoor), 0);
+}

@@ -5,14 +5,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/regions.h"
 
 namespace gridtopo::topology {
 
 namespace {
 constexpr double kMaxJump = 3.0;  // m: a longer step between two poses is a gap in the trajectory
 constexpr unsigned char kDoorway = static_cast<unsigned char>(places::PlaceLabel::Doorway);
+constexpr int kRoomLabel = static_cast<int>(places::PlaceLabel::Room);
+constexpr int kCorridorLabel = static_cast<int>(places::PlaceLabel::Corridor);
 
 bool isGap(const cv::Point2d& p) { return std::isnan(p.x); }
 
@@ -170,6 +175,103 @@ cv::Mat addDoorPassages(const cv::Mat& labels, const std::vector<cv::Point2d>& p
     out.setTo(kDoorway, drawn);
   }
   if (found) *found = std::move(doors);
+  return out;
+}
+
+cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& path, double resolution,
+                       const DoorPassageOptions& o, std::vector<cv::Point>* entries) {
+  cv::Mat out = labels.clone();
+  std::vector<cv::Point> found;
+  if (!o.enabled || !o.room_entries || path.empty()) {
+    if (entries) *entries = found;
+    return out;
+  }
+  const RegionMap rm = extractRegions(labels, resolution);
+  const double near = o.max_width / resolution;
+  struct Entry {
+    cv::Point2d at;
+    int room, corridor;
+  };
+  std::vector<Entry> steps;
+  // The doorway regions between each pair of regions (a < b).
+  std::map<std::pair<int, int>, std::vector<int>> doors_between;
+  {
+    std::map<int, std::vector<int>> nbs;
+    for (const auto& [ab, len] : regionAdjacency(rm.ids)) nbs[ab.first].push_back(ab.second), nbs[ab.second].push_back(ab.first);
+    for (const auto& [d, list] : nbs) {
+      if (rm.region(d).label != static_cast<int>(kDoorway)) continue;
+      for (int a : list)
+        for (int b : list)
+          if (a < b) doors_between[{a, b}].push_back(d);
+    }
+  }
+  // A doorway between the room and the corridor already lies within max_width of the step.
+  const auto door_near = [&](cv::Point2d p, int room, int corridor) {
+    const auto it = doors_between.find({std::min(room, corridor), std::max(room, corridor)});
+    if (it == doors_between.end()) return false;
+    const int r = static_cast<int>(std::ceil(near));
+    const cv::Rect box = cv::Rect(static_cast<int>(std::floor(p.x)) - r, static_cast<int>(std::floor(p.y)) - r,
+                                  2 * r + 1, 2 * r + 1) &
+                         cv::Rect(0, 0, labels.cols, labels.rows);
+    for (int y = box.y; y < box.y + box.height; ++y)
+      for (int x = box.x; x < box.x + box.width; ++x) {
+        const int id = rm.ids.at<int>(y, x);
+        if (id > 0 && std::find(it->second.begin(), it->second.end(), id) != it->second.end() &&
+            std::hypot(x + 0.5 - p.x, y + 0.5 - p.y) <= near)
+          return true;
+      }
+    return false;
+  };
+  int last = 0;  // the last room / corridor region of the path
+  cv::Point2d last_at;
+  bool through_door = false;
+  for (const cv::Point2d& q : samplePath(path, 1.0, kMaxJump / resolution)) {
+    if (isGap(q)) {
+      last = 0;
+      continue;
+    }
+    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
+    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
+    const int id = rm.ids.at<int>(y, x);
+    if (id <= 0) continue;
+    const int l = rm.region(id).label;
+    if (l == static_cast<int>(kDoorway)) {
+      through_door = true;
+      continue;
+    }
+    if (last && id != last && !through_door) {
+      const int la = rm.region(last).label;
+      if ((la == kCorridorLabel && l == kRoomLabel) || (la == kRoomLabel && l == kCorridorLabel)) {
+        const cv::Point2d mid = (last_at + q) * 0.5;
+        const int room = l == kRoomLabel ? id : last, corridor = l == kRoomLabel ? last : id;
+        bool known = door_near(mid, room, corridor);
+        for (const Entry& e : steps) known = known || cv::norm(e.at - mid) <= near;
+        if (!known) steps.push_back({mid, room, corridor});
+      }
+    }
+    last = id;
+    last_at = q;
+    through_door = false;
+  }
+  const double depth = std::max(1.0, o.depth / resolution), half = near / 2;
+  for (const Entry& e : steps) {
+    const int r = static_cast<int>(std::ceil(half + depth)) + 1;
+    const cv::Rect box = cv::Rect(static_cast<int>(std::floor(e.at.x)) - r, static_cast<int>(std::floor(e.at.y)) - r,
+                                  2 * r + 1, 2 * r + 1) &
+                         cv::Rect(0, 0, labels.cols, labels.rows);
+    cv::Mat to_corridor;
+    cv::distanceTransform(rm.ids(box) != e.corridor, to_corridor, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    int drawn = 0;
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x)
+        if (rm.ids.at<int>(box.y + y, box.x + x) == e.room && to_corridor.at<float>(y, x) <= depth &&
+            std::hypot(box.x + x + 0.5 - e.at.x, box.y + y + 0.5 - e.at.y) <= half) {
+          out.at<unsigned char>(box.y + y, box.x + x) = kDoorway;
+          ++drawn;
+        }
+    if (drawn) found.emplace_back(static_cast<int>(std::floor(e.at.x)), static_cast<int>(std::floor(e.at.y)));
+  }
+  if (entries) *entries = found;
   return out;
 }
 

@@ -86,6 +86,8 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "deg", "the door's chord is the shortest within this angle of the normal to the travel direction")
           .add("door_passage_depth", field(&O::door_passages, &DoorPassageOptions::depth), R::leftOpen(0, 2), "m",
                "thickness of a door passage's doorway across its chord")
+          .add("door_passage_room_entries", field(&O::door_passages, &DoorPassageOptions::room_entries), R::any(),
+               "", "after the correction: where the path steps from a corridor straight into a room, a doorway")
           .rule("door_passage_max_width",
                 [](const O& o) -> std::optional<std::string> {
                   if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;
@@ -211,6 +213,8 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   if (o.door_passages.enabled && !path.empty())
     input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
+  if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
+    r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);
   r.segmentation = segmentRooms(r.regions, resolution, o);
   r.labels_corrected = r.labels;

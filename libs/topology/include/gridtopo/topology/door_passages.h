@@ -28,6 +28,7 @@ struct DoorPassageOptions {
   double context = 1.5;     ///< [topology] door_passage_context (m): how far along the path before and after
   double max_angle = 45;    ///< [topology] door_passage_max_angle (degrees): chords within this of the normal
   double depth = 0.25;      ///< [topology] door_passage_depth (m): the doorway's thickness across its chord
+  bool room_entries = true; ///< [topology] door_passage_room_entries (addRoomEntries)
 };
 
 /// One door the path went through: its chord (cells, the first non-place cell at either end), the narrowest
@@ -55,5 +56,15 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
 /// a path.
 cv::Mat addDoorPassages(const cv::Mat& labels, const std::vector<cv::Point2d>& path, double resolution,
                         const DoorPassageOptions& o, std::vector<DoorPassage>* found = nullptr);
+
+/// Room entries, after the correction rules: where the path steps from a corridor region straight into a room
+/// region or back (no doorway cell on the way, no doorway between the two regions within door_passage_max_width
+/// of the step), the robot went
+/// through the room's door even where the map shows no wall or door frame there (a SLAM map's open door, a wall
+/// seen only in part). The room's cells within `o.depth` of the corridor region and within half
+/// door_passage_max_width of the step become a doorway: the doorway node between the room and the corridor.
+/// `labels` as addDoorPassages'; `entries` gets the steps (cells), one per place (within max_width of each other).
+cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& path, double resolution,
+                       const DoorPassageOptions& o, std::vector<cv::Point>* entries = nullptr);
 
 }  // namespace gridtopo::topology

@@ -99,6 +99,7 @@ struct TopologyResult {
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
   std::vector<DoorPassage> door_passages;  ///< the doors the robot's path went through (door_passages.h)
+  std::vector<cv::Point> room_entries;     ///< where it stepped from a corridor into a room without a door (cells)
 };
 
 /// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
@@ -118,7 +119,8 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// (step 7b), which needs the labelling the labels come from (its lattice and relaxed probabilities): throws
 /// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
 /// `path`: the robot's path in cells (pathInCells of MapImage::path; empty = unknown): the doors it went through
-/// become doorways (door_passages.h, `o.door_passages`) after the doorways from geometry, before the correction.
+/// become doorways (door_passages.h, `o.door_passages`) after the doorways from geometry, before the correction;
+/// after it, its steps from a corridor straight into a room (addRoomEntries).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
                              const std::vector<cv::Point2d>& path = {});
