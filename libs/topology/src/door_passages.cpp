@@ -222,35 +222,63 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
       }
     return false;
   };
-  int last = 0;  // the last room / corridor region of the path
-  cv::Point2d last_at;
-  bool through_door = false;
-  for (const cv::Point2d& q : samplePath(path, 1.0, kMaxJump / resolution)) {
+  // The path's room / corridor / doorway region at every sample (0 off the regions, -1 at a gap).
+  const std::vector<cv::Point2d> samples = samplePath(path, 1.0, kMaxJump / resolution);
+  std::vector<int> at(samples.size(), 0);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const cv::Point2d& q = samples[i];
     if (isGap(q)) {
-      last = 0;
+      at[i] = -1;
       continue;
     }
     const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
-    const int id = rm.ids.at<int>(y, x);
-    if (id <= 0) continue;
+    if (x >= 0 && y >= 0 && x < labels.cols && y < labels.rows) at[i] = rm.ids.at<int>(y, x);
+  }
+  // How far the path goes into the room from a step: the largest distance to the corridor's cells of its samples
+  // in the room region, from sample i on in direction dir, until it reaches another room / corridor region.
+  cv::Mat to_corridor_cells;
+  cv::distanceTransform(labels != kCorridorLabel, to_corridor_cells, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const auto depth_into = [&](long i, int room, int dir) {
+    float best = 0;
+    for (; i >= 0 && i < static_cast<long>(at.size()); i += dir) {
+      const int id = at[static_cast<std::size_t>(i)];
+      if (id < 0) break;
+      if (id == 0 || rm.region(id).label == static_cast<int>(kDoorway)) continue;
+      if (id != room) break;
+      const cv::Point2d& q = samples[static_cast<std::size_t>(i)];
+      best = std::max(best, to_corridor_cells.at<float>(static_cast<int>(std::floor(q.y)), static_cast<int>(std::floor(q.x))));
+    }
+    return best * resolution;
+  };
+  long last_i = -1;  // the sample of the last room / corridor region of the path
+  bool through_door = false;
+  for (long i = 0; i < static_cast<long>(at.size()); ++i) {
+    const int id = at[static_cast<std::size_t>(i)];
+    if (id < 0) {
+      last_i = -1;
+      continue;
+    }
+    if (id == 0) continue;
     const int l = rm.region(id).label;
     if (l == static_cast<int>(kDoorway)) {
       through_door = true;
       continue;
     }
+    const int last = last_i >= 0 ? at[static_cast<std::size_t>(last_i)] : 0;
     if (last && id != last && !through_door) {
       const int la = rm.region(last).label;
       if ((la == kCorridorLabel && l == kRoomLabel) || (la == kRoomLabel && l == kCorridorLabel)) {
-        const cv::Point2d mid = (last_at + q) * 0.5;
-        const int room = l == kRoomLabel ? id : last, corridor = l == kRoomLabel ? last : id;
+        const cv::Point2d mid = (samples[static_cast<std::size_t>(last_i)] + samples[static_cast<std::size_t>(i)]) * 0.5;
+        const bool entering = l == kRoomLabel;
+        const int room = entering ? id : last, corridor = entering ? last : id;
         bool known = door_near(mid, room, corridor);
         for (const Entry& e : steps) known = known || cv::norm(e.at - mid) <= near;
-        if (!known) steps.push_back({mid, room, corridor});
+        // The robot went into the room (not along its border with the corridor).
+        const double into = entering ? depth_into(i, room, 1) : depth_into(last_i, room, -1);
+        if (!known && into >= o.entry_depth) steps.push_back({mid, room, corridor});
       }
     }
-    last = id;
-    last_at = q;
+    last_i = i;
     through_door = false;
   }
   const double depth = std::max(1.0, o.depth / resolution), half = near / 2;

@@ -88,6 +88,8 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "thickness of a door passage's doorway across its chord")
           .add("door_passage_room_entries", field(&O::door_passages, &DoorPassageOptions::room_entries), R::any(),
                "", "after the correction: where the path steps from a corridor straight into a room, a doorway")
+          .add("door_passage_entry_depth", field(&O::door_passages, &DoorPassageOptions::entry_depth),
+               R::closed(0, 20), "m", "a room entry: the path goes at least this far from the corridor into the room")
           .rule("door_passage_max_width",
                 [](const O& o) -> std::optional<std::string> {
                   if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;

@@ -29,6 +29,7 @@ struct DoorPassageOptions {
   double max_angle = 45;    ///< [topology] door_passage_max_angle (degrees): chords within this of the normal
   double depth = 0.25;      ///< [topology] door_passage_depth (m): the doorway's thickness across its chord
   bool room_entries = true; ///< [topology] door_passage_room_entries (addRoomEntries)
+  double entry_depth = 1.0; ///< [topology] door_passage_entry_depth (m): how far into the room the path must go
 };
 
 /// One door the path went through: its chord (cells, the first non-place cell at either end), the narrowest
