@@ -207,6 +207,13 @@ TEST(DoorPassages, ARoomEnteredWhereTheMapShowsNoWallGetsItsDoorway) {
   const int cells = cv::countNonZero(with.labels == kDoor);
   EXPECT_GT(cells, 0.9 * ci(1.4) * ci(0.25));
   EXPECT_LT(cells, 1.2 * ci(1.4) * (ci(0.25) + 1));
+  // A path that dips 0.5 m into the room and out (it runs along the border: door_passage_entry_depth is 1 m) makes
+  // no entry; with entry_depth 0.4 m it does.
+  const std::vector<cv::Point2d> dip = poses({{c(2), c(9)}, {c(7.5), c(9)}, {c(7.5), c(7.5)}, {c(7.5), c(9)}, {c(18), c(9)}});
+  EXPECT_TRUE(buildTopology(labels, kRes, o, nullptr, {0, 0}, dip).room_entries.empty());
+  TopologyOptions shallow;
+  shallow.door_passages.entry_depth = 0.4;
+  EXPECT_EQ(buildTopology(labels, kRes, shallow, nullptr, {0, 0}, dip).room_entries.size(), 1u);
   // Along the corridor only, or with room entries off: no doorway.
   EXPECT_TRUE(buildTopology(labels, kRes, o, nullptr, {0, 0}, poses({{c(2), c(9)}, {c(18), c(9)}})).room_entries.empty());
   TopologyOptions off;
