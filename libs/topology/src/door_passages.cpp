@@ -101,9 +101,21 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
     if (j < n) piece_begin[j] = piece_end[j] = j;
     i = j + 1;
   }
+  // The clearance of every place (the distance transform): where it is at least half the longest chord that
+  // matters, every chord through the point is that long (each side reaches at least the clearance), and the
+  // point's width is taken as twice its clearance without casting rays.
+  cv::Mat clearance;
+  cv::distanceTransform(places != 0, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   std::vector<Chord> chord(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (isGap(s[i])) continue;
+    const int cx = static_cast<int>(std::floor(s[i].x)), cy = static_cast<int>(std::floor(s[i].y));
+    if (cx >= 0 && cy >= 0 && cx < places.cols && cy < places.rows && places.at<unsigned char>(cy, cx) &&
+        2.0 * clearance.at<float>(cy, cx) >= cap) {
+      chord[i].width = 2.0 * clearance.at<float>(cy, cx);
+      chord[i].a = chord[i].b = s[i];
+      continue;
+    }
     const std::size_t lo = std::max(piece_begin[i], i >= static_cast<std::size_t>(half_dir) ? i - half_dir : 0);
     const std::size_t hi = std::min(piece_end[i] - 1, i + half_dir);
     const cv::Point2d d = s[hi] - s[lo];

@@ -2,7 +2,9 @@
 // Doorways from the robot's trajectory: a door the robot went through is a fact, not a guess. Along the path
 // (gridtopo-slam's trajectory.txt, `-t`), every cell-length step measures the width of the places across the
 // direction of travel: the shortest chord through the robot's position, wall to wall, within `max_angle` of the
-// normal to the travel direction (a door crossed at a slant still measures its own width). A door passage is a
+// normal to the travel direction (a door crossed at a slant still measures its own width; where the places'
+// distance transform gives a clearance of at least half of max_width + wider_by, the width is twice the clearance,
+// without casting rays: wide enough for every test below). A door passage is a
 //   - short stretch of the path (at most `max_length` long) where that width lies in [min_width, max_width], and
 //   - on both sides of it, within `context` along the path, the width grows beyond the door's by `wider_by` (the
 //     path leaves a narrow corridor or runs along a shelf: no door), and
