@@ -4,7 +4,8 @@
 #   2. gridtopo-eval      scores the trajectory against the Freiburg benchmark's ground-truth relations
 #   3. gridtopo-topology  labels the map's places (room / corridor / doorway) and builds the topological graph
 #   4. gridtopo-topology-compare  scores those labels and rooms against the labelled lab_intel floor plan (the same
-#                         building drawn in another frame; aligned automatically)
+#                         building drawn in another frame; aligned automatically), and the graph along the
+#                         trajectory: the plan doors it crossed found as doorway nodes (doc/topology-trajectory.md)
 # Results land in out/intel/ (override with GRIDTOPO_OUT). Extra arguments go to gridtopo-slam
 # (e.g. -p 8 -s 3).
 set -euo pipefail
@@ -29,6 +30,7 @@ echo "== 3/4 places and topology: $OUT/slam/map.yaml -> $OUT/topology"
 echo "== 4/4 topology against the labelled lab_intel floor plan (datasets/places)"
 P=datasets/places
 "$BIN/gridtopo-topology-compare" "$OUT/slam/map.yaml" "$OUT/topology" -c config-ini/topology.ini \
+  -t "$OUT/slam/trajectory.txt" \
   --reference-map $P/maps/lab_intel.png --reference-labels $P/labelled/training_intel.png \
   --reference-segmentation $P/groundtruth/lab_intel_gt_segmentation.png -j "$OUT/topology/compare.json" \
   --overlay "$OUT/topology/compare_segmentation.png" --errors "$OUT/topology/compare_label_errors.png"

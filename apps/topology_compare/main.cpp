@@ -43,6 +43,11 @@ int main(int argc, char** argv) {
                                           "instead of a plan: another topology of the same building, given twice: "
                                           "its map, then its gridtopo-topology output directory",
                                           false, "path", cmd);
+    TCLAP::ValueArg<std::string> traj("t", "trajectory",
+                                      "the robot's trajectory in the map's frame (gridtopo-slam's trajectory.txt): "
+                                      "the graph is also scored along it (plan doors crossed found as doorway nodes, "
+                                      "spurious splits)",
+                                      false, "", "file", cmd);
     TCLAP::ValueArg<std::string> ini("c", "ini", "topology INI (free thresholds of the map)", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> json("j", "json", "write the scores as JSON here", false, "", "file", cmd);
     TCLAP::ValueArg<std::string> overlay("", "overlay",
@@ -68,6 +73,7 @@ int main(int argc, char** argv) {
                                              {ref_topo.getValue()[0], ref_topo.getValue()[1]},
                                              options);
       if (errors.isSet()) throw UsageError("--errors needs a reference plan");
+      if (traj.isSet()) throw UsageError("--trajectory needs a reference plan");
       OutputSet outs;
       if (!json.getValue().empty())
         outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, eval::agreementJson(a)); });
@@ -85,7 +91,7 @@ int main(int argc, char** argv) {
 
     const auto c = eval::compareWithReference(map_arg.getValue(), dir_arg.getValue(),
                                               {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue()},
-                                              options);
+                                              options, traj.getValue());
     OutputSet outs;
     const auto png = [&](const std::string& path, const cv::Mat& img) {
       outs.write(path, [&](const std::string& p) {

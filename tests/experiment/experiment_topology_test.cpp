@@ -121,8 +121,12 @@ TEST(ExperimentTopology, ASlamRunsTopologyReadsItsMap) {
                                       kData + "/places/maps/lab_intel.png", "--reference-labels",
                                       kData + "/places/labelled/training_intel.png", "--reference-segmentation",
                                       kData + "/places/groundtruth/lab_intel_gt_segmentation.png", "-j",
-                                      run.dir + "/topology/compare.json"}));
+                                      run.dir + "/topology/compare.json", "-t", run.dir + "/out/trajectory.txt"}));
   EXPECT_EQ(stages[2].log, run.dir + "/compare.log");
+  // The topology of the run's map reads the run's trajectory (its door passages), as gridtopo-map's.
+  EXPECT_NE(experiment::topologyIniText(plan, run).find("trajectory = " + run.dir + "/out/trajectory.txt"),
+            std::string::npos)
+      << experiment::topologyIniText(plan, run);
   // Run 0 end to end: gridtopo-slam on the first 600 scans, then the topology of its map, scored against the plan.
   const auto r = runApp("gridtopo-experiment", (dir / "exp.ini").string() + " --run-index 0 -q");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -132,6 +136,7 @@ TEST(ExperimentTopology, ASlamRunsTopologyReadsItsMap) {
   EXPECT_EQ(rec["relations_scored"], 47);
   EXPECT_LT(rec["trans_mean_m"].get<double>(), 0.03);
   EXPECT_EQ(rec["label_accuracy"].get<double>(), readJson(run0 / "topology/compare.json")["labels"]["accuracy"].get<double>());
+  EXPECT_TRUE(readJson(run0 / "topology/compare.json")["trajectory"]["has_trajectory"].get<bool>());
   EXPECT_EQ(rec["graph_nodes"].get<std::size_t>(), readJson(run0 / "topology/topology.json")["nodes"].size());
   EXPECT_GT(rec["graph_nodes"].get<std::size_t>(), 0u);
   EXPECT_TRUE(fs::is_regular_file(run0 / "out/map.yaml"));  // keep_maps defaults to true

@@ -130,6 +130,11 @@ TEST(LiveTopology, FollowsTheRunAndEndsWithTheBuildersTopologyOfTheFinalMap) {
   EXPECT_EQ(differingCells(last->data->labelling.labels, ref.labelling.labels), 0);
   EXPECT_EQ(last->data->topo.graph.nodes.size(), ref.graph().nodes.size());
   EXPECT_EQ(last->data->topo.graph.edges.size(), ref.graph().edges.size());
+  // The same trajectory evidence: the door passages and room entries of the run's path.
+  EXPECT_EQ(last->data->topo.door_passages.size(), ref.topo.door_passages.size());
+  EXPECT_EQ(last->data->topo.room_entries.size(), ref.topo.room_entries.size());
+  std::printf("final live topology: %zu door passages, %zu room entries of the path\n",
+              last->data->topo.door_passages.size(), last->data->topo.room_entries.size());
   // The office (rooms around a corridor loop); measured with these options: 2 rooms, 2 corridor pieces, 5 doorways,
   // 16 edges (3 rooms, 4 corridor pieces, 18 edges before the map preparation took the fans and frayed edges).
   std::array<int, 3> counts{0, 0, 0};

@@ -272,11 +272,11 @@ GraphComparison compareGraphWithPlan(const cv::Mat& map_free, const cv::Mat& lab
                                      const cv::Mat& reference_codes, const cv::Mat& reference_rooms,
                                      const ReferenceAlignment& alignment) {
   GraphComparison c;
-  const RegionMap regions = graphRegionsOfLabels(labels, resolution, options);
-  c.graph = buildGraph(regions, resolution);
-  const PlanGraph plan =
-      planGraphFromReference(map_free, reference_free, reference_codes, reference_rooms, alignment, resolution);
-  c.score = scoreGraph(c.graph, regions, plan);
+  c.regions = graphRegionsOfLabels(labels, resolution, options);
+  c.graph = buildGraph(c.regions, resolution);
+  c.plan = planGraphFromReference(map_free, reference_free, reference_codes, reference_rooms, alignment, resolution);
+  const PlanGraph& plan = c.plan;
+  c.score = scoreGraph(c.graph, c.regions, plan);
   TopologyOptions no_vote = options;
   no_vote.blob_vote.enabled = false;
   const TopologyResult ceiling =

@@ -10,8 +10,10 @@
 #include "gridtopo/eval/lomo_report.h"
 #include "gridtopo/eval/oracle_diagnostics.h"
 #include "gridtopo/io/map_io.h"
+#include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/export.h"
+#include "gridtopo/topology/map_preparation.h"
 
 namespace gridtopo::eval {
 
@@ -43,7 +45,7 @@ double regionVoteOracleAccuracy(const TopologyComparison& c) {
 }  // namespace
 
 TopologyComparison compareWithReference(const std::string& map, const std::string& dir, const ReferencePlan& plan,
-                                        const topology::TopologyOptions& opt) {
+                                        const topology::TopologyOptions& opt, const std::string& trajectory) {
   TopologyComparison c;
   c.map = map;
   const MapImage m = io::readMap(map, io::MapReadOptions{});
@@ -76,6 +78,14 @@ TopologyComparison compareWithReference(const std::string& map, const std::strin
                    c.reference_rooms, c.score.alignment)
           .segmentation;
   c.region_vote_oracle_accuracy = regionVoteOracleAccuracy(c);
+  if (!trajectory.empty()) {
+    std::vector<cv::Point2d> world;
+    for (const TimedPose& p : io::readTrajectory(trajectory)) world.emplace_back(p.pose.x, p.pose.y);
+    if (world.empty()) throw InputError(trajectory, "the trajectory has no pose");
+    c.along_path = scoreGraphAlongPath(c.graph.graph, c.graph.regions, c.graph.plan,
+                                       topology::pathInCells(world, m.origin, m.resolution, c.map_free.rows),
+                                       m.resolution);
+  }
   if (std::filesystem::is_regular_file(dir + "/topology.json")) {
     const auto written = topology::graphFromJson(dir + "/topology.json");
     const auto& g = c.graph.graph;
@@ -101,7 +111,7 @@ std::string comparisonJson(const TopologyComparison& c) {
      << ",\n  \"graph\": " << c.graph.score.toJson() << ",\n  \"graph_of_plan_labels\": "
      << c.graph.plan_labels.toJson() << ",\n  \"segmentation_of_plan_labels\": "
      << c.segmentation_of_plan_labels.toJson() << ",\n  \"region_vote_oracle_accuracy\": "
-     << c.region_vote_oracle_accuracy << "\n}\n";
+     << c.region_vote_oracle_accuracy << ",\n  \"trajectory\": " << c.along_path.toJson() << "\n}\n";
   return js.str();
 }
 
@@ -120,6 +130,12 @@ std::string comparisonSummary(const TopologyComparison& c) {
     << percent(gs.attachedFraction()) << " %), " << gs.loops_closed << " of " << gs.plan_loops
     << " plan corridor loops a cycle of corridor nodes (with the plan's labels: "
     << percent(ceiling.attachedFraction()) << " %, " << ceiling.loops_closed << " of " << ceiling.plan_loops << ")";
+  if (const auto& t = c.along_path; t.has_trajectory)
+    o << "; trajectory: " << t.doors_found << " of " << t.doors_crossed
+      << " plan doors crossed are doorway nodes between the right spaces (" << percent(t.doorsFoundFraction())
+      << " %; a doorway node at " << t.doors_with_doorway_node << "), " << t.spurious_splits << " of "
+      << t.node_changes_scored << " node changes where the plan has none (" << t.spurious_label_changes
+      << " room / corridor; " << t.spurious_boundaries << " boundaries)";
   return o.str();
 }
 

@@ -268,6 +268,8 @@ std::string topologyIniText(const ExperimentPlan& plan, const PlannedRun& run) {
   spec.map = run.map;
   spec.model = run.model;
   spec.output = (fs::path(run.dir) / "topology").string();
+  // A run's own SLAM map comes with the robot's trajectory: its door passages (as gridtopo-map's topology).
+  if (run.slam) spec.trajectory = (fs::path(run.dir) / "out" / "trajectory.txt").string();
   spec.options = run.topology_options;
   return "# Topology of run " + std::to_string(run.index) + " (" + run.label + ") of experiment '" + plan.spec.name +
          "', id " + run.id + ": gridtopo-topology " + (fs::path(run.dir) / "topology.ini").string() + "\n" +
@@ -287,6 +289,11 @@ std::vector<RunStage> runStages(const PlannedRun& run, const Executables& exe) {
                          run.plan_labels, "--reference-segmentation", run.plan_segmentation, "-j",
                          (dir / "topology" / "compare.json").string()},
                         (dir / "compare.log").string()});
+    if (!run.plan.empty() && run.slam) {  // the graph along the run's trajectory too
+      auto& compare = stages.back().argv;
+      compare.push_back("-t");
+      compare.push_back((dir / "out" / "trajectory.txt").string());
+    }
   }
   return stages;
 }

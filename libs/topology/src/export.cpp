@@ -156,7 +156,7 @@ TopologicalGraph graphFromJson(const std::string& path) {
 }
 
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& rm,
-                      const TopologicalGraph& g, int scale) {
+                      const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages) {
   scale = std::max(1, scale);
   static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
   cv::Mat img(occ.cells.size(), CV_8UC3);
@@ -197,6 +197,9 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
       if (n->centroid_inside) cv::line(big, pt(*n), c, cv::Scalar(30, 30, 30), std::max(1, scale), cv::LINE_AA);
     cv::circle(big, c, scale, cv::Scalar(30, 30, 30), cv::FILLED, cv::LINE_AA);
   }
+  if (door_passages)
+    for (const DoorPassage& d : *door_passages)
+      cv::line(big, px(d.a), px(d.b), cv::Scalar(200, 0, 200), std::max(1, scale / 2), cv::LINE_AA);
   static const cv::Scalar node_colour[] = {{160, 60, 0}, {0, 120, 0}, {0, 0, 200}};
   for (const auto& n : g.nodes) {
     const int rad = n.label == 2 ? 2 * scale : 4 * scale;

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <filesystem>
 #include <stdexcept>
@@ -69,6 +70,32 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "thickness of a geometric doorway across its line")
           .add("doorway_refuse_unsupported", field(&O::doorways, &DoorwayGeometryOptions::refuse_unsupported),
                R::any(), "", "classifier doorways no critical line reaches take the label around them")
+          .add("door_passages", field(&O::door_passages, &DoorPassageOptions::enabled), R::any(), "",
+               "with the robot's path (-t): where it went through a narrow opening, a doorway across the opening")
+          .add("door_passage_min_width", field(&O::door_passages, &DoorPassageOptions::min_width), R::closed(0, 10),
+               "m", "narrowest door passage")
+          .add("door_passage_max_width", field(&O::door_passages, &DoorPassageOptions::max_width), R::leftOpen(0, 10),
+               "m", "widest door passage")
+          .add("door_passage_max_length", field(&O::door_passages, &DoorPassageOptions::max_length),
+               R::leftOpen(0, 10), "m", "the narrow stretch along the path is at most this long")
+          .add("door_passage_wider_by", field(&O::door_passages, &DoorPassageOptions::wider_by), R::closed(0, 10), "m",
+               "before and after the stretch the width exceeds the door's by this")
+          .add("door_passage_context", field(&O::door_passages, &DoorPassageOptions::context), R::leftOpen(0, 20), "m",
+               "how far along the path before and after the stretch is looked at")
+          .add("door_passage_max_angle", field(&O::door_passages, &DoorPassageOptions::max_angle), R::closed(0, 80),
+               "deg", "the door's chord is the shortest within this angle of the normal to the travel direction")
+          .add("door_passage_depth", field(&O::door_passages, &DoorPassageOptions::depth), R::leftOpen(0, 2), "m",
+               "thickness of a door passage's doorway across its chord")
+          .add("door_passage_room_entries", field(&O::door_passages, &DoorPassageOptions::room_entries), R::any(),
+               "", "after the correction: where the path steps from a corridor straight into a room, a doorway")
+          .add("door_passage_entry_depth", field(&O::door_passages, &DoorPassageOptions::entry_depth),
+               R::closed(0, 20), "m", "a room entry: the path goes at least this far from the corridor into the room")
+          .rule("door_passage_max_width",
+                [](const O& o) -> std::optional<std::string> {
+                  if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;
+                  return "must be at least door_passage_min_width (" + std::to_string(o.door_passages.min_width) +
+                         "), got " + std::to_string(o.door_passages.max_width);
+                })
           .add("blob_vote", field(&O::blob_vote, &BlobVoteOptions::enabled), R::any(), "",
                "step 7b: vote room / corridor labels in geometric blobs")
           .add("blob_vote_neck_width", field(&O::blob_vote, &BlobVoteOptions::neck_width), R::leftOpen(0, 20), "m",
@@ -174,7 +201,8 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 }
 
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
-                             const places::LabellingResult* labelling, cv::Point2d origin) {
+                             const places::LabellingResult* labelling, cv::Point2d origin,
+                             const std::vector<cv::Point2d>& path) {
   TopologyResult r;
   cv::Mat input = labels;
   if (o.blob_vote.enabled) {
@@ -184,7 +212,11 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     input = r.labels_blob_vote;
   }
   if (o.doorways.enabled) input = addGeometricDoorways(input, resolution, o.doorways);
+  if (o.door_passages.enabled && !path.empty())
+    input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
+  if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
+    r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);
   r.segmentation = segmentRooms(r.regions, resolution, o);
   r.labels_corrected = r.labels;
@@ -223,7 +255,8 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
       places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();
-  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin);
+  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin,
+                         pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()));
   t.seconds_graph = since(t0);
   return t;
 }

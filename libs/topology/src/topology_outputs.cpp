@@ -31,7 +31,7 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
       if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
     });
   };
-  png("overlay.png", renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale));
+  png("overlay.png", renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages));
   png("labels.png", places::labelsToCodes(topo.labels));
   if (!labels_before_correction.empty())
     png("labels_before_correction.png", places::labelsToCodes(labels_before_correction));

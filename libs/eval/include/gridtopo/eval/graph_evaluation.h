@@ -91,6 +91,8 @@ GraphScore scoreGraph(const topology::TopologicalGraph& g, const topology::Regio
 
 struct GraphComparison {
   topology::TopologicalGraph graph;   ///< the graph of the labels, rebuilt as gridtopo-topology builds it
+  topology::RegionMap regions;        ///< the graph's regions (graphRegionsOfLabels)
+  PlanGraph plan;                     ///< the plan in the map's frame
   GraphScore score;         ///< that graph against the plan
   GraphScore plan_labels;   ///< the ceiling: the graph the same steps make of the plan's own labels on the map
   /// The ceiling's labels and room segmentation (what the same steps make of the plan's own labels on the map).

@@ -9,6 +9,7 @@
 
 #include "gridtopo/eval/graph_evaluation.h"
 #include "gridtopo/eval/reference_alignment.h"
+#include "gridtopo/eval/trajectory_graph_score.h"
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/topology/pipeline.h"
 
@@ -35,14 +36,19 @@ struct TopologyComparison {
   /// labels carried to the map, the room / corridor cells take the majority of our labels there; doorway cells and
   /// predicted doorways keep theirs): what any vote over the true places could reach from our labels.
   double region_vote_oracle_accuracy = 0;
+  /// The graph along the robot's trajectory (doors crossed found, spurious splits); has_trajectory false without one.
+  TrajectoryGraphScore along_path;
 };
 
 /// Reads the map (io::readMap: its kind picks the free threshold of `options`) and the topology directory
 /// `topology_dir`, aligns the plan and scores. When topology_dir holds topology.json, its node and edge counts must
 /// equal the graph the labels give with `options` (InputError otherwise: the INI gridtopo-topology ran with is
-/// needed). InputError naming the file for missing or unreadable images and mismatched sizes.
+/// needed). InputError naming the file for missing or unreadable images and mismatched sizes. `trajectory`
+/// (gridtopo-slam's trajectory.txt in the map's frame; empty = none): the graph is also scored along it
+/// (scoreGraphAlongPath).
 TopologyComparison compareWithReference(const std::string& map, const std::string& topology_dir,
-                                        const ReferencePlan& plan, const topology::TopologyOptions& options);
+                                        const ReferencePlan& plan, const topology::TopologyOptions& options,
+                                        const std::string& trajectory = "");
 
 /// The JSON of gridtopo-topology-compare (format "gridtopo-topology-compare").
 std::string comparisonJson(const TopologyComparison& c);

@@ -6,6 +6,7 @@
 
 #include "gridtopo/places/occupancy.h"
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/door_passages.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/regions.h"
 
@@ -26,8 +27,10 @@ inline cv::Vec3b seenNotPlaceColour(int x, int y) {
 
 /// Colour overlay: the map in grey, free cells that are no place hatched (seenNotPlaceColour), place labels coloured (room blue, corridor green, doorway red), region
 /// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image.
+/// `door_passages`, when given: the chords of the doors the robot's path went through (door_passages.h), in magenta.
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
-                      const TopologicalGraph& g, int scale = 2);
+                      const TopologicalGraph& g, int scale = 2,
+                      const std::vector<DoorPassage>* door_passages = nullptr);
 
 /// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells.
 cv::Mat segmentationImage16(const cv::Mat& segmentation);

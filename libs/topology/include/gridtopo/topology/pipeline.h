@@ -13,6 +13,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/blob_vote.h"
 #include "gridtopo/topology/correction.h"
+#include "gridtopo/topology/door_passages.h"
 #include "gridtopo/topology/corridor_split.h"
 #include "gridtopo/topology/doorway_geometry.h"
 #include "gridtopo/topology/graph.h"
@@ -47,6 +48,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   std::string segmentation = "regions";  ///< [topology] regions | doorways (see segmentation.h)
   SegmentationRules seg_rules;           ///< [topology] merge_contact (S0), split_neck_width, split_min_part_area (S1)
   DoorwayGeometryOptions doorways;       ///< [topology] doorways_from_geometry, doorway_* (before the correction)
+  DoorPassageOptions door_passages;      ///< [topology] door_passages, door_passage_* (with the robot's path)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
   CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
   GraphRuleOptions graph_rules;  ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2), graph_rooms_by_segment (G3)
@@ -96,6 +98,8 @@ struct TopologyResult {
   RegionMap regions;        ///< the graph's regions: 8-connected equal-label regions, corridors split at junctions
   TopologicalGraph graph;
   cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
+  std::vector<DoorPassage> door_passages;  ///< the doors the robot's path went through (door_passages.h)
+  std::vector<cv::Point> room_entries;     ///< where it stepped from a corridor into a room without a door (cells)
 };
 
 /// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
@@ -114,8 +118,12 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// (graph_rules.h): without the segment vote they are graphRegionsOfLabels(result.labels, ...). With `o.blob_vote.enabled`, the room / corridor labels are first voted in geometric blobs
 /// (step 7b), which needs the labelling the labels come from (its lattice and relaxed probabilities): throws
 /// std::invalid_argument without it. `origin`: world coordinates of the map's cell (0, 0) corner, for the graph.
+/// `path`: the robot's path in cells (pathInCells of MapImage::path; empty = unknown): the doors it went through
+/// become doorways (door_passages.h, `o.door_passages`) after the doorways from geometry, before the correction;
+/// after it, its steps from a corridor straight into a room (addRoomEntries).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
-                             const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0});
+                             const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
+                             const std::vector<cv::Point2d>& path = {});
 
 /// The room segmentation of the 8-connected `regions` with the run's rules (`o.segmentation`, `o.seg_rules`: S0, S1).
 cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o);
@@ -125,9 +133,9 @@ cv::Mat segmentRooms(const RegionMap& regions, double resolution, const Topology
 /// then segments the labels before the vote).
 RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const TopologyOptions& o);
 
-/// A whole topology run on one typed map (grey image, resolution, world position of its lower-left corner, kind):
-/// the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces), then the regions and
-/// graph (buildTopology). gridtopo-topology, the GUI and the topology map builder call this one function.
+/// A whole topology run on one typed map (grey image, resolution, world position of its lower-left corner, kind,
+/// the robot's path): the free space for the map's kind (occupancyForTopology), the places (places::labelPlaces),
+/// then the regions and graph (buildTopology, with the path's door passages). gridtopo-topology, the GUI and the topology map builder call this one function.
 struct MapTopology {
   places::OccupancyImage occ;  ///< free cells that are places kFree, the others the preparation left kSeen
   PreparedMap prepared;
