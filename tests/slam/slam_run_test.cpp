@@ -84,13 +84,19 @@ TEST(SlamRun, StatsRowsOnePerProcessedScanWithTheProcessRss) {
     EXPECT_EQ(std::stoi(w[11]), stats[i].lineages);
     EXPECT_GE(stats[i].lineages, 1);
     EXPECT_LE(stats[i].lineages, 6);
-    if (i < slam::kLineageLag) EXPECT_EQ(stats[i].lineages, 1) << i;
+    if (i < slam::kLineageLag) {
+      EXPECT_EQ(stats[i].lineages, 1) << i;
+    }
     // Processed scans back to the particles' common ancestor: at most the path's length; the lineages 40 scans
     // back are one only where the particles met at or after that.
     EXPECT_EQ(std::stoul(w[12]), stats[i].coalescence);
     EXPECT_LE(stats[i].coalescence, i);
-    if (stats[i].coalescence <= slam::kLineageLag) EXPECT_EQ(stats[i].lineages, 1) << i;
-    if (stats[i].lineages > 1) EXPECT_GT(stats[i].coalescence, slam::kLineageLag) << i;
+    if (stats[i].coalescence <= slam::kLineageLag) {
+      EXPECT_EQ(stats[i].lineages, 1) << i;
+    }
+    if (stats[i].lineages > 1) {
+      EXPECT_GT(stats[i].coalescence, slam::kLineageLag) << i;
+    }
     EXPECT_GT(std::stoul(w[13]), 1024u);
   }
   EXPECT_EQ(stats.front().scan_index, 0u);
