@@ -96,3 +96,14 @@ TEST(LomoReport, JsonHasPooledPerMapAndBenchmarkScores) {
   const std::string tail = "    ]\n  }\n}\n", no_seg = lomoJson(r);
   EXPECT_EQ(no_seg.substr(no_seg.size() - tail.size()), tail);
 }
+
+TEST(LomoReport, NamesAreJsonEscaped) {
+  // A map file named with a quote, a backslash and a tab stays one valid JSON string.
+  LomoResult r = result();
+  r.maps[0].map = "Fr\"52\\x\t";
+  r.plain[0].map = "m\"0";
+  const std::string js = lomoJson(r);
+  EXPECT_NE(js.find("{\"map\": \"Fr\\\"52\\\\x\\t\", \"order\": \"doorway,room,corridor\""), std::string::npos) << js;
+  EXPECT_NE(js.find("{\"map\": \"m\\\"0\", \"score\": "), std::string::npos) << js;
+  EXPECT_EQ(js.find('\t'), std::string::npos);
+}

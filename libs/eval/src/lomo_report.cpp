@@ -4,6 +4,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "gridtopo/eval/report.h"
+
 namespace gridtopo::eval {
 
 std::string percent(double v) {
@@ -32,8 +34,8 @@ constexpr int kDoorway = 2;
 
 std::string mapJson(const MapLabelScores& s, bool vote, bool blob) {
   std::ostringstream o;
-  o << "    {\"map\": \"" << s.map << "\", \"order\": \"" << s.order
-    << "\", \"relaxation_iterations\": " << s.relaxation_iterations
+  o << "    {\"map\": " << jsonString(s.map) << ", \"order\": " << jsonString(s.order)
+    << ", \"relaxation_iterations\": " << s.relaxation_iterations
     << ", \"accuracy_before\": " << s.before.accuracy() << ", \"accuracy_after\": " << s.after.accuracy()
     << ", \"accuracy_corrected\": " << s.corrected.accuracy()
     << (vote ? ", \"accuracy_segment_vote\": " + std::to_string(s.segment_vote.accuracy()) : std::string())
@@ -77,7 +79,7 @@ std::string benchmarkJson(const char* name, const std::vector<BenchmarkRun>& run
     << ", \"recall_mean\": " << mean(r) << ", \"recall_std\": " << sampleStd(r)
     << ", \"seconds_mean\": " << mean(seconds(runs)) << ", \"maps\": [";
   for (std::size_t k = 0; k < runs.size(); ++k)
-    o << (k ? ", " : "") << "\n      {\"map\": \"" << runs[k].map << "\", \"score\": " << runs[k].score.toJson()
+    o << (k ? ", " : "") << "\n      {\"map\": " << jsonString(runs[k].map) << ", \"score\": " << runs[k].score.toJson()
       << ", \"seconds\": " << runs[k].seconds << "}";
   o << "]}";
   return o.str();
@@ -105,7 +107,7 @@ std::string mapScoreLine(const MapLabelScores& s, bool vote, bool blob) {
 std::string lomoJson(const LomoResult& r) {
   const MapLabelScores& t = r.pooled;
   std::ostringstream js;
-  js << "{\n  \"mode\": \"" << r.mode << "\",\n"
+  js << "{\n  \"mode\": " << jsonString(r.mode) << ",\n"
      << "  \"labels\": {\n    \"before_relaxation\": " << t.before.toJson(4)
      << ",\n    \"after_relaxation\": " << t.after.toJson(4) << ",\n    \"after_correction\": "
      << t.corrected.toJson(4)

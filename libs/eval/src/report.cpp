@@ -22,6 +22,33 @@ std::string line(const char* name, const ErrorStats& s, const char* unit, int di
          fixed(s.min, digits) + ", max " + fixed(s.max, digits) + ", n = " + std::to_string(s.count) + ")\n";
 }
 
+std::string jsonNumber(double v) { return std::isfinite(v) ? io::formatDouble(v) : "null"; }
+
+std::string jsonStats(const ErrorStats& s) {
+  return "{\"mean\": " + jsonNumber(s.mean) + ", \"std\": " + (s.count > 1 ? jsonNumber(s.std) : "null") +
+         ", \"min\": " + jsonNumber(s.min) + ", \"max\": " + jsonNumber(s.max) +
+         ", \"count\": " + std::to_string(s.count) + "}";
+}
+
+// "0.0160 m (n=1773), 0.55 deg", or "none (n=0)" for an empty subset.
+std::string splitText(const RelationsSplit& s) {
+  if (s.translational.count == 0) return "none (n=0)";
+  return fixed(s.translational.mean, 4) + " m (n=" + std::to_string(s.translational.count) + "), " +
+         fixed(s.rotational.mean, 2) + " deg";
+}
+
+// An empty side has no figures: null, not the zeros of an empty ErrorStats.
+std::string jsonSplitStats(const ErrorStats& s) {
+  return s.count == 0 ? "{\"mean\": null, \"std\": null, \"min\": null, \"max\": null, \"count\": 0}" : jsonStats(s);
+}
+
+std::string jsonSplit(const RelationsSplit& s) {
+  return "{\"count\": " + std::to_string(s.translational.count) + ", \"translational_m\": " +
+         jsonSplitStats(s.translational) + ", \"rotational_deg\": " + jsonSplitStats(s.rotational) + "}";
+}
+
+}  // namespace
+
 std::string jsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
@@ -50,33 +77,6 @@ std::string jsonString(const std::string& s) {
   }
   return out + "\"";
 }
-
-std::string jsonNumber(double v) { return std::isfinite(v) ? io::formatDouble(v) : "null"; }
-
-std::string jsonStats(const ErrorStats& s) {
-  return "{\"mean\": " + jsonNumber(s.mean) + ", \"std\": " + (s.count > 1 ? jsonNumber(s.std) : "null") +
-         ", \"min\": " + jsonNumber(s.min) + ", \"max\": " + jsonNumber(s.max) +
-         ", \"count\": " + std::to_string(s.count) + "}";
-}
-
-// "0.0160 m (n=1773), 0.55 deg", or "none (n=0)" for an empty subset.
-std::string splitText(const RelationsSplit& s) {
-  if (s.translational.count == 0) return "none (n=0)";
-  return fixed(s.translational.mean, 4) + " m (n=" + std::to_string(s.translational.count) + "), " +
-         fixed(s.rotational.mean, 2) + " deg";
-}
-
-// An empty side has no figures: null, not the zeros of an empty ErrorStats.
-std::string jsonSplitStats(const ErrorStats& s) {
-  return s.count == 0 ? "{\"mean\": null, \"std\": null, \"min\": null, \"max\": null, \"count\": 0}" : jsonStats(s);
-}
-
-std::string jsonSplit(const RelationsSplit& s) {
-  return "{\"count\": " + std::to_string(s.translational.count) + ", \"translational_m\": " +
-         jsonSplitStats(s.translational) + ", \"rotational_deg\": " + jsonSplitStats(s.rotational) + "}";
-}
-
-}  // namespace
 
 std::string formatSummary(const RelationsResult& r) {
   std::string s;

@@ -22,5 +22,7 @@ std::string formatJson(const RelationsResult& r, const std::vector<std::pair<std
                        const std::vector<std::pair<std::string, bool>>& flags = {});
 /// One line per relation: "t1 t2 translational_m rotational_deg gap1 gap2".
 std::string formatErrors(const RelationsResult& r);
+/// `s` as a JSON string literal: quoted, with quotes, backslashes and control characters escaped.
+std::string jsonString(const std::string& s);
 
 }  // namespace gridtopo::eval
