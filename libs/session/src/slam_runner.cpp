@@ -43,6 +43,7 @@ void SlamRunner::play() {
   if (state_ != RunState::Paused) return;
   pending_steps_ = 0;
   state_ = RunState::Running;
+  ++commands_;
   cv_.notify_all();
 }
 
@@ -51,6 +52,7 @@ void SlamRunner::pause() {
   if (state_ != RunState::Running) return;
   state_ = RunState::Paused;
   pending_steps_ = 0;
+  ++commands_;
   cv_.notify_all();
 }
 
@@ -59,6 +61,7 @@ void SlamRunner::step(std::size_t n) {
   if (state_ != RunState::Paused || n == 0) return;
   pending_steps_ = n;
   state_ = RunState::Running;
+  ++commands_;
   cv_.notify_all();
 }
 
@@ -66,16 +69,22 @@ void SlamRunner::stop() {
   std::lock_guard<std::mutex> lk(mu_);
   if (state_ == RunState::Paused || state_ == RunState::Running) {
     state_ = RunState::Stopped;
+    ++commands_;
     cv_.notify_all();
   }
 }
 
 bool SlamRunner::idle() const { return state_ != RunState::Running; }
 
+bool SlamRunner::acknowledged() const {
+  // The snapshot from before a step also says Paused: only one published after the command acknowledges it.
+  return idle() && snapshot_ && snapshot_->state == state_ && snapshot_->commands == commands_;
+}
+
 bool SlamRunner::waitIdle(std::chrono::milliseconds timeout) const {
   std::unique_lock<std::mutex> lk(mu_);
   // Idle means the worker has acknowledged: the state is not Running and the snapshot reflects it.
-  return cv_.wait_for(lk, timeout, [&] { return idle() && snapshot_ && snapshot_->state == state_; });
+  return cv_.wait_for(lk, timeout, [&] { return acknowledged(); });
 }
 
 void SlamRunner::saveOutputs(const std::string& dir, const std::vector<std::string>& trajectory_header,
@@ -83,7 +92,7 @@ void SlamRunner::saveOutputs(const std::string& dir, const std::vector<std::stri
   // Holding the lock keeps the worker where it is: idle and acknowledged (its snapshot shows the idle state), so it
   // does not touch the run until the next command, which cannot come while the lock is held.
   std::lock_guard<std::mutex> lk(mu_);
-  if (!(idle() && snapshot_ && snapshot_->state == state_)) throw std::runtime_error("pause the run before saving");
+  if (!acknowledged()) throw std::runtime_error("pause the run before saving");
   slam::writeSlamOutputs(dir, run_->outputs(trajectory_header, options_ini));
 }
 
@@ -196,6 +205,7 @@ void SlamRunner::publish(bool with_trajectory, bool idle) {
   s->peak_rss_bytes = memory.peak_kb * 1024;
   std::lock_guard<std::mutex> lk(mu_);
   s->state = state_;
+  s->commands = commands_;
   s->error = error_;
   s->version = version_.load() + 1;
   snapshot_ = std::move(s);
@@ -210,7 +220,10 @@ void SlamRunner::run() {
     {
       std::unique_lock<std::mutex> lk(mu_);
       // Idle: publish the state change once, then sleep until a command.
-      cv_.wait(lk, [&] { return quit_ || state_ == RunState::Running || !snapshot_ || snapshot_->state != state_; });
+      cv_.wait(lk, [&] {
+        return quit_ || state_ == RunState::Running || !snapshot_ || snapshot_->state != state_ ||
+               snapshot_->commands != commands_;
+      });
       if (quit_) return;
       if (state_ != RunState::Running) {
         lk.unlock();

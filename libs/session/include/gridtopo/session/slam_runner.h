@@ -46,6 +46,7 @@ struct ClosureView {
 struct SlamSnapshot {
   std::uint64_t version = 0;  ///< increases with every published snapshot
   RunState state = RunState::Paused;
+  std::uint64_t commands = 0;  ///< the commands (play, pause, step, stop) taken when it was published
   std::string error;          ///< what() of the exception that stopped the run (state Failed)
 
   std::size_t scans_fed = 0;    ///< scans given to the filter so far
@@ -154,6 +155,9 @@ class SlamRunner {
   RunState state_ = RunState::Paused;
   bool quit_ = false;
   std::size_t pending_steps_ = 0;  // >0: step mode
+  std::uint64_t commands_ = 0;     // commands taken: a snapshot from before the last one is not its acknowledgement
+  /// Idle, and the snapshot published after the last command shows it (mu_ held).
+  bool acknowledged() const;
   std::shared_ptr<const SlamSnapshot> snapshot_;
   std::atomic<std::uint64_t> version_{0};
 
