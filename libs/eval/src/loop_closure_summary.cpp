@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/core/ini_value.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::eval {
@@ -32,14 +33,8 @@ std::optional<LoopClosureSummary> readLoopClosureSummary(const std::string& stat
     std::string key, value;
     while (words >> key) {
       if (!(words >> value)) throw InputError(stats_path, n, key, "a count without its value");
-      std::size_t used = 0;
       double v = 0.0;
-      try {
-        v = std::stod(value, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != value.size()) throw InputError(stats_path, n, key, "expected a number, found '" + value + "'");
+      if (parseIniValue(value, v)) throw InputError(stats_path, n, key, "expected a number, found '" + value + "'");
       for (const auto& [k, old] : s.values)
         if (k == key) throw InputError(stats_path, n, key, "given twice");
       s.values.emplace_back(key, v);
