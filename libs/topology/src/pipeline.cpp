@@ -90,6 +90,15 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "", "after the correction: where the path steps from a corridor straight into a room, a doorway")
           .add("door_passage_entry_depth", field(&O::door_passages, &DoorPassageOptions::entry_depth),
                R::closed(0, 20), "m", "a room entry: the path goes at least this far from the corridor into the room")
+          .add("open_spaces", field(&O::open_spaces, &OpenSpaceOptions::enabled), R::any(), "",
+               "with the robot's path (-t), after the correction: room / corridor pieces it crossed with no doorway "
+               "and no constriction between them are one space, labelled by the larger area")
+          .add("open_space_min_contact", field(&O::open_spaces, &OpenSpaceOptions::min_contact), R::closed(0, 100),
+               "m", "two pieces are one space only where they share a border at least this long (no door between)")
+          .add("open_space_min_through", field(&O::open_spaces, &OpenSpaceOptions::min_through), R::closed(0, 100),
+               "m", "a piece changes its label only where the path entered and left it at points this far apart")
+          .add("open_space_min_shared", field(&O::open_spaces, &OpenSpaceOptions::min_shared), R::closed(0, 1), "",
+               "a piece changes its label only when this share of its border lies against the space's other pieces")
           .rule("door_passage_max_width",
                 [](const O& o) -> std::optional<std::string> {
                   if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;
@@ -215,6 +224,8 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   if (o.door_passages.enabled && !path.empty())
     input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
+  if (o.open_spaces.enabled && !path.empty())
+    r.labels = mergeOpenSpaces(r.labels, path, resolution, o.open_spaces, &r.open_spaces);
   if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
     r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);
