@@ -64,13 +64,20 @@ std::vector<cv::Point2d> crossTheHall() {
 
 constexpr double kHall[] = {4.2, 2, 19.2, 12};
 
+// The defaults with the open spaces on (off by default).
+TopologyOptions on() {
+  TopologyOptions o;
+  o.open_spaces.enabled = true;
+  return o;
+}
+
 }  // namespace
 
 TEST(OpenSpaces, ALargeOpenHallTheRobotCrossesIsOneNode) {
   const cv::Mat labels = hall(kRoom);
   const std::vector<cv::Point2d> path = crossTheHall();
-  TopologyOptions off;
-  off.open_spaces.enabled = false;
+  const TopologyOptions off;  // the default
+  EXPECT_FALSE(off.open_spaces.enabled);
   const TopologyResult before = buildTopology(labels, kRes, off, nullptr, {0, 0}, path);
   // Off: five alternating room / corridor nodes in the hall (and the room entries' doorways between them).
   const std::vector<GraphNode> pieces = nodesIn(before.graph, kHall[0], kHall[1], kHall[2], kHall[3]);
@@ -79,7 +86,7 @@ TEST(OpenSpaces, ALargeOpenHallTheRobotCrossesIsOneNode) {
   EXPECT_EQ(places, 5);
   EXPECT_TRUE(before.open_spaces.empty());
 
-  const TopologyResult after = buildTopology(labels, kRes, TopologyOptions{}, nullptr, {0, 0}, path);
+  const TopologyResult after = buildTopology(labels, kRes, on(), nullptr, {0, 0}, path);
   ASSERT_EQ(after.open_spaces.size(), 1u);
   EXPECT_EQ(after.open_spaces[0].pieces, 5);
   EXPECT_EQ(after.open_spaces[0].relabelled, 2);
@@ -100,13 +107,13 @@ TEST(OpenSpaces, ALargeOpenHallTheRobotCrossesIsOneNode) {
 
 TEST(OpenSpaces, TheHallTakesTheLabelOfTheLargerArea) {
   // The same stripes with the labels swapped: corridor 9 m of 15, room 6 m, though the rooms are two pieces of five.
-  const TopologyResult r = buildTopology(hall(kCorridor), kRes, TopologyOptions{}, nullptr, {0, 0}, crossTheHall());
+  const TopologyResult r = buildTopology(hall(kCorridor), kRes, on(), nullptr, {0, 0}, crossTheHall());
   ASSERT_EQ(r.open_spaces.size(), 1u);
   EXPECT_EQ(r.open_spaces[0].label, kCorridor);
   const cv::Rect inner(ci(4.5), ci(2), ci(14.7), ci(10));
   EXPECT_EQ(cv::countNonZero(r.labels(inner) == kCorridor), inner.area());
   // Without the path nothing is joined.
-  const TopologyResult without = buildTopology(hall(kCorridor), kRes, TopologyOptions{});
+  const TopologyResult without = buildTopology(hall(kCorridor), kRes, on());
   EXPECT_TRUE(without.open_spaces.empty());
   EXPECT_EQ(cv::countNonZero(without.labels(inner) == kCorridor), ci(9) * ci(10) - ci(0.3) * ci(10));
 }
@@ -130,10 +137,10 @@ TEST(OpenSpaces, TwoRoomsJoinedByADoorTheRobotCrossedStayTwoNodes) {
   };
   const std::multiset<int> two{kRoom, kCorridor};
   // The door passage puts a doorway across the door: no straight step from one to the other.
-  EXPECT_EQ(spaces(TopologyOptions{}), two);
+  EXPECT_EQ(spaces(on()), two);
   // Without the door passages and the doorways from geometry the path steps straight from A into B, but through a
   // 0.9 m opening: a constriction (a border shorter than open_space_min_contact).
-  TopologyOptions no_passages;
+  TopologyOptions no_passages = on();
   no_passages.door_passages.enabled = false;
   no_passages.doorways.enabled = false;
   EXPECT_EQ(spaces(no_passages), two);
@@ -158,7 +165,7 @@ TEST(OpenSpaces, ARoomEnteredThroughItsOpenSideAndLeftTheSameWayKeepsItsLabel) {
   box(labels, 6, 7.8, 9, 8, kRoom);
   const cv::Rect room(ci(5), ci(3), ci(6), ci(4.8));
   // In and out at the same place: the room is no piece of the corridor's space; the room entry is its doorway.
-  const TopologyResult same_way = buildTopology(labels, kRes, TopologyOptions{}, nullptr, {0, 0},
+  const TopologyResult same_way = buildTopology(labels, kRes, on(), nullptr, {0, 0},
                                                 poses({{2, 9}, {7.5, 9}, {7.5, 5}, {7.5, 9}, {18, 9}}));
   EXPECT_TRUE(same_way.open_spaces.empty());
   EXPECT_EQ(cv::countNonZero(same_way.labels(room) == kRoom) + cv::countNonZero(same_way.labels(room) == kDoor),
@@ -169,12 +176,12 @@ TEST(OpenSpaces, ARoomEnteredThroughItsOpenSideAndLeftTheSameWayKeepsItsLabel) {
   // the corridor's side; but only 3 m of the room's 21.6 m border lie against the corridor (14 % < min_shared 30 %):
   // a room open onto the corridor, not a piece of it. It keeps its label.
   const std::vector<cv::Point2d> through = poses({{2, 9}, {6.3, 9}, {6.3, 5}, {8.7, 5}, {8.7, 9}, {18, 9}});
-  const TopologyResult kept = buildTopology(labels, kRes, TopologyOptions{}, nullptr, {0, 0}, through);
+  const TopologyResult kept = buildTopology(labels, kRes, on(), nullptr, {0, 0}, through);
   EXPECT_TRUE(kept.open_spaces.empty());
   EXPECT_GT(cv::countNonZero(kept.labels(room) == kRoom), room.area() - 2 * ci(1.4) * ci(0.3));
   // With min_shared 0.1 it is a piece of the corridor's space; the corridor (36 m^2) is larger: the room's cells
   // become corridor. A longer min_through keeps it a room again.
-  TopologyOptions loose;
+  TopologyOptions loose = on();
   loose.open_spaces.min_shared = 0.1;
   const TopologyResult joined = buildTopology(labels, kRes, loose, nullptr, {0, 0}, through);
   ASSERT_EQ(joined.open_spaces.size(), 1u);

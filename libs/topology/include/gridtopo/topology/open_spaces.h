@@ -19,7 +19,7 @@
 namespace gridtopo::topology {
 
 struct OpenSpaceOptions {
-  bool enabled = true;       ///< [topology] open_spaces (needs the robot's path)
+  bool enabled = false;      ///< [topology] open_spaces (needs the robot's path; off: no gain on the Intel maps)
   double min_contact = 2.0;  ///< [topology] open_space_min_contact (m): the two pieces' shared border at least
   double min_through = 2.0;  ///< [topology] open_space_min_through (m): a relabelled piece was crossed this far
   double min_shared = 0.3;   ///< [topology] open_space_min_shared: a relabelled piece's border share with the space
