@@ -53,21 +53,6 @@ cv::Mat mergeOpenSpaces(const cv::Mat& labels, const std::vector<cv::Point2d>& p
     return it != contact.end() && it->second >= o.min_contact;
   };
 
-  // Each region's border (8-neighbour cell pairs with a cell outside it: other regions, walls, unknown, the image's
-  // edge), in the units of `contact`.
-  std::vector<double> border(n + 1, 0.0);
-  for (int y = 0; y < rm.ids.rows; ++y)
-    for (int x = 0; x < rm.ids.cols; ++x) {
-      const int id = rm.ids.at<int>(y, x);
-      if (id == 0) continue;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (!dx && !dy) continue;
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= rm.ids.cols || yy >= rm.ids.rows || rm.ids.at<int>(yy, xx) != id)
-            border[static_cast<std::size_t>(id)] += 1.0 / 3.0 * resolution;
-        }
-    }
   // The path's runs through regions; a sample off every region or a gap ends a run without a straight step.
   const std::vector<cv::Point2d> samples = samplePath(path, 1.0, kMaxJump / resolution);
   std::vector<Run> runs;
@@ -104,6 +89,35 @@ cv::Mat mergeOpenSpaces(const cv::Mat& labels, const std::vector<cv::Point2d>& p
   if (joins.empty()) {
     if (spaces) *spaces = found;
     return out;
+  }
+
+  // The border of each joined region (8-neighbour cell pairs with a cell outside it: other regions, walls, unknown,
+  // the image's edge), in the units of `contact`; only the joined regions' bounding boxes are scanned.
+  std::vector<double> border(n + 1, 0.0);
+  {
+    std::set<int> joined;
+    for (const auto& [a, b] : joins) joined.insert(a), joined.insert(b);
+    const int rows = rm.ids.rows, cols = rm.ids.cols;
+    for (int id : joined) {
+      const cv::Rect box = rm.region(id).bbox;
+      long long pairs = 0;
+      for (int y = box.y; y < box.y + box.height; ++y) {
+        const int* row = rm.ids.ptr<int>(y);
+        for (int x = box.x; x < box.x + box.width; ++x) {
+          if (row[x] != id) continue;
+          for (int dy = -1; dy <= 1; ++dy) {
+            const int yy = y + dy;
+            const int* other = yy >= 0 && yy < rows ? rm.ids.ptr<int>(yy) : nullptr;
+            for (int dx = -1; dx <= 1; ++dx) {
+              if (!dx && !dy) continue;
+              const int xx = x + dx;
+              if (!other || xx < 0 || xx >= cols || other[xx] != id) ++pairs;
+            }
+          }
+        }
+      }
+      border[static_cast<std::size_t>(id)] = pairs / 3.0 * resolution;
+    }
   }
 
   // Spaces of the joined pieces; a piece that would change its label without having been crossed leaves its space.
