@@ -5,15 +5,32 @@
 
 Per log, loop-closure setting and value of any other swept option (e.g. config-ini/experiments/match_refinements.ini:
 a column "variant" then names it): mean and worst seed of the all-relations translational error, the local (at most
-50 s apart) and revisit means, median CPU and wall time, largest peak RSS; then every seed's error.
+50 s apart) and revisit means, median CPU and wall time, largest peak RSS; then every seed's error; then, for the
+runs with the loop closure on, its closures from the summary line of each run's stats.txt (kept with keep_maps = true):
+medians over the seeds of the closures proposed (matches that entered the pose graph), accepted, switched off (the
+outlier test), the global search's matches proposed / accepted / dropped, and the largest correction.
 """
 import glob
 import json
+import os
+import re
 import statistics
 import sys
 
 NAMES = {"intel": "Intel", "aces": "ACES", "mit-csail": "MIT CSAIL", "fr079": "Freiburg building 079",
-         "fr-clinic": "Freiburg hospital"}
+         "fr-clinic": "Freiburg hospital", "campus": "Freiburg campus (drifting odometry)"}
+
+
+def closure_summary(run):
+    """The loop closure's summary line of a run's stats.txt as a dict of numbers (None without one)."""
+    path = os.path.join(run["dir"], "out", "stats.txt")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# loop_closure:"):
+                return {k: float(v) for k, v in re.findall(r"(\w+) ([-+0-9.eE]+)", line[len("# loop_closure:"):])}
+    return None
 
 
 def main(root):
@@ -55,6 +72,27 @@ def main(root):
         g = groups[k]
         cells = [f"{g[s]['trans_mean_m']:.4f}" if s in g else "" for s in seeds]
         print(head(k) + " " + " | ".join(cells) + " |")
+    rows = []
+    for k in keys:
+        if k[1] != "true":
+            continue
+        sums = [c for c in (closure_summary(r) for r in groups[k].values()) if c]
+        if not sums:
+            continue
+        med = lambda f: statistics.median(f(c) for c in sums)
+        rows.append(head(k) + f" {len(sums)} | {med(lambda c: c['closures'] + c['rejected']):.0f} |"
+                    f" {med(lambda c: c['closures']):.0f} | {med(lambda c: c['rejected']):.0f} |"
+                    f" {med(lambda c: c.get('global_proposed', 0)):.0f} | {med(lambda c: c.get('global_accepted', 0)):.0f} |"
+                    f" {med(lambda c: c.get('global_dropped', 0)):.0f} |"
+                    f" {med(lambda c: c.get('largest_correction_xy', 0)):.2f} |"
+                    f" {max(c.get('largest_correction_xy', 0) for c in sums):.2f} |")
+    if rows:
+        print()
+        print("| log | loop closure |" + (" variant |" if vcol else "") + " seeds | proposed | accepted | switched off |"
+              " global proposed | global accepted | global dropped | largest correction median (m) |"
+              " largest correction max (m) |")
+        print("|---|---|" + ("---|" if vcol else "") + "---|" * 9)
+        print("\n".join(rows))
 
 
 if __name__ == "__main__":
