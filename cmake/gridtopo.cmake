@@ -48,7 +48,7 @@ endfunction()
 # gridtopo_test(<name> SOURCES ... DEPS ... [LABELS ...]): a GoogleTest binary registered with CTest.
 # Tests find bundled data through the GRIDTOPO_DATA_DIR define and the app binaries through GRIDTOPO_BIN_DIR.
 function(gridtopo_test name)
-  cmake_parse_arguments(A "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(A "" "RESOURCE_LOCK" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
   target_compile_options(${name} PRIVATE ${GRIDTOPO_WARNINGS})
   target_link_libraries(${name} PRIVATE ${A_DEPS} GTest::gtest GTest::gtest_main)
@@ -60,7 +60,13 @@ function(gridtopo_test name)
   if(NOT A_LABELS)
     set(A_LABELS unit)
   endif()
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 120 PROPERTIES LABELS "${A_LABELS}")
+  if(A_RESOURCE_LOCK)
+    # Tests that share something only one may use at a time (the GUI tests' `xvfb-run -a`: two started at once can
+    # pick the same display number, and one fails at once) never run together under `ctest -j`.
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 120 PROPERTIES LABELS "${A_LABELS}" RESOURCE_LOCK "${A_RESOURCE_LOCK}")
+  else()
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 120 PROPERTIES LABELS "${A_LABELS}")
+  endif()
 endfunction()
 
 # gridtopo_tests_in_dir(DEPS ... [LABELS ...]): one test binary per *_test.cpp file of the current directory.
