@@ -45,7 +45,8 @@ function(gridtopo_app name)
   install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 endfunction()
 
-# gridtopo_test(<name> SOURCES ... DEPS ... [LABELS ...]): a GoogleTest binary registered with CTest.
+# gridtopo_test(<name> SOURCES ... DEPS ... [LABELS ...] [RESOURCE_LOCK name]): a GoogleTest binary registered with
+# CTest; its tests never run beside others holding the same RESOURCE_LOCK.
 # Tests find bundled data through the GRIDTOPO_DATA_DIR define and the app binaries through GRIDTOPO_BIN_DIR.
 function(gridtopo_test name)
   cmake_parse_arguments(A "" "RESOURCE_LOCK" "SOURCES;DEPS;LABELS" ${ARGN})
