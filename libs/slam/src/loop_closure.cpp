@@ -625,6 +625,13 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
   });
   std::vector<std::size_t> tried;  // nodes of the places matched: distinct places only
   const std::vector<PathDrift> drift = driftToSubmaps(c);
+  // The branch and bound's points: a search at a bound as low as global_min_score prunes little, and its cost grows
+  // with the points; a thinned query finds the same best cell (the refinement below then scores every point). Its
+  // bound is a little lower than the full query's (the thinned mean is a sample of it).
+  std::vector<Point2> search_query = query;
+  const bool thinned = o_.global_search_voxel > o_.query_voxel;
+  if (thinned) thinInPlace(search_query, o_.global_search_voxel);
+  const double search_bound = thinned ? 0.9 * o_.global_min_score : o_.global_min_score;
   double d_max = o_.resolution;
   for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
   const double dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
@@ -658,7 +665,7 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
     w.center = {0.0, 0.0, cand.yaw};
     w.xy = o_.global_window_xy;
     w.theta = o_.global_window_theta;
-    const auto found = branchAndBoundSearch(grid, query, w, o_.global_min_score);
+    const auto found = branchAndBoundSearch(grid, search_query, w, search_bound);
     if (!found) continue;
     const double margin_xy = 4.0 * grid.resolution(), margin_th = 4.0 * dtheta;
     if (std::abs(found->pose.x) > w.xy - margin_xy || std::abs(found->pose.y) > w.xy - margin_xy ||
@@ -667,8 +674,10 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
     const CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
     if (m.score < o_.global_min_score) continue;
     if (o_.ambiguity_ratio < 1.0) {
+      // Another pose that scores nearly as well on the search's (thinned) points as the best one does.
       const Point2 at{m.pose.x, m.pose.y};
-      if (branchAndBoundSearch(grid, query, w, std::max(o_.global_min_score, o_.ambiguity_ratio * m.score), &at,
+      const double own = thinned ? found->score : m.score;
+      if (branchAndBoundSearch(grid, search_query, w, std::max(search_bound, o_.ambiguity_ratio * own), &at,
                                o_.ambiguity_distance))
         continue;
     }
