@@ -41,6 +41,7 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
           .add("global_window_xy", &O::global_window_xy, R::above(0), "m", "exact search half-width around a candidate")
           .add("global_window_theta", &O::global_window_theta, R::closed(0, 3.14), "rad", "its heading half-width")
           .add("global_min_score", &O::global_min_score, R::closed(0, 1), "", "a global match's mean grid value")
+          .add("global_search_voxel", &O::global_search_voxel, R::atLeast(0), "m", "the branch and bound of a global match thins its query to a point per voxel this size (0: every point)")
           .add("global_agree", &O::global_agree, R::closed(1, 100), "", "agreeing independent matches before a global closure is accepted")
           .add("global_independent_m", &O::global_independent_m, R::atLeast(0), "m", "travel between independent matches")
           .add("global_consistency_xy", &O::global_consistency_xy, R::above(0), "m", "two matches agree within this")

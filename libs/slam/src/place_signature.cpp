@@ -3,34 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
 
 namespace gridtopo::slam {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kSaturation = 255;
 }  // namespace
 
 PlaceSignature::PlaceSignature(const std::vector<Point2>& points, const PlaceSignatureShape& shape)
     : rings_(shape.rings), sectors_(shape.sectors) {
   bins_.assign(static_cast<std::size_t>(rings_) * sectors_, 0);
-  std::unordered_set<std::uint64_t> seen;
-  seen.reserve(points.size());
   const double ring_width = shape.radius / rings_;
   for (const Point2& p : points) {
     const double r = std::hypot(p.x, p.y);
     if (r >= shape.radius) continue;
-    const auto vx = static_cast<std::int64_t>(std::floor(p.x / shape.voxel));
-    const auto vy = static_cast<std::int64_t>(std::floor(p.y / shape.voxel));
-    if (!seen.insert((static_cast<std::uint64_t>(vx) << 32) ^ (static_cast<std::uint64_t>(vy) & 0xffffffffULL)).second)
-      continue;
     const int ring = std::min(rings_ - 1, static_cast<int>(r / ring_width));
     double a = std::atan2(p.y, p.x);
     if (a < 0.0) a += 2.0 * kPi;
     const int sector = std::min(sectors_ - 1, static_cast<int>(a / (2.0 * kPi) * sectors_));
-    std::uint8_t& b = bins_[static_cast<std::size_t>(sector) * rings_ + ring];
-    if (b < kSaturation) ++b;
+    bins_[static_cast<std::size_t>(sector) * rings_ + ring] = 1;
   }
   col_norm_.assign(static_cast<std::size_t>(sectors_), 0.0f);
   sector_key_.assign(static_cast<std::size_t>(sectors_), 0);

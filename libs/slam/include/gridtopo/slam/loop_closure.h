@@ -134,7 +134,9 @@ class LoopCloser {
 
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                        const Pose2* odometry, const PreparedScan& scan);
-  void searchForClosures(LoopClosureStep& step);
+  void searchForClosures(LoopClosureStep& step, std::size_t node);
+  /// The windowed search, again, for the nodes from backfill_from_ to before `newest` (a new loop closed).
+  void backfillClosures(LoopClosureStep& step, std::size_t newest);
   /// Adds the closure edge from node `from` to `node` (z: node in from's frame) and its record.
   void addClosure(std::size_t from, std::size_t node, const Pose2& z, const Eigen::Matrix3d& sqrt_information,
                   double score, double window_xy, double offset_xy, double offset_theta, bool global);
@@ -147,6 +149,9 @@ class LoopCloser {
                                     const std::vector<Pose2>& geometry, double voxel) const;
   PlaceSignatureShape signatureShape() const;
   void signOlderPlaces(const std::vector<Pose2>& geometry);
+  /// Whether a windowed closure found from a node that had travelled at least since_travelled ties it to the
+  /// submap or to one of its neighbours.
+  bool closedRecently(std::size_t submap, double since_travelled) const;
   void proposeGlobalClosures(const std::vector<Pose2>& geometry);
   void verifyGlobalClosures(LoopClosureStep& step, const std::vector<Pose2>& geometry);
   /// The graph's poses from `place` on, with the error that the closure `z` (node in the place's frame) finds
@@ -221,6 +226,7 @@ class LoopCloser {
   double last_signed_travel_ = -1e300, last_global_travel_ = -1e300;
   std::vector<GlobalMatch> pending_;
   bool optimize_now_ = false;
+  std::size_t backfill_from_ = static_cast<std::size_t>(-1);  ///< nodes the windowed search revisits (a new loop)
   std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0;
 };
 

@@ -52,10 +52,13 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double global_signature_every_m = 1.0;  ///< m of travel between the older poses that get a signature
   double global_min_travel = 30.0;  ///< m of travel between a place and the query before it is a candidate
   int global_candidates = 3;        ///< places matched exactly per global search, best signatures first
-  double global_max_distance = 0.45; ///< a candidate's signature distance must be below this (0: identical, 1: unlike)
+  double global_max_distance = 0.75; ///< a candidate's signature distance must be below this (0: identical, 1: unlike)
   double global_window_xy = 3.0;    ///< m, half-width of the exact search around the signature's place
   double global_window_theta = 0.2;  ///< rad, half-width around the signature's heading
-  double global_min_score = 0.6;    ///< the exact match's mean grid value over the query's points
+  double global_min_score = 0.45;   ///< the exact match's mean grid value over the query's points
+  /// m: the branch and bound of a global match scores the query thinned to one point per voxel of this size (its
+  /// refinement and final score use every point); 0: every point throughout.
+  double global_search_voxel = 0.3;
   /// Matches (this one included) whose queries lie at least global_independent_m apart that must agree before any
   /// of them enters the graph.
   int global_agree = 3;

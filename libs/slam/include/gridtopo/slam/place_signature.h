@@ -3,7 +3,9 @@
 // the polar occupancy grid of Scan Context (Kim & Kim, "Scan Context: Egocentric spatial descriptor for place
 // recognition within 3D point cloud map", IROS 2018), taken over the points of a stretch of trajectory in the frame
 // of one of its poses (a 2D laser's single scan is too little). Rings of equal width up to a radius, sectors of
-// equal angle; each bin holds how many voxels of the stretch's points fall in it (saturating). Its ring key (per
+// equal angle; each bin is 1 when any of the stretch's points falls in it (occupancy, not counts: counts rank the
+// true place of a corridor driven back the other way far lower, since the two passes see its parts from different
+// distances, doc/slam.md "Global search"). Its ring key (per
 // ring, the share of occupied sectors) does not change with the heading and ranks the candidates cheaply; the full
 // distance is the best over the column shifts, whose shift estimates the heading between the two places.
 #include <cstddef>
@@ -18,7 +20,6 @@ struct PlaceSignatureShape {
   int rings = 15;        ///< radial bins
   int sectors = 72;      ///< angular bins (5 degrees each)
   double radius = 15.0;  ///< m, the outer ring's edge
-  double voxel = 0.2;    ///< m, the points are counted once per voxel of this size
 };
 
 class PlaceSignature {
