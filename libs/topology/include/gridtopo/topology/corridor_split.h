@@ -22,4 +22,10 @@ struct CorridorSplitOptions {
 /// regions are kept as they are (with new ids).
 RegionMap splitCorridors(const RegionMap& regions, double resolution, const CorridorSplitOptions& options = {});
 
+/// Zhang-Suen thinning of `mask` (CV_8U; cells >= 128 are set): the same skeleton (0 / 255) as
+/// cv::ximgproc::thinning(mask, out, THINNING_ZHANGSUEN), cell for cell, but each sub-iteration looks only at the
+/// cells next to the ones the previous sub-iterations removed, so the cost grows with the mask's area rather than
+/// with the image's area times the number of iterations (the mask's half-width). Border cells are never removed.
+cv::Mat thinZhangSuen(const cv::Mat& mask);
+
 }  // namespace gridtopo::topology
