@@ -14,6 +14,7 @@ constexpr int kUnreached = std::numeric_limits<int>::max();
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr double kSimplify = 1.0;        // cells
+constexpr unsigned char kNoParent = 8;   // parent_ at an anchor and at unreached cells
 
 // Every cell of the straight 8-connected line p -> q lies in region a or b.
 bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
@@ -101,7 +102,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     for (int x = 0; x < ids.cols; ++x)
       if (ids.at<int>(y, x) > 0) max_step = std::max(max_step, stepCost(y, x, true));
   cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
-  parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
+  parent_ = cv::Mat(ids.size(), CV_8U, cv::Scalar(kNoParent));
   // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
   // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
   std::vector<std::vector<int>> bucket(static_cast<std::size_t>(max_step) + 1);
@@ -126,7 +127,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
         const long long nc = c + stepCost(yy, xx, k % 2 != 0);
         if (nc < cost_.at<int>(yy, xx)) {
           cost_.at<int>(yy, xx) = static_cast<int>(nc);
-          parent_.at<int>(yy, xx) = i;
+          parent_.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
           bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
           ++queued;
         }
@@ -164,10 +165,16 @@ std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
   const cv::Point lo = std::get<1>(found->second), hi = std::get<2>(found->second);  // cells in min(a, b), max(a, b)
   const cv::Point bp = a < b ? lo : hi, bq = a < b ? hi : lo;
   std::vector<cv::Point> half_a, half_b;
-  for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
-    half_a.emplace_back(i % ids.cols, i / ids.cols);
-  for (int i = bq.y * ids.cols + bq.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
-    half_b.emplace_back(i % ids.cols, i / ids.cols);
+  const auto walk = [&](cv::Point p, std::vector<cv::Point>& out) {
+    for (;;) {
+      out.push_back(p);
+      const int k = parent_.at<unsigned char>(p);
+      if (k == kNoParent) break;
+      p += cv::Point(kDx[k], kDy[k]);
+    }
+  };
+  walk(bp, half_a);
+  walk(bq, half_b);
   std::vector<cv::Point> full(half_a.rbegin(), half_a.rend());
   full.insert(full.end(), half_b.begin(), half_b.end());
   std::vector<cv::Point> out{full.front()};
