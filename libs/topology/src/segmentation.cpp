@@ -97,7 +97,13 @@ cv::Mat doorwaySegmentation(const RegionMap& rm) {
 cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const SegmentationRules& o) {
   CV_Assert(seg_in.type() == CV_32S);
   cv::Mat seg = seg_in.clone();
-  if (o.neck_width <= 0) return seg;
+  splitAtNecksInPlace(seg, resolution, o);
+  return seg;
+}
+
+void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRules& o) {
+  CV_Assert(seg.type() == CV_32S);
+  if (o.neck_width <= 0) return;
   const int K = segmentCount(seg);
   // Bounding boxes of the segments.
   std::vector<cv::Rect> box(static_cast<std::size_t>(K) + 1);
@@ -145,7 +151,6 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
         if (id && inner.at<unsigned char>(y, x)) seg.at<int>(r.y + y, r.x + x) = id;
       }
   }
-  return seg;
 }
 
 cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& seg) {

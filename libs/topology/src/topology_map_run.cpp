@@ -31,17 +31,11 @@ void runTopologyOnMapFile(const TopologyRunSpec& spec, bool quiet, std::ostream&
   auto run = topologyOfMap(map, model, opt, [&](const std::string& stage, std::size_t d, std::size_t n) {
     if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
     else bar.update(stage == "regions" ? 90 : 85, stage);
-  });
+  }, false, true);
   bar.update(100, "exports");
   bar.finish();
 
-  // What the outputs and the summary do not read is let go before the overlay (on a large map these are
-  // full-map images: the lattice grids of probabilities, the preparation's masks, the intermediate labels).
-  map.grey.release();
-  for (cv::Mat* m : {&run.labelling.probs_initial, &run.labelling.probs, &run.labelling.valid,
-                     &run.labelling.labels_initial, &run.labelling.lattice.block_sample, &run.prepared.places,
-                     &run.prepared.seen_not_place, &run.topo.labels_corrected, &run.topo.labels_blob_vote})
-    m->release();
+  map.grey.release();  // the outputs draw the occupancy, not the map's grey image
   writeTopologyOutputs(spec.output, run.occ, run.topo, run.labelling.labels, opt.overlay_scale, topologyRunIni(spec));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   log << runSummary(run, spec.map, secs);
