@@ -86,9 +86,14 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     : rm_(rm) {
   const cv::Mat& ids = rm.ids;
   const double scale = kPathClearanceScale / resolution;  // cells
-  cv::Mat inside = ids > 0, clearance;
-  cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-  cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat clearance;
+  {
+    // The regions' cells in an image with a one-cell empty frame (written in place: no unframed copy).
+    cv::Mat inside(ids.rows + 2, ids.cols + 2, CV_8U, cv::Scalar(0));
+    cv::Mat framed = inside(cv::Rect(1, 1, ids.cols, ids.rows));
+    cv::compare(ids, 0, framed, cv::CMP_GT);
+    cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  }
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
   // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step (computed where needed from the

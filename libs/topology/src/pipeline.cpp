@@ -224,6 +224,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   if (o.door_passages.enabled && !path.empty())
     input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
+  input.release();  // on a large map, a full-map image the later steps do not read
   if (o.open_spaces.enabled && !path.empty())
     r.labels = mergeOpenSpaces(r.labels, path, resolution, o.open_spaces, &r.open_spaces);
   if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
