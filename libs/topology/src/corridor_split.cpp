@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/distance_transform.h"
 #include "mask_ops.h"
 #include "region_merge.h"
 
@@ -48,7 +49,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   cv::Mat sk;
   sk = thinZhangSuen(small_mask);
   cv::Mat dist;
-  cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  dist = preciseDistance(filled);
   // Prune: remove dead-end pixels (min_branch + the corridor's half-width) times, the half-width being the median
   // distance to the wall along the skeleton: a side branch must reach min_branch beyond the corridor's wall to
   // survive (a recess or a bump of the wall makes a skeleton spur as long as the half-width plus its depth). Longer

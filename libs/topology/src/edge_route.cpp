@@ -1,4 +1,5 @@
 #include "gridtopo/topology/edge_route.h"
+#include "gridtopo/topology/distance_transform.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -65,7 +66,7 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
     cv::Mat mask(roi.height + 2, roi.width + 2, CV_8U, cv::Scalar(0));
     cv::Mat(mask, cv::Rect(1, 1, roi.width, roi.height)).setTo(255, rm.ids(roi) == r.id);
     cv::Mat dist;
-    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    dist = preciseDistance(mask);
     double deepest = 0;
     cv::minMaxLoc(dist, nullptr, &deepest);
     double best = kInf;
@@ -92,7 +93,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     cv::Mat inside(ids.rows + 2, ids.cols + 2, CV_8U, cv::Scalar(0));
     cv::Mat framed = inside(cv::Rect(1, 1, ids.cols, ids.rows));
     cv::compare(ids, 0, framed, cv::CMP_GT);
-    cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    clearance = preciseDistance(inside);
   }
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into

@@ -1,4 +1,5 @@
 #include "gridtopo/topology/map_preparation.h"
+#include "gridtopo/topology/distance_transform.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -24,14 +25,14 @@ cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
   cv::Mat not_centre;
   {
     cv::Mat clearance;
-    cv::distanceTransform(free, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    clearance = preciseDistance(free);
     not_centre = clearance <= radius_cells + 0.5;
   }
   if (cv::countNonZero(not_centre) == static_cast<int>(not_centre.total())) return cv::Mat::zeros(free.size(), CV_8U);
   cv::Mat covered;
   {
     cv::Mat to_centre;
-    cv::distanceTransform(not_centre, to_centre, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    to_centre = preciseDistance(not_centre);
     not_centre.release();
     covered = to_centre <= radius_cells;
   }

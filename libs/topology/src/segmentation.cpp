@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {
@@ -132,7 +133,7 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     // transform measures the room's walls, not the gaps between chairs.
     const cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
     cv::Mat dist, core, cc, stats, cent;
-    cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    dist = preciseDistance(area);
     cv::compare(dist, half_px, core, cv::CMP_GT);
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);
