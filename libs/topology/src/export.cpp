@@ -173,24 +173,26 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   int row_y = -1;
   for (int Y = 0; Y < big.rows; ++Y) {
     const int y = std::min(cvFloor(Y * inv), rows - 1);
-    if (y != row_y) {
-      row_y = y;
-      for (int x = 0; x < cols; ++x) {
-        const unsigned char s = occ.cells.at<unsigned char>(y, x);
-        // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
-        cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
-                      : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
-                      : s == places::kSeen     ? seenNotPlaceColour(x, y)
-                                               : cv::Vec3b(180, 180, 180);
-        const unsigned char l = labels.at<unsigned char>(y, x);
-        if (l < places::kNumLabels) c = tint[l];
-        // Region borders in dark grey.
-        const int id = rm.ids.at<int>(y, x);
-        if (id > 0 && ((x + 1 < cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
-                       (y + 1 < rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
-          c = cv::Vec3b(60, 60, 60);
-        row[static_cast<std::size_t>(x)] = c;
-      }
+    if (y == row_y) {  // the same cells as the output row above: a copy of it
+      std::copy(big.ptr<cv::Vec3b>(Y - 1), big.ptr<cv::Vec3b>(Y - 1) + big.cols, big.ptr<cv::Vec3b>(Y));
+      continue;
+    }
+    row_y = y;
+    for (int x = 0; x < cols; ++x) {
+      const unsigned char s = occ.cells.at<unsigned char>(y, x);
+      // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
+      cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
+                    : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
+                    : s == places::kSeen     ? seenNotPlaceColour(x, y)
+                                             : cv::Vec3b(180, 180, 180);
+      const unsigned char l = labels.at<unsigned char>(y, x);
+      if (l < places::kNumLabels) c = tint[l];
+      // Region borders in dark grey.
+      const int id = rm.ids.at<int>(y, x);
+      if (id > 0 && ((x + 1 < cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
+                     (y + 1 < rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
+        c = cv::Vec3b(60, 60, 60);
+      row[static_cast<std::size_t>(x)] = c;
     }
     cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);
     for (int X = 0; X < big.cols; ++X) out[X] = row[static_cast<std::size_t>(col_of[static_cast<std::size_t>(X)])];
