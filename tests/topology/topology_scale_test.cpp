@@ -84,5 +84,6 @@ TEST(TopologyScale, FourThousandSquareMapInBoundedMemory) {
   // it here (2026-12-05). On the hospital's SLAM map it was 1.7 times the labelling before issue 35 item 3
   // (49 s: a whole-image thinning pass per iteration, six image scans per region extraction).
   const double labelling = lab.seconds_scans + lab.seconds_features + lab.seconds_classify + lab.seconds_relax;
-  EXPECT_LT(run.seconds_graph, 1.5 * labelling) << "graph " << run.seconds_graph << " s, labelling " << labelling << " s";
+  EXPECT_LT(run.seconds_graph, 1.5 * labelling)
+      << "graph " << run.seconds_graph << " s, labelling " << labelling << " s";
 }

@@ -36,7 +36,10 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
           obstacle.push_back(y * free.cols + x);
         }
     for (int y = 0; y < free.rows; ++y)
-      for (int x = 0; x < free.cols; ++x) labels.at<int>(y, x) = obstacle[static_cast<std::size_t>(labels.at<int>(y, x))];
+      for (int x = 0; x < free.cols; ++x) {
+        int& l = labels.at<int>(y, x);
+        l = obstacle[static_cast<std::size_t>(l)];
+      }
   }
   const int cols = free.cols;
   const auto nearest = [&](int x, int y) {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace gridtopo::topology {
@@ -97,8 +99,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   }
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
-  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step (computed where needed from the
-  // clearance: no image of them is kept).
+  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
   const auto stepCost = [&](int y, int x, bool diagonal) {
     const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
     return static_cast<int>(std::lround(16.0 * (diagonal ? M_SQRT2 : 1.0) * (1.0 + q * q)));
@@ -107,6 +108,24 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x)
       if (ids.at<int>(y, x) > 0) max_step = std::max(max_step, stepCost(y, x, true));
+  // A cell is tried from up to eight neighbours: when both of its costs fit in 16 bits (always at 5 cm: at most
+  // 16 sqrt(2) (1 + 14^2) = 4458), they are computed once and written over the cell's clearance (the float's four
+  // bytes; no image of them is added), else they are computed from the clearance at every try.
+  const bool packed = max_step <= 0xffff;
+  if (packed)
+    for (int y = 0; y < ids.rows; ++y)
+      for (int x = 0; x < ids.cols; ++x)
+        if (ids.at<int>(y, x) > 0) {
+          const std::uint32_t both = static_cast<std::uint32_t>(stepCost(y, x, false)) |
+                                     (static_cast<std::uint32_t>(stepCost(y, x, true)) << 16);
+          std::memcpy(clearance.ptr<float>(y) + x, &both, sizeof both);
+        }
+  const auto step = [&](int y, int x, bool diagonal) {
+    if (!packed) return stepCost(y, x, diagonal);
+    std::uint32_t both;
+    std::memcpy(&both, clearance.ptr<float>(y) + x, sizeof both);
+    return static_cast<int>(diagonal ? both >> 16 : both & 0xffff);
+  };
   cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
   parent_ = cv::Mat(ids.size(), CV_8U, cv::Scalar(kNoParent));
   // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
@@ -130,7 +149,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
       for (int k = 0; k < 8; ++k) {
         const int yy = y + kDy[k], xx = x + kDx[k];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
-        const long long nc = c + stepCost(yy, xx, k % 2 != 0);
+        const long long nc = c + step(yy, xx, k % 2 != 0);
         if (nc < cost_.at<int>(yy, xx)) {
           cost_.at<int>(yy, xx) = static_cast<int>(nc);
           parent_.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
