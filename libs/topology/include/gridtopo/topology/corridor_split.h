@@ -2,8 +2,8 @@
 // Corridor pieces for the topological graph: a corridor region that branches (a T, a cross, a grid of corridors as
 // in ACES) becomes one node per junction and one per branch between junctions, so the graph shows the corridor
 // network instead of a single corridor node with every room wired to it. Found on the skeleton of the region
-// (Zhang-Suen thinning, OpenCV ximgproc): skeleton points where three or more branches meet are junctions, branches
-// shorter than `min_branch` (wall bumps, door recesses) are pruned first; every corridor cell joins the nearest
+// (Zhang-Suen thinning, thinZhangSuen below): skeleton points where three or more branches meet are junctions,
+// branches shorter than `min_branch` (wall bumps, door recesses) are pruned first; every corridor cell joins the nearest
 // junction or branch (geodesic, inside the region). Only the graph's regions change: labels and the room
 // segmentation do not.
 #include "gridtopo/topology/regions.h"
