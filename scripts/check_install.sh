@@ -142,7 +142,8 @@ done
 ! grep -q '^./usr/include' "$W/run.txt" || fail "headers in the runtime package"
 run_depends=$(dpkg-deb -f "$RUN_DEB" Depends); dev_depends=$(dpkg-deb -f "$DEV_DEB" Depends)
 # (Debian 12 links Ceres statically: libceres.a through its CMake package; its shared deps come instead.)
-for d in libmrpt-slam2.5 libmrpt-maps2.5 libmrpt-obs2.5 libopencv-core406 libopencv-contrib406; do
+# (No libopencv-contrib406: the corridor pieces thin with our own Zhang-Suen, no library links ximgproc.)
+for d in libmrpt-slam2.5 libmrpt-maps2.5 libmrpt-obs2.5 libopencv-core406 libopencv-imgproc406; do
   grep -q "\b$d\b" <<< "$run_depends" || fail "gridtopo's Depends lacks $d: $run_depends"
 done
 for d in "gridtopo (= " libmrpt-slam-dev libmrpt-graphs-dev libopencv-dev libceres-dev libeigen3-dev; do

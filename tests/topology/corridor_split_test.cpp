@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc.hpp>
+
+#include <random>
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/corridor_split.h"
@@ -102,4 +105,35 @@ TEST(CorridorSplit, OtherRegionsSegmentationAndLabelsAreUnchanged) {
   // The graph stays one piece: room - door - corridor arm - junction - other arms.
   EXPECT_EQ(b.graph.connectedComponents(), 1);
   EXPECT_EQ(b.graph.nodes.size(), 7u);
+}
+
+// thinZhangSuen visits only the cells next to the last removals; it must give OpenCV's skeleton cell for cell, on
+// shapes that touch the image border, have holes and one-cell spurs, and with grey values either side of 128.
+TEST(CorridorSplit, ThinningEqualsOpenCvZhangSuen) {
+  std::mt19937 rng(7);
+  int skeleton_cells = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int rows = 3 + static_cast<int>(rng() % 160), cols = 3 + static_cast<int>(rng() % 200);
+    cv::Mat m(rows, cols, CV_8U, cv::Scalar(0));
+    for (int k = 0; k < 12; ++k) {
+      const cv::Point a(static_cast<int>(rng() % cols), static_cast<int>(rng() % rows));
+      const cv::Point b(static_cast<int>(rng() % cols), static_cast<int>(rng() % rows));
+      const int grey = k % 5 == 4 ? 127 + static_cast<int>(rng() % 3) : 255;  // 127 is not set, 128 and 129 are
+      switch (rng() % 4) {
+        case 0: cv::line(m, a, b, cv::Scalar(grey), 1 + static_cast<int>(rng() % 25)); break;
+        case 1: cv::circle(m, a, 1 + static_cast<int>(rng() % 30), cv::Scalar(grey), cv::FILLED); break;
+        case 2: cv::rectangle(m, a, b, cv::Scalar(grey), cv::FILLED); break;
+        default: cv::circle(m, a, 1 + static_cast<int>(rng() % 8), cv::Scalar(0), cv::FILLED);  // a hole
+      }
+    }
+    for (int k = 0; k < rows * cols / 50; ++k)  // salt and pepper
+      m.at<unsigned char>(static_cast<int>(rng() % rows), static_cast<int>(rng() % cols)) ^= 255;
+    cv::Mat expected;
+    cv::ximgproc::thinning(m, expected, cv::ximgproc::THINNING_ZHANGSUEN);
+    const cv::Mat ours = thinZhangSuen(m);
+    ASSERT_EQ(ours.size(), expected.size());
+    ASSERT_EQ(cv::countNonZero(ours != expected), 0) << "trial " << trial << ", " << rows << " x " << cols;
+    skeleton_cells += cv::countNonZero(ours);
+  }
+  EXPECT_GT(skeleton_cells, 1000);  // the shapes are not all empty
 }

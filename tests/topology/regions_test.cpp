@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <opencv2/imgproc.hpp>
+#include <random>
 #include <utility>
 
 #include "gridtopo/topology/regions.h"
@@ -118,4 +120,61 @@ TEST(Regions, AdjacencyCountsEachEightNeighbourPairOnce) {
   // Zero and negative ids are no region.
   const cv::Mat neg = (cv::Mat_<int>(1, 3) << 4, -1, 4);
   EXPECT_TRUE(regionAdjacency(neg).empty());
+}
+
+// extractRegions scans the image once with union-find; the regions (ids, order, statistics) must be those of one
+// cv::connectedComponentsWithStats per label, the implementation it replaced, kept here as the reference.
+TEST(Regions, SameRegionsAsOpenCvConnectedComponentsPerLabel) {
+  std::mt19937 rng(11);
+  std::size_t regions = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const int rows = 1 + static_cast<int>(rng() % (trial < 6 ? 40 : 900));
+    const int cols = 1 + static_cast<int>(rng() % (trial < 6 ? 40 : 1100));
+    cv::Mat labels(rows, cols, CV_8U, cv::Scalar(N));
+    for (int k = 0; k < 60; ++k) {  // blobs, bars, diagonal lines and speckles of the three labels
+      const cv::Point a(static_cast<int>(rng() % cols), static_cast<int>(rng() % rows));
+      const cv::Point b(static_cast<int>(rng() % cols), static_cast<int>(rng() % rows));
+      const cv::Scalar l(static_cast<double>(rng() % 4 == 3 ? N : rng() % 3));
+      if (k % 3 == 0) cv::circle(labels, a, 1 + static_cast<int>(rng() % 60), l, cv::FILLED);
+      else if (k % 3 == 1) cv::line(labels, a, b, l, 1 + static_cast<int>(rng() % 3), cv::LINE_8);
+      else cv::rectangle(labels, a, b, l, cv::FILLED);
+    }
+    for (int k = 0; k < rows * cols / 20; ++k)
+      labels.at<unsigned char>(static_cast<int>(rng() % rows), static_cast<int>(rng() % cols)) =
+          static_cast<unsigned char>(rng() % 4 == 3 ? N : rng() % 3);
+    const RegionMap rm = extractRegions(labels, 0.05);
+    cv::Mat ids(labels.size(), CV_32S, cv::Scalar(0));
+    std::vector<Region> ref;
+    for (int l = 0; l < 3; ++l) {
+      cv::Mat cc, stats, cents;
+      const int n = cv::connectedComponentsWithStats(labels == l, cc, stats, cents, 8, CV_32S);
+      const int base = static_cast<int>(ref.size());
+      for (int k = 1; k < n; ++k) {
+        Region r;
+        r.id = base + k, r.label = l, r.cells = stats.at<int>(k, cv::CC_STAT_AREA);
+        r.centroid = cv::Point2d(cents.at<double>(k, 0), cents.at<double>(k, 1));
+        r.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                          stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+        ref.push_back(r);
+      }
+      for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < cols; ++x)
+          if (const int c = cc.at<int>(y, x)) ids.at<int>(y, x) = base + c;
+    }
+    ASSERT_EQ(rm.regions.size(), ref.size()) << "trial " << trial;
+    EXPECT_EQ(cv::countNonZero(rm.ids != ids), 0) << "trial " << trial << ", " << rows << " x " << cols;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+      const Region& a = rm.regions[i];
+      const Region& b = ref[i];
+      ASSERT_EQ(a.id, b.id);
+      EXPECT_EQ(a.label, b.label);
+      EXPECT_EQ(a.cells, b.cells);
+      EXPECT_EQ(a.bbox, b.bbox);
+      EXPECT_EQ(a.centroid.x, b.centroid.x);  // bit for bit
+      EXPECT_EQ(a.centroid.y, b.centroid.y);
+      EXPECT_DOUBLE_EQ(a.area_m2, b.cells * 0.05 * 0.05);
+    }
+    regions += ref.size();
+  }
+  EXPECT_GT(regions, 5000u);  // many regions, most of them in the large images
 }

@@ -6,6 +6,7 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {
@@ -75,7 +76,7 @@ cv::Mat geometricBlobs(const cv::Mat& free_mask, double resolution, const BlobVo
   const double fill_px = o.fill_obstacle_area / (resolution * resolution);
   const cv::Mat area = fill_px > 0 ? fillSmallHoles(free, fill_px) : free.clone();
   cv::Mat dist, core, cc, stats, cent;
-  cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  dist = preciseDistance(area);
   cv::compare(dist, 0.5 * o.neck_width / resolution, core, cv::CMP_GT);
   const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
   const double min_core_px = o.min_core_area / (resolution * resolution);

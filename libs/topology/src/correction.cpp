@@ -13,6 +13,7 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/edge_route.h"
 #include "gridtopo/topology/regions.h"
+#include "gridtopo/topology/distance_transform.h"
 
 namespace gridtopo::topology {
 
@@ -81,7 +82,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
         corridor_nbs[static_cast<std::size_t>(u - 1)].insert(v);
   }
   cv::Mat half_width;  // cells to the nearest cell without a place
-  cv::distanceTransform(labels < places::kNumLabels, half_width, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  half_width = preciseDistance(labels < places::kNumLabels);
   const int dx[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const double scale = kPathClearanceScale / resolution;  // cells
   cv::Mat strip = cv::Mat::zeros(labels.size(), CV_8U);
@@ -155,7 +156,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
         const float w = widths[widths.size() / 2];
         if (w * resolution > o.junction_max_half_width) continue;
         cv::Mat to_path;
-        cv::distanceTransform(on_path, to_path, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+        to_path = preciseDistance(on_path);
         strip(box).setTo(1, inside & (to_path <= w));
         ++st.junctions;
       }

@@ -1,13 +1,15 @@
 #include "gridtopo/topology/corridor_split.h"
 
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <vector>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/distance_transform.h"
 #include "mask_ops.h"
 #include "region_merge.h"
 
@@ -45,9 +47,9 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   const int pad = f > 1 ? 1 : 0;  // the small lattice has its own one-cell zero border
   auto toFull = [&](int x, int y) { return cv::Point((x - pad) * f + f / 2, (y - pad) * f + f / 2); };
   cv::Mat sk;
-  cv::ximgproc::thinning(small_mask, sk, cv::ximgproc::THINNING_ZHANGSUEN);
+  sk = thinZhangSuen(small_mask);
   cv::Mat dist;
-  cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  dist = preciseDistance(filled);
   // Prune: remove dead-end pixels (min_branch + the corridor's half-width) times, the half-width being the median
   // distance to the wall along the skeleton: a side branch must reach min_branch beyond the corridor's wall to
   // survive (a recess or a bump of the wall makes a skeleton spur as long as the half-width plus its depth). Longer
@@ -148,6 +150,74 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   return static_cast<int>(renum.size());
 }
 }  // namespace
+
+cv::Mat thinZhangSuen(const cv::Mat& mask) {
+  CV_Assert(mask.type() == CV_8U);
+  const int rows = mask.rows, cols = mask.cols;
+  // 0 / 1 cells, continuous (index y * cols + x).
+  cv::Mat img(rows, cols, CV_8U);
+  for (int y = 0; y < rows; ++y) {
+    const unsigned char* m = mask.ptr<unsigned char>(y);
+    unsigned char* o = img.ptr<unsigned char>(y);
+    for (int x = 0; x < cols; ++x) o[x] = m[x] >= 128;
+  }
+  if (rows >= 3 && cols >= 3) {
+    unsigned char* p = img.data;
+    const int offs[8] = {-cols, -cols + 1, 1, cols + 1, cols, cols - 1, -1, -cols - 1};  // N NE E SE S SW W NW
+    // dirty[k]: the cell is queued for the next sub-iteration of parity k (its neighbourhood changed since it was
+    // last looked at with that parity, or it was never looked at). A cell not queued would give the answer it
+    // gave last time: kept.
+    std::vector<std::uint8_t> dirty(static_cast<std::size_t>(rows) * cols, 0);
+    std::vector<int> queue[2], removed;
+    for (int y = 1; y < rows - 1; ++y)
+      for (int x = 1; x < cols - 1; ++x)
+        if (p[y * cols + x]) {
+          dirty[static_cast<std::size_t>(y) * cols + x] = 3;
+          queue[0].push_back(y * cols + x);
+          queue[1].push_back(y * cols + x);
+        }
+    const auto interior = [&](int i) {
+      const int y = i / cols, x = i % cols;
+      return y > 0 && x > 0 && y < rows - 1 && x < cols - 1;
+    };
+    std::vector<int> current;
+    for (int k = 0, idle = 0; idle < 2; k ^= 1) {
+      current.swap(queue[k]);
+      queue[k].clear();
+      removed.clear();
+      for (const int i : current) {
+        dirty[static_cast<std::size_t>(i)] &= static_cast<std::uint8_t>(~(1u << k));
+        if (!p[i]) continue;
+        int n[8];
+        for (int d = 0; d < 8; ++d) n[d] = p[i + offs[d]];
+        const int b = n[0] + n[1] + n[2] + n[3] + n[4] + n[5] + n[6] + n[7];
+        if (b < 2 || b > 6) continue;
+        int a = 0;
+        for (int d = 0; d < 8; ++d) a += n[d] == 0 && n[(d + 1) % 8] == 1;
+        if (a != 1) continue;
+        // n: 0 = p2 (N), 2 = p4 (E), 4 = p6 (S), 6 = p8 (W)
+        const bool m1 = k == 0 ? n[0] && n[2] && n[4] : n[0] && n[2] && n[6];
+        const bool m2 = k == 0 ? n[2] && n[4] && n[6] : n[0] && n[4] && n[6];
+        if (!m1 && !m2) removed.push_back(i);
+      }
+      current.clear();
+      for (const int i : removed) p[i] = 0;
+      for (const int i : removed)
+        for (int d = 0; d < 8; ++d) {
+          const int j = i + offs[d];
+          if (!p[j] || !interior(j)) continue;
+          for (int q = 0; q < 2; ++q)
+            if (!(dirty[static_cast<std::size_t>(j)] & (1u << q))) {
+              dirty[static_cast<std::size_t>(j)] |= static_cast<std::uint8_t>(1u << q);
+              queue[q].push_back(j);
+            }
+        }
+      idle = removed.empty() ? idle + 1 : 0;
+    }
+  }
+  img *= 255;
+  return img;
+}
 
 RegionMap splitCorridors(const RegionMap& rm, double resolution, const CorridorSplitOptions& o) {
   if (!o.enabled) return rm;

@@ -10,6 +10,7 @@
 
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/regions.h"
+#include "gridtopo/topology/distance_transform.h"
 
 namespace gridtopo::topology {
 
@@ -105,7 +106,7 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
   // matters, every chord through the point is that long (each side reaches at least the clearance), and the
   // point's width is taken as twice its clearance without casting rays.
   cv::Mat clearance;
-  cv::distanceTransform(places != 0, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  clearance = preciseDistance(places != 0);
   std::vector<Chord> chord(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (isGap(s[i])) continue;
@@ -249,7 +250,7 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
   // How far the path goes into the room from a step: the largest distance to the corridor's cells of its samples
   // in the room region, from sample i on in direction dir, until it reaches another room / corridor region.
   cv::Mat to_corridor_cells;
-  cv::distanceTransform(labels != kCorridorLabel, to_corridor_cells, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  to_corridor_cells = preciseDistance(labels != kCorridorLabel);
   const auto depth_into = [&](long i, int room, int dir) {
     float best = 0;
     for (; i >= 0 && i < static_cast<long>(at.size()); i += dir) {
@@ -300,7 +301,7 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
                                   2 * r + 1, 2 * r + 1) &
                          cv::Rect(0, 0, labels.cols, labels.rows);
     cv::Mat to_corridor;
-    cv::distanceTransform(rm.ids(box) != e.corridor, to_corridor, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    to_corridor = preciseDistance(rm.ids(box) != e.corridor);
     int drawn = 0;
     for (int y = 0; y < box.height; ++y)
       for (int x = 0; x < box.width; ++x)

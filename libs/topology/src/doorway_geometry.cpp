@@ -23,14 +23,29 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
   cv::copyMakeBorder(places != 0, free, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   cv::Mat dist, labels;
   cv::distanceTransform(free, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  // The obstacle cell of every label.
-  double max_label = 0;
-  cv::minMaxLoc(labels, nullptr, &max_label);
-  std::vector<cv::Point> obstacle(static_cast<std::size_t>(max_label) + 1, cv::Point(-1, -1));
-  for (int y = 0; y < free.rows; ++y)
-    for (int x = 0; x < free.cols; ++x)
-      if (!free.at<unsigned char>(y, x)) obstacle[static_cast<std::size_t>(labels.at<int>(y, x))] = {x, y};
-  const auto nearest = [&](int x, int y) { return obstacle[static_cast<std::size_t>(labels.at<int>(y, x))]; };
+  // `labels` becomes the nearest obstacle cell of every cell (row-major index). DIST_LABEL_PIXEL numbers the
+  // obstacle cells 1, 2, ... in row-major order; a table of their indices (4 bytes per obstacle cell) carries
+  // every free cell's label over, and is let go before the diagram.
+  {
+    std::vector<int> obstacle(1, -1);
+    obstacle.reserve(static_cast<std::size_t>(free.total()) + 1 - static_cast<std::size_t>(cv::countNonZero(free)));
+    for (int y = 0; y < free.rows; ++y)
+      for (int x = 0; x < free.cols; ++x)
+        if (!free.at<unsigned char>(y, x)) {
+          CV_Assert(labels.at<int>(y, x) == static_cast<int>(obstacle.size()));
+          obstacle.push_back(y * free.cols + x);
+        }
+    for (int y = 0; y < free.rows; ++y)
+      for (int x = 0; x < free.cols; ++x) {
+        int& l = labels.at<int>(y, x);
+        l = obstacle[static_cast<std::size_t>(l)];
+      }
+  }
+  const int cols = free.cols;
+  const auto nearest = [&](int x, int y) {
+    const int i = labels.at<int>(y, x);
+    return cv::Point(i % cols, i / cols);
+  };
   const auto far = [](cv::Point p, cv::Point q) { return std::hypot(double(p.x - q.x), double(p.y - q.y)); };
   // The generalized Voronoi diagram: free cells whose nearest obstacle is far from a 4-neighbour's nearest
   // obstacle (the two lie on opposite sides of the free space).

@@ -1,9 +1,12 @@
 #include "gridtopo/topology/edge_route.h"
+#include "gridtopo/topology/distance_transform.h"
 
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace gridtopo::topology {
@@ -14,6 +17,7 @@ constexpr int kUnreached = std::numeric_limits<int>::max();
 constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr double kSimplify = 1.0;        // cells
+constexpr unsigned char kNoParent = 8;   // parent_ at an anchor and at unreached cells
 
 // Every cell of the straight 8-connected line p -> q lies in region a or b.
 bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
@@ -64,7 +68,7 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
     cv::Mat mask(roi.height + 2, roi.width + 2, CV_8U, cv::Scalar(0));
     cv::Mat(mask, cv::Rect(1, 1, roi.width, roi.height)).setTo(255, rm.ids(roi) == r.id);
     cv::Mat dist;
-    cv::distanceTransform(mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    dist = preciseDistance(mask);
     double deepest = 0;
     cv::minMaxLoc(dist, nullptr, &deepest);
     double best = kInf;
@@ -85,13 +89,17 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     : rm_(rm) {
   const cv::Mat& ids = rm.ids;
   const double scale = kPathClearanceScale / resolution;  // cells
-  cv::Mat inside = ids > 0, clearance;
-  cv::copyMakeBorder(inside, inside, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-  cv::distanceTransform(inside, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat clearance;
+  {
+    // The regions' cells in an image with a one-cell empty frame (written in place: no unframed copy).
+    cv::Mat inside(ids.rows + 2, ids.cols + 2, CV_8U, cv::Scalar(0));
+    cv::Mat framed = inside(cv::Rect(1, 1, ids.cols, ids.rows));
+    cv::compare(ids, 0, framed, cv::CMP_GT);
+    clearance = preciseDistance(inside);
+  }
   clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
-  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step (computed where needed from the
-  // clearance: no image of them is kept).
+  // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
   const auto stepCost = [&](int y, int x, bool diagonal) {
     const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
     return static_cast<int>(std::lround(16.0 * (diagonal ? M_SQRT2 : 1.0) * (1.0 + q * q)));
@@ -100,8 +108,26 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x)
       if (ids.at<int>(y, x) > 0) max_step = std::max(max_step, stepCost(y, x, true));
+  // A cell is tried from up to eight neighbours: when both of its costs fit in 16 bits (always at 5 cm: at most
+  // 16 sqrt(2) (1 + 14^2) = 4458), they are computed once and written over the cell's clearance (the float's four
+  // bytes; no image of them is added), else they are computed from the clearance at every try.
+  const bool packed = max_step <= 0xffff;
+  if (packed)
+    for (int y = 0; y < ids.rows; ++y)
+      for (int x = 0; x < ids.cols; ++x)
+        if (ids.at<int>(y, x) > 0) {
+          const std::uint32_t both = static_cast<std::uint32_t>(stepCost(y, x, false)) |
+                                     (static_cast<std::uint32_t>(stepCost(y, x, true)) << 16);
+          std::memcpy(clearance.ptr<float>(y) + x, &both, sizeof both);
+        }
+  const auto step = [&](int y, int x, bool diagonal) {
+    if (!packed) return stepCost(y, x, diagonal);
+    std::uint32_t both;
+    std::memcpy(&both, clearance.ptr<float>(y) + x, sizeof both);
+    return static_cast<int>(diagonal ? both >> 16 : both & 0xffff);
+  };
   cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
-  parent_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(-1));
+  parent_ = cv::Mat(ids.size(), CV_8U, cv::Scalar(kNoParent));
   // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
   // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
   std::vector<std::vector<int>> bucket(static_cast<std::size_t>(max_step) + 1);
@@ -123,10 +149,10 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
       for (int k = 0; k < 8; ++k) {
         const int yy = y + kDy[k], xx = x + kDx[k];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
-        const long long nc = c + stepCost(yy, xx, k % 2 != 0);
+        const long long nc = c + step(yy, xx, k % 2 != 0);
         if (nc < cost_.at<int>(yy, xx)) {
           cost_.at<int>(yy, xx) = static_cast<int>(nc);
-          parent_.at<int>(yy, xx) = i;
+          parent_.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
           bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
           ++queued;
         }
@@ -164,10 +190,16 @@ std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
   const cv::Point lo = std::get<1>(found->second), hi = std::get<2>(found->second);  // cells in min(a, b), max(a, b)
   const cv::Point bp = a < b ? lo : hi, bq = a < b ? hi : lo;
   std::vector<cv::Point> half_a, half_b;
-  for (int i = bp.y * ids.cols + bp.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
-    half_a.emplace_back(i % ids.cols, i / ids.cols);
-  for (int i = bq.y * ids.cols + bq.x; i >= 0; i = parent_.at<int>(i / ids.cols, i % ids.cols))
-    half_b.emplace_back(i % ids.cols, i / ids.cols);
+  const auto walk = [&](cv::Point p, std::vector<cv::Point>& out) {
+    for (;;) {
+      out.push_back(p);
+      const int k = parent_.at<unsigned char>(p);
+      if (k == kNoParent) break;
+      p += cv::Point(kDx[k], kDy[k]);
+    }
+  };
+  walk(bp, half_a);
+  walk(bq, half_b);
   std::vector<cv::Point> full(half_a.rbegin(), half_a.rend());
   full.insert(full.end(), half_b.begin(), half_b.end());
   std::vector<cv::Point> out{full.front()};

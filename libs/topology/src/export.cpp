@@ -1,8 +1,10 @@
 #include "gridtopo/topology/export.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <vector>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/place_label.h"
@@ -159,9 +161,24 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
                       const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages) {
   scale = std::max(1, scale);
   static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
-  cv::Mat img(occ.cells.size(), CV_8UC3);
-  for (int y = 0; y < img.rows; ++y)
-    for (int x = 0; x < img.cols; ++x) {
+  // The map's cells drawn straight at the overlay's scale: each output pixel takes the cell
+  // cv::resize(..., INTER_NEAREST) would give it (cvFloor(pixel / scale), clamped), one row of cells at a time
+  // (no full-size image of the cells).
+  const int rows = occ.cells.rows, cols = occ.cells.cols;
+  cv::Mat big(cvRound(rows * static_cast<double>(scale)), cvRound(cols * static_cast<double>(scale)), CV_8UC3);
+  const double inv = 1.0 / scale;
+  std::vector<int> col_of(static_cast<std::size_t>(big.cols));
+  for (int X = 0; X < big.cols; ++X) col_of[static_cast<std::size_t>(X)] = std::min(cvFloor(X * inv), cols - 1);
+  std::vector<cv::Vec3b> row(static_cast<std::size_t>(cols));
+  int row_y = -1;
+  for (int Y = 0; Y < big.rows; ++Y) {
+    const int y = std::min(cvFloor(Y * inv), rows - 1);
+    if (y == row_y) {  // the same cells as the output row above: a copy of it
+      std::copy(big.ptr<cv::Vec3b>(Y - 1), big.ptr<cv::Vec3b>(Y - 1) + big.cols, big.ptr<cv::Vec3b>(Y));
+      continue;
+    }
+    row_y = y;
+    for (int x = 0; x < cols; ++x) {
       const unsigned char s = occ.cells.at<unsigned char>(y, x);
       // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
       cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
@@ -172,13 +189,14 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
       if (l < places::kNumLabels) c = tint[l];
       // Region borders in dark grey.
       const int id = rm.ids.at<int>(y, x);
-      if (id > 0 && ((x + 1 < img.cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
-                     (y + 1 < img.rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
+      if (id > 0 && ((x + 1 < cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
+                     (y + 1 < rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
         c = cv::Vec3b(60, 60, 60);
-      img.at<cv::Vec3b>(y, x) = c;
+      row[static_cast<std::size_t>(x)] = c;
     }
-  cv::Mat big;
-  cv::resize(img, big, cv::Size(), scale, scale, cv::INTER_NEAREST);
+    cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);
+    for (int X = 0; X < big.cols; ++X) out[X] = row[static_cast<std::size_t>(col_of[static_cast<std::size_t>(X)])];
+  }
   auto px = [&](cv::Point2d p) { return cv::Point(static_cast<int>((p.x + 0.5) * scale), static_cast<int>((p.y + 0.5) * scale)); };
   auto pt = [&](const GraphNode& n) { return px(cv::Point2d(n.anchor_px)); };
   // Each edge along its routed free path. Graphs without paths (read from older files) fall back to node ->

@@ -16,10 +16,12 @@ namespace {
 constexpr int kDoorway = static_cast<int>(places::PlaceLabel::Doorway);
 
 // Region map whose ids are `remap[old id]` (0 = dropped); labels from `label[new id]`, geometry recomputed.
-RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std::vector<int>& label, double resolution) {
+// `in_place`: the new ids are written over rm.ids (which the result then shares) instead of a new image.
+RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std::vector<int>& label, double resolution,
+                  bool in_place = false) {
   const int n = static_cast<int>(label.size()) - 1;
   RegionMap out;
-  out.ids = cv::Mat(rm.ids.size(), CV_32S, cv::Scalar(0));
+  out.ids = in_place ? rm.ids : cv::Mat(rm.ids.size(), CV_32S, cv::Scalar(0));
   std::vector<long long> cells(static_cast<std::size_t>(n) + 1, 0), sx(cells), sy(cells);
   std::vector<cv::Rect> box(static_cast<std::size_t>(n) + 1);
   for (int y = 0; y < rm.ids.rows; ++y)
@@ -27,8 +29,8 @@ RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std:
       const int old = rm.ids.at<int>(y, x);
       if (old <= 0) continue;
       const int id = remap[static_cast<std::size_t>(old)];
+      out.ids.at<int>(y, x) = std::max(id, 0);
       if (id <= 0) continue;
-      out.ids.at<int>(y, x) = id;
       const auto u = static_cast<std::size_t>(id);
       box[u] = cells[u] == 0 ? cv::Rect(x, y, 1, 1) : (box[u] | cv::Rect(x, y, 1, 1));
       ++cells[u], sx[u] += x, sy[u] += y;
@@ -96,10 +98,19 @@ RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation,
   }
   RegionMap pieces;
   pieces.ids = piece;
-  return relabel(pieces, remap, label, resolution);
+  return relabel(pieces, remap, label, resolution, true);
 }
 
+namespace {
+RegionMap applyGraphRulesTo(const RegionMap& rm, double resolution, const GraphRuleOptions& o, bool in_place);
+}  // namespace
+
 RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRuleOptions& o) {
+  return applyGraphRulesTo(rm, resolution, o, false);
+}
+
+namespace {
+RegionMap applyGraphRulesTo(const RegionMap& rm, double resolution, const GraphRuleOptions& o, bool in_place) {
   const int n = static_cast<int>(rm.regions.size());
   std::vector<long long> sizes(static_cast<std::size_t>(n) + 1, 0);
   for (const Region& r : rm.regions) sizes[static_cast<std::size_t>(r.id)] = r.cells;
@@ -146,8 +157,9 @@ RegionMap applyGraphRules(const RegionMap& rm, double resolution, const GraphRul
     if (parent[u] == i && !removed[u]) remap[u] = static_cast<int>(label.size()), label.push_back(rm.region(i).label);
   }
   for (int i = 1; i <= n; ++i) remap[static_cast<std::size_t>(i)] = remap[static_cast<std::size_t>(merge.root(i))];
-  return relabel(rm, remap, label, resolution);
+  return relabel(rm, remap, label, resolution, in_place);
 }
+}  // namespace
 
 RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double resolution,
                        const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
@@ -155,7 +167,7 @@ RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double 
   if (rules.rooms_by_segment) regions = splitRoomsBySegments(regions, segmentation, resolution);
   RegionMap pieces = splitCorridors(regions, resolution, split);
   regions = RegionMap();
-  return applyGraphRules(pieces, resolution, rules);
+  return applyGraphRulesTo(pieces, resolution, rules, true);  // `pieces` is ours: its id image becomes the result's
 }
 
 RegionMap graphRegions(const RegionMap& regions, const cv::Mat& segmentation, double resolution,

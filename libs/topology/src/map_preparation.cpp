@@ -1,4 +1,5 @@
 #include "gridtopo/topology/map_preparation.h"
+#include "gridtopo/topology/distance_transform.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -18,15 +19,24 @@ using places::kUnknown;
 /// of a centre (two exact Euclidean distance transforms, no kernel rounding).
 cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
   if (radius_cells < 0.5) return free.clone();
-  cv::Mat clearance;
-  cv::distanceTransform(free, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   // A cell's centre is clearance away from the nearest non-free cell's centre: the disc stays inside the free
-  // space when the clearance exceeds the radius by half a cell.
-  const cv::Mat centres = clearance > radius_cells + 0.5;
-  if (cv::countNonZero(centres) == 0) return cv::Mat::zeros(free.size(), CV_8U);
-  cv::Mat not_centre = 255 - centres, to_centre;
-  cv::distanceTransform(not_centre, to_centre, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  cv::Mat covered = (to_centre <= radius_cells) & free;
+  // space when the clearance exceeds the radius by half a cell. Each float image is let go as soon as its mask
+  // exists (on a large map each is 4 bytes per cell).
+  cv::Mat not_centre;
+  {
+    cv::Mat clearance;
+    clearance = preciseDistance(free);
+    not_centre = clearance <= radius_cells + 0.5;
+  }
+  if (cv::countNonZero(not_centre) == static_cast<int>(not_centre.total())) return cv::Mat::zeros(free.size(), CV_8U);
+  cv::Mat covered;
+  {
+    cv::Mat to_centre;
+    to_centre = preciseDistance(not_centre);
+    not_centre.release();
+    covered = to_centre <= radius_cells;
+  }
+  covered &= free;
   return covered;
 }
 
@@ -106,10 +116,9 @@ PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOp
   PreparedMap r;
   const cv::Mat free = occ.cells == kFree;
   r.free_cells = count(free);
-  cv::Mat places = free.clone();
+  cv::Mat places = o.enabled ? robotFits(free, o.robot_radius / occ.resolution) : free.clone();
   if (o.enabled) {
     const double res = occ.resolution;
-    places = robotFits(free, o.robot_radius / res);
     r.removed_robot_fit = r.free_cells - count(places);
     if (!path.empty() && o.view_range > 0) {
       // The path sampled every path_step metres (the first position always).

@@ -30,10 +30,21 @@ void growSeeds(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
   CV_Assert(ids.type() == CV_32S && allowed.type() == CV_8U && ids.size() == allowed.size());
   cv::Mat steps;
   if (max_steps >= 0) steps = cv::Mat(ids.size(), CV_32S, cv::Scalar(0));
+  // Only seeds with a cell to take next to them are queued: cells are only ever taken, never given back, so a
+  // seed with none now never takes one, and leaving it out changes neither the order nor the result.
+  const auto open = [&](int y, int x) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int yy = y + dy, xx = x + dx;
+        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
+        if (allowed.at<unsigned char>(yy, xx) && !ids.at<int>(yy, xx)) return true;
+      }
+    return false;
+  };
   std::deque<cv::Point> q;
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x)
-      if (ids.at<int>(y, x) > 0) q.emplace_back(x, y);
+      if (ids.at<int>(y, x) > 0 && open(y, x)) q.emplace_back(x, y);
   while (!q.empty()) {
     const cv::Point p = q.front();
     q.pop_front();

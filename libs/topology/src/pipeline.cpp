@@ -224,6 +224,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   if (o.door_passages.enabled && !path.empty())
     input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
   r.labels = correctRegions(input, resolution, o.correction, &r.correction);
+  input.release();  // on a large map, a full-map image the later steps do not read
   if (o.open_spaces.enabled && !path.empty())
     r.labels = mergeOpenSpaces(r.labels, path, resolution, o.open_spaces, &r.open_spaces);
   if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
@@ -243,7 +244,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
 cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o) {
   cv::Mat s = o.segmentation == "doorways" ? doorwaySegmentation(regions)
                                            : roomSegmentation(regions, o.seg_rules.merge_contact, resolution);
-  if (o.seg_rules.neck_width > 0) s = splitAtNecks(s, resolution, o.seg_rules);
+  if (o.seg_rules.neck_width > 0) splitAtNecksInPlace(s, resolution, o.seg_rules);
   return s;
 }
 
@@ -254,7 +255,7 @@ RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const T
 
 MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
-                          bool keep_scans_and_features) {
+                          bool keep_scans_and_features, bool outputs_only) {
   MapTopology t;
   const auto since = [](std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -262,13 +263,25 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
   auto t0 = std::chrono::steady_clock::now();
   t.occ = occupancyForTopology(map, o, &t.prepared);
   t.seconds_prepare = since(t0);
+  const auto releaseLabellingGrids = [&] {
+    for (cv::Mat* m : {&t.labelling.probs_initial, &t.labelling.probs, &t.labelling.valid,
+                       &t.labelling.labels_initial, &t.labelling.lattice.block_sample})
+      m->release();
+  };
+  if (outputs_only) t.prepared.places.release(), t.prepared.seen_not_place.release();
   t.labelling =
       places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
+  if (outputs_only && !o.blob_vote.enabled) releaseLabellingGrids();  // else the blob vote reads them
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();
   t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin,
                          pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()));
   t.seconds_graph = since(t0);
+  if (outputs_only) {
+    releaseLabellingGrids();
+    t.topo.labels_corrected.release();
+    t.topo.labels_blob_vote.release();
+  }
   return t;
 }
 

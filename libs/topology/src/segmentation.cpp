@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/topology/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {
@@ -97,7 +98,13 @@ cv::Mat doorwaySegmentation(const RegionMap& rm) {
 cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const SegmentationRules& o) {
   CV_Assert(seg_in.type() == CV_32S);
   cv::Mat seg = seg_in.clone();
-  if (o.neck_width <= 0) return seg;
+  splitAtNecksInPlace(seg, resolution, o);
+  return seg;
+}
+
+void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRules& o) {
+  CV_Assert(seg.type() == CV_32S);
+  if (o.neck_width <= 0) return;
   const int K = segmentCount(seg);
   // Bounding boxes of the segments.
   std::vector<cv::Rect> box(static_cast<std::size_t>(K) + 1);
@@ -126,7 +133,7 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
     // transform measures the room's walls, not the gaps between chairs.
     const cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
     cv::Mat dist, core, cc, stats, cent;
-    cv::distanceTransform(area, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    dist = preciseDistance(area);
     cv::compare(dist, half_px, core, cv::CMP_GT);
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);
@@ -145,7 +152,6 @@ cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const Segmentatio
         if (id && inner.at<unsigned char>(y, x)) seg.at<int>(r.y + y, r.x + x) = id;
       }
   }
-  return seg;
 }
 
 cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& seg) {

@@ -37,7 +37,7 @@ struct EdgeRouter {
  private:
   const RegionMap& rm_;
   cv::Mat cost_;    ///< CV_32S cost (1/16 cells) from the cell's region anchor (INT_MAX = not reached)
-  cv::Mat parent_;  ///< CV_32S row-major index of the previous cell (-1 at the anchor)
+  cv::Mat parent_;  ///< CV_8U direction (0..7, edge_route.cpp kDx / kDy) to the previous cell; 8: anchor, unreached
   /// (a, b), a < b -> (total cost, cell in a, cell in b) of the cheapest border cell pair
   std::map<std::pair<int, int>, std::tuple<double, cv::Point, cv::Point>> joins_;
 };

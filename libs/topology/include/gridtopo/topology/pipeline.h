@@ -148,8 +148,12 @@ struct MapTopology {
   double seconds_prepare = 0;  ///< occupancy and map preparation (occupancyForTopology)
   double seconds_graph = 0;    ///< buildTopology: doorways, correction, regions, segmentation, graph
 };
+/// `outputs_only`: each full-map image that the outputs (writeTopologyOutputs) and the run summary do not read is
+/// let go as soon as the run no longer needs it (the preparation's masks; the lattice grids of probabilities, the
+/// classifier's labels before relaxation, the lattice's block grid; the labels before the segment vote and the blob
+/// vote's): less memory at once on a large map. gridtopo-topology runs so; the GUI, which shows them, does not.
 MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
-                          bool keep_scans_and_features = false);
+                          bool keep_scans_and_features = false, bool outputs_only = false);
 
 }  // namespace gridtopo::topology

@@ -47,6 +47,8 @@ struct SegmentationRules {
 };
 /// Returns the split segmentation (new segments get ids after the current maximum).
 cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const SegmentationRules& options);
+/// The same split written into `segmentation` itself (no second full-map image).
+void splitAtNecksInPlace(cv::Mat& segmentation, double resolution, const SegmentationRules& options);
 
 /// Segment vote (see SegmentationRules::segment_vote): copy of `labels` (CV_8U place labels) where, in every
 /// segment of `segmentation` (CV_32S), the room and corridor cells take the majority label of the two.
