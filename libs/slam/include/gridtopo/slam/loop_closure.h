@@ -179,6 +179,8 @@ class LoopCloser {
   struct PathDrift {
     double travel, suspect_xy, suspect_theta;
   };
+  /// The windowed search's half-width for a path with this drift, before the window_xy_max cap.
+  double driftWindowXy(const PathDrift& p) const;
   /// Per submap, the drift from node `from` to the submap's nearest node.
   std::vector<PathDrift> driftToSubmaps(std::size_t from) const;
   /// The square-root information of a match of `query` at `x` in `grid`, from the curvature of its score.
