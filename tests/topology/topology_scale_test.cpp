@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 
+#include "gridtopo/core/bulk_allocator.h"
 #include "gridtopo/core/process_memory.h"
 #include "gridtopo/places/model.h"
 #include "gridtopo/topology/pipeline.h"
@@ -44,6 +45,7 @@ cv::Mat building(int size_px, double res) {
 
 TEST(TopologyScale, FourThousandSquareMapInBoundedMemory) {
   keepFreedMemoryForReuse();  // as gridtopo-topology: the resident memory is the heap's high-water mark
+  adviseHugePagesForLargeImages();  // and its images on huge pages
   const ProcessMemory before = processMemory();
   MapImage map;
   map.resolution = 0.05;
