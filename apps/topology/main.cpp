@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "gridtopo/core/app_shell.h"
+#include "gridtopo/core/bulk_allocator.h"
 #include "gridtopo/core/process_memory.h"
 #include "gridtopo/core/run_args.h"
 #include "gridtopo/topology/topology_map_run.h"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   // A large map's pipeline allocates and frees images of the whole map many times over: reusing the freed memory
   // instead of faulting in fresh pages each time saves most of the system time (doc/topology.md, Speed).
   keepFreedMemoryForReuse();
+  adviseHugePagesForLargeImages();  // full-map images on 2 MiB pages: fewer page faults and TLB misses
   return gridtopo::runApp("gridtopo-topology", [&]() -> int {
     TCLAP::CmdLine cmd(
         "Label the places of an occupancy map (room / corridor / doorway; Mozos et al.), build regions and the "

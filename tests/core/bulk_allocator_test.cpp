@@ -2,8 +2,13 @@
 // and the advice is harmless on any range.
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "gridtopo/core/bulk_allocator.h"
@@ -41,4 +46,42 @@ TEST(BulkAllocator, AdviceOnAnyRangeIsHarmless) {
   gridtopo::adviseHugePages(v.data() + 1, 100);
   gridtopo::adviseHugePages(v.data() + 3, v.size() - 3);
   EXPECT_EQ(v[12345], 'x');
+}
+
+namespace {
+// The VmFlags of the mapping of /proc/self/smaps that holds `p` ("" when not found).
+std::string vmFlagsOf(const void* p) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto a = reinterpret_cast<std::uintptr_t>(p);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    unsigned long lo = 0, hi = 0;
+    if (line.rfind("VmFlags:", 0) != 0 && std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2) {
+      inside = a >= lo && a < hi;
+      continue;
+    }
+    if (inside && line.rfind("VmFlags:", 0) == 0) return line;
+  }
+  return "";
+}
+}  // namespace
+
+TEST(BulkAllocator, LargeImagesAskForHugePagesAndKeepTheirContents) {
+  gridtopo::adviseHugePagesForLargeImages();
+  cv::Mat big(3000, 3000, CV_32S);  // 36 MB
+  for (int y = 0; y < big.rows; ++y)
+    for (int x = 0; x < big.cols; ++x) big.at<int>(y, x) = y * 7919 + x;
+  const cv::Mat copy = big.clone();
+  EXPECT_EQ(cv::countNonZero(big != copy), 0);
+  EXPECT_EQ(copy.at<int>(2999, 2999), 2999 * 7919 + 2999);
+  cv::Mat small(10, 10, CV_8U, cv::Scalar(3));  // below 4 MiB: the standard allocation
+  EXPECT_EQ(cv::sum(small)[0], 300.0);
+  // Where the kernel has transparent huge pages, the middle of the image's block carries the advice ("hg").
+  if (std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled")) {
+    const std::string flags = vmFlagsOf(big.ptr<int>(1500));
+    ASSERT_FALSE(flags.empty());
+    EXPECT_NE(flags.find(" hg"), std::string::npos) << flags;
+  }
+  big.release();
+  cv::Mat::setDefaultAllocator(nullptr);  // OpenCV's own again for the other tests
 }

@@ -81,7 +81,8 @@ std::uint16_t walkDigitalLine(const OccupancyImage& occ, cv::Point p, int beam, 
   for (int k = k_start + (forward ? 1 : -1); k >= 0 && k < n_major; k += forward ? 1 : -1) {
     const int m = j + offset(k);
     if (m < 0 || m >= n_minor) break;
-    if (!(shallow ? occ.isFree(m, k) : occ.isFree(k, m))) break;
+    const unsigned char cell = shallow ? occ.cells.at<unsigned char>(m, k) : occ.cells.at<unsigned char>(k, m);
+    if (cell != kFree && cell != kSeen) break;  // seen cells are free to a beam
     ++run;
   }
   const double step_mm = occ.resolution * 1000.0 * std::sqrt(1.0 + slope * slope), max_mm = max_range * 1000.0;
@@ -119,6 +120,56 @@ TEST(ScanSimulation, SweepsEqualWalkingEachDigitalLine) {
     }
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(saturated, 100);
+}
+
+TEST(ScanSimulation, SweepsOverFreeSpansEqualWalkingEachDigitalLine) {
+  // The default options (unknown cells and the border stop a beam) sweep only the spans of free cells of each
+  // column and those of the previous column: a SLAM-like map, mostly unknown, with rooms touching all four
+  // borders, rooms farther apart than the span gap (64 cells), one-cell free streaks in the unknown, seen
+  // cells (free to a beam) and clutter. Every beam of every free cell equals the walk along its digital line.
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(150, 260, CV_8U, cv::Scalar(kUnknown));
+  occ.cells(cv::Rect(0, 0, 50, 40)).setTo(kFree);      // top-left corner
+  occ.cells(cv::Rect(190, 100, 70, 50)).setTo(kFree);  // bottom-right corner, > 64 columns from the next room
+  occ.cells(cv::Rect(60, 110, 40, 40)).setTo(kFree);   // on the bottom border
+  occ.cells(cv::Rect(230, 0, 30, 30)).setTo(kFree);    // top-right corner
+  occ.cells(cv::Rect(0, 70, 20, 30)).setTo(kFree);     // on the left border
+  cv::RNG rng(23);
+  for (int r = 0; r < occ.rows(); ++r)
+    for (int c = 0; c < occ.cols(); ++c) {
+      unsigned char& cell = occ.cells.at<unsigned char>(r, c);
+      if (cell != kFree) continue;
+      const double u = rng.uniform(0.0, 1.0);
+      if (u < 0.08) cell = kOccupied;
+      else if (u < 0.11) cell = kSeen;
+      else if (u < 0.13) cell = kUnknown;
+    }
+  for (int k = 0; k < 120; ++k) occ.cells.at<unsigned char>(20 + k / 2, 40 + k) = kFree;  // a streak out of a room
+  for (int k = 0; k < 90; ++k) occ.cells.at<unsigned char>(5 + k, 150) = kFree;            // a lone free line
+  std::vector<cv::Point> s;
+  for (int r = 0; r < occ.rows(); ++r)
+    for (int c = 0; c < occ.cols(); ++c)
+      if (occ.isFree(r, c)) s.emplace_back(c, r);
+  ScanSimulationOptions o;
+  o.num_beams = 72;
+  o.max_range = 3.0;
+  o.threads = 2;
+  ASSERT_EQ(o.unknown_cells, BeamStop::kObstacle);
+  ASSERT_EQ(o.map_border, BeamStop::kObstacle);
+  const auto scans = simulateScans(occ, s, o);
+  int mismatches = 0, saturated = 0, at_border = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int b = 0; b < o.num_beams; ++b) {
+      const std::uint16_t ref = walkDigitalLine(occ, s[i], b, o.num_beams, o.max_range);
+      mismatches += scans.scan(i)[b] != ref;
+      saturated += ref == 3000;
+    }
+  for (std::size_t i = 0; i < s.size(); ++i) at_border += s[i].x == 0 || s[i].y == 0 || s[i].x == 259 || s[i].y == 149;
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(saturated, 100);
+  EXPECT_GT(at_border, 100);
+  EXPECT_GT(s.size(), 7000u);
 }
 
 TEST(ScanSimulation, ThreadsDoNotChangeResults) {

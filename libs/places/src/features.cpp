@@ -306,8 +306,8 @@ namespace {
 // performs exactly the scalar operations of extractFeatures() in the same order (no sum is split or reordered,
 // selects replace branches; +, -, *, /, sqrt are correctly rounded in SIMD as in scalar code, and no FMA is
 // enabled), so the features are bit-identical (test Features.LanesEqualScalarBitForBit). Vectorising over
-// scans, not over beams, is what keeps the sums exact. Two builds of the kernel (features_lanes.inc): SSE2, two
-// lanes (every x86-64), and AVX, four lanes, chosen at run time when the CPU has AVX.
+// scans, not over beams, is what keeps the sums exact. Three builds of the kernel (features_lanes.inc): SSE2, two
+// lanes (every x86-64), AVX, four lanes, and AVX-512F, eight lanes, the widest the CPU has chosen at run time.
 namespace lanes_sse2 {
 constexpr int kLanes = 2;
 typedef double vd __attribute__((vector_size(8 * kLanes)));
@@ -334,10 +334,26 @@ inline vd vsqrt(vd v) { return reinterpret_cast<vd>(_mm256_sqrt_pd(reinterpret_c
 #include "features_lanes.inc"
 }  // namespace lanes_avx
 #pragma GCC pop_options
+#define GRIDTOPO_FEATURES_AVX512 1
+#pragma GCC push_options
+// AVX-512F, eight lanes. It brings FMA instructions: contraction of a * b + c is turned off for this kernel (GCC
+// contracts by default in C++), so every operation stays the correctly rounded one of the scalar code.
+#pragma GCC target("avx512f")
+#pragma GCC optimize("fp-contract=off")
+namespace lanes_avx512 {
+constexpr int kLanes = 8;
+typedef double vd __attribute__((vector_size(8 * kLanes)));
+inline vd vsqrt(vd v) {
+  const __m512d x = reinterpret_cast<__m512d>(v);
+  return reinterpret_cast<vd>(_mm512_mask_sqrt_pd(x, static_cast<__mmask8>(0xff), x));  // every lane: sqrt
+}
+#include "features_lanes.inc"
+}  // namespace lanes_avx512
+#pragma GCC pop_options
 #endif
 
-constexpr int kMaxLanes = 4;
-std::atomic<bool> g_allow_avx{true};
+constexpr int kMaxLanes = 8;
+std::atomic<int> g_max_lanes{kMaxLanes};
 
 struct LaneKernel {
   int lanes;
@@ -345,17 +361,23 @@ struct LaneKernel {
 };
 
 LaneKernel laneKernel() {
+#ifdef GRIDTOPO_FEATURES_AVX512
+  if (g_max_lanes >= 8 && __builtin_cpu_supports("avx512f"))
+    return {lanes_avx512::kLanes, lanes_avx512::extractFeaturesLanes};
+#endif
 #ifdef GRIDTOPO_FEATURES_AVX
-  if (g_allow_avx && __builtin_cpu_supports("avx")) return {lanes_avx::kLanes, lanes_avx::extractFeaturesLanes};
+  if (g_max_lanes >= 4 && __builtin_cpu_supports("avx")) return {lanes_avx::kLanes, lanes_avx::extractFeaturesLanes};
 #endif
   return {lanes_sse2::kLanes, lanes_sse2::extractFeaturesLanes};
 }
 }  // namespace
 
-int featureLanes(bool allow_avx) {
-  g_allow_avx = allow_avx;
+int featureLanesUpTo(int max_lanes) {
+  g_max_lanes = max_lanes;
   return laneKernel().lanes;
 }
+
+int featureLanes(bool allow_avx) { return featureLanesUpTo(allow_avx ? kMaxLanes : 2); }
 
 namespace {
 // Sample i's beam k is ranges[i * sample_stride + k * beam_stride] (millimetres).

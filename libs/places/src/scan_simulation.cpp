@@ -109,6 +109,40 @@ ColumnSamples samplesByColumn(const std::vector<cv::Point>& samples, int cols, b
   return cs;
 }
 
+// Spans covering the cells a beam passes as free (kFree, kSeen) in each row of an image (CSR): the spans of row k
+// are [runs[i].first, runs[i].second) for i in begin[k] .. begin[k + 1] - 1, increasing and disjoint. Free runs
+// less than kRunGap cells apart share a span (a span may hold non-free cells: the sweep's loop over a span is
+// vectorised, and SLAM maps have many short free runs).
+struct RowRuns {
+  std::vector<int> begin;
+  std::vector<std::pair<int, int>> runs;
+};
+
+constexpr int kRunGap = 64;
+
+RowRuns freeRunsOfRows(const cv::Mat& image) {
+  RowRuns rr;
+  rr.begin.assign(static_cast<std::size_t>(image.rows) + 1, 0);
+  for (int k = 0; k < image.rows; ++k) {
+    const unsigned char* c = image.ptr<unsigned char>(k);
+    for (int m = 0; m < image.cols;) {
+      if (c[m] != kFree && c[m] != kSeen) {
+        ++m;
+        continue;
+      }
+      const int a = m;
+      while (m < image.cols && (c[m] == kFree || c[m] == kSeen)) ++m;
+      if (rr.runs.size() > static_cast<std::size_t>(rr.begin[static_cast<std::size_t>(k)]) &&
+          a - rr.runs.back().second < kRunGap)
+        rr.runs.back().second = m;
+      else
+        rr.runs.emplace_back(a, m);
+    }
+    rr.begin[static_cast<std::size_t>(k) + 1] = static_cast<int>(rr.runs.size());
+  }
+  return rr;
+}
+
 // One family of parallel digital lines along the columns of an image (the caller swaps the roles of rows and
 // columns for steep directions): the row of line j at column k is j + offset[k], offset[k] = floor(k * slope +
 // 0.5), |slope| <= 1. Every cell lies on exactly one line. A forward sweep (k increasing) measures the free run
@@ -121,51 +155,122 @@ ColumnSamples samplesByColumn(const std::vector<cv::Point>& samples, int cols, b
 // the next obstacle), pass counts the unknown cell as free.
 // `k0`: the image's index of column 0 of `columns` (a window of the image's rows, see simulateBeams): the lines
 // are those of the whole image.
-void sweepFamily(const cv::Mat& columns, const ColumnSamples& samples, double resolution, double slope, int k0,
-                 int beam_back, int beam_ahead, double max_range_mm, BeamStop unknown_cells, BeamStop map_border,
-                 cv::Mat& by_beam) {
+struct Family {
+  double slope = 0;
+  int beam_back = 0, beam_ahead = 0;
+};
+
+// Several families swept together (sweepFamilies): each column is read once for all of them while it is in
+// the cache (one family at a time read the whole image from memory once per pass and direction pair).
+struct FamilyState {
+  std::vector<int> offset;
+  int max_off = 0, max_run = 0;
+  std::vector<std::uint16_t> mm;
+  std::vector<int> run;
+};
+
+// The counters of n lines over their next cells c (obstacle and unknown cells reset them), in its own function
+// so that the loop is vectorised (no pointer of the caller aliases r), and built twice: AVX2 (eight counters a
+// step) where the CPU has it, else SSE2 (integers: the same counters either way).
+__attribute__((target_clones("avx2", "default"))) void advanceFree(int* __restrict r, const unsigned char* __restrict c, int n, int max_run) {
+  for (int m = 0; m < n; ++m) r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : 0;
+}
+
+// `free_runs` (freeRunsOfRows of `columns`): when unknown cells and the border stop a beam as an obstacle, a
+// counter is non-zero only on a line whose last cell was free, so each column updates only the lines through
+// its own free spans and through the previous column's (one row wider on either side: a line moves by at most one
+// row from column to column): every other counter is 0 and stays 0. The sweep then costs about the free cells,
+// not the image; the counters are the same.
+void sweepFamilies(const cv::Mat& columns, const ColumnSamples& samples, const RowRuns& free_runs, double resolution,
+                   const std::vector<Family>& families, int k0, double max_range_mm, BeamStop unknown_cells,
+                   BeamStop map_border, cv::Mat& by_beam) {
   const int n_major = columns.rows, n_minor = columns.cols;
-  std::vector<int> offset(static_cast<std::size_t>(n_major));
-  for (int k = 0; k < n_major; ++k)
-    offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor((k + k0) * slope + 0.5));
-  const int min_off = *std::min_element(offset.begin(), offset.end());
-  const int max_off = *std::max_element(offset.begin(), offset.end());
-  const double step_mm = resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
-  // Run lengths in steps, converted to mm through a small table (runs beyond max range saturate).
-  const int max_run = static_cast<int>(max_range_mm / step_mm) + 2;
-  std::vector<std::uint16_t> mm(static_cast<std::size_t>(max_run) + 1);
-  for (int r = 0; r <= max_run; ++r)
-    mm[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(std::lround(std::min((r + 0.5) * step_mm, max_range_mm)));
-  // run[j + max_off]: free cells of line j passed since its last non-free cell (or since it entered the
-  // image), saturated at max_run (only min(run, max_run) is used). A line is inside the image for one interval
-  // of k, so its counter is untouched (0) until it enters.
-  std::vector<int> run(static_cast<std::size_t>(n_minor + max_off - min_off));
+  const bool unknown_default = unknown_cells == BeamStop::kObstacle;
+  const bool sparse = unknown_default && map_border == BeamStop::kObstacle;
+  std::vector<FamilyState> state(families.size());
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    FamilyState& st = state[f];
+    const double slope = families[f].slope;
+    st.offset.resize(static_cast<std::size_t>(n_major));
+    for (int k = 0; k < n_major; ++k)
+      st.offset[static_cast<std::size_t>(k)] = static_cast<int>(std::floor((k + k0) * slope + 0.5));
+    const int min_off = *std::min_element(st.offset.begin(), st.offset.end());
+    st.max_off = *std::max_element(st.offset.begin(), st.offset.end());
+    const double step_mm = resolution * 1000.0 * std::sqrt(1.0 + slope * slope);
+    // Run lengths in steps, converted to mm through a small table (runs beyond max range saturate).
+    st.max_run = static_cast<int>(max_range_mm / step_mm) + 2;
+    st.mm.resize(static_cast<std::size_t>(st.max_run) + 1);
+    for (int r = 0; r <= st.max_run; ++r)
+      st.mm[static_cast<std::size_t>(r)] =
+          static_cast<std::uint16_t>(std::lround(std::min((r + 0.5) * step_mm, max_range_mm)));
+    // run[j + max_off]: free cells of line j passed since its last non-free cell (or since it entered the
+    // image), saturated at max_run (only min(run, max_run) is used). A line is inside the image for one interval
+    // of k, so its counter is untouched (0) until it enters.
+    st.run.resize(static_cast<std::size_t>(n_minor + st.max_off - min_off));
+  }
   // A line enters the image with the counter of the border; each cell state maps the counter r to its next value
   // through max(r + add, floor) capped at max_run: free (+1, 0), occupied (reset: -inf, 0), unknown by option.
   // Free cells that are no place (kSeen, the topology's map preparation) are free to a beam: the features describe
   // the space as the laser saw it; only the labels and nodes are kept off them.
-  const int border_run = map_border == BeamStop::kMaxRange ? max_run : 0;
-  const bool unknown_default = unknown_cells == BeamStop::kObstacle;
+  std::vector<std::pair<int, int>> spans;
   for (int pass = 0; pass < 2; ++pass) {
-    std::fill(run.begin(), run.end(), border_run);
-    // Beam-major output: one row per beam.
-    std::uint16_t* out = by_beam.ptr<std::uint16_t>(pass == 0 ? beam_back : beam_ahead);
+    for (FamilyState& st : state) std::fill(st.run.begin(), st.run.end(), map_border == BeamStop::kMaxRange ? st.max_run : 0);
     for (int t = 0; t < n_major; ++t) {
       const int k = pass == 0 ? t : n_major - 1 - t;
-      // r[m]: the counter of the line through row m of column k (j = m - offset[k]).
-      int* r = run.data() + (max_off - offset[static_cast<std::size_t>(k)]);
-      for (int s = samples.begin[static_cast<std::size_t>(k)]; s < samples.begin[static_cast<std::size_t>(k) + 1]; ++s) {
-        const auto& [m, idx] = samples.items[static_cast<std::size_t>(s)];
-        out[idx] = mm[static_cast<std::size_t>(r[m])];
-      }
       const unsigned char* c = columns.ptr<unsigned char>(k);
-      if (unknown_default) {
-        for (int m = 0; m < n_minor; ++m) r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : 0;
-      } else if (unknown_cells == BeamStop::kMaxRange) {
-        for (int m = 0; m < n_minor; ++m)
-          r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : c[m] == kUnknown ? max_run : 0;
-      } else {
-        for (int m = 0; m < n_minor; ++m) r[m] = c[m] != kOccupied ? std::min(r[m] + 1, max_run) : 0;
+      spans.clear();
+      if (sparse) {
+        // The union of this column's free spans and the previous column's, the latter one row wider each side.
+        const std::pair<int, int>* cur = free_runs.runs.data() + free_runs.begin[static_cast<std::size_t>(k)];
+        const std::pair<int, int>* cur_end = free_runs.runs.data() + free_runs.begin[static_cast<std::size_t>(k) + 1];
+        const std::pair<int, int>* prev = cur_end;
+        const std::pair<int, int>* prev_end = cur_end;
+        if (t > 0) {
+          const int kp = pass == 0 ? k - 1 : k + 1;
+          prev = free_runs.runs.data() + free_runs.begin[static_cast<std::size_t>(kp)];
+          prev_end = free_runs.runs.data() + free_runs.begin[static_cast<std::size_t>(kp) + 1];
+        }
+        int a = 0, b = -1;  // the pending merged span [a, b); none while b < a
+        while (cur != cur_end || prev != prev_end) {
+          std::pair<int, int> next;
+          if (prev == prev_end || (cur != cur_end && cur->first <= prev->first - 1)) {
+            next = *cur++;
+          } else {
+            next = {std::max(0, prev->first - 1), std::min(n_minor, prev->second + 1)};
+            ++prev;
+          }
+          if (b >= a && next.first <= b) {
+            b = std::max(b, next.second);
+          } else {
+            if (b > a) spans.emplace_back(a, b);
+            a = next.first, b = next.second;
+          }
+        }
+        if (b > a) spans.emplace_back(a, b);
+      }
+      for (std::size_t f = 0; f < families.size(); ++f) {
+        FamilyState& st = state[f];
+        const int max_run = st.max_run;
+        // Beam-major output: one row per beam.
+        std::uint16_t* out = by_beam.ptr<std::uint16_t>(pass == 0 ? families[f].beam_back : families[f].beam_ahead);
+        // r[m]: the counter of the line through row m of column k (j = m - offset[k]).
+        int* r = st.run.data() + (st.max_off - st.offset[static_cast<std::size_t>(k)]);
+        const std::uint16_t* mm = st.mm.data();
+        for (int s = samples.begin[static_cast<std::size_t>(k)]; s < samples.begin[static_cast<std::size_t>(k) + 1]; ++s) {
+          const auto& [m, idx] = samples.items[static_cast<std::size_t>(s)];
+          out[idx] = mm[r[m]];
+        }
+        if (sparse) {
+          for (const std::pair<int, int>& span : spans)
+            advanceFree(r + span.first, c + span.first, span.second - span.first, max_run);
+        } else if (unknown_default) {
+          for (int m = 0; m < n_minor; ++m) r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : 0;
+        } else if (unknown_cells == BeamStop::kMaxRange) {
+          for (int m = 0; m < n_minor; ++m)
+            r[m] = (c[m] == kFree || c[m] == kSeen) ? std::min(r[m] + 1, max_run) : c[m] == kUnknown ? max_run : 0;
+        } else {
+          for (int m = 0; m < n_minor; ++m) r[m] = c[m] != kOccupied ? std::min(r[m] + 1, max_run) : 0;
+        }
       }
     }
   }
@@ -216,22 +321,44 @@ cv::Mat simulateBeams(const OccupancyImage& occ, const std::vector<cv::Point>& s
   cv::transpose(window, cells_t);
   const ColumnSamples by_col = samplesByColumn(samples, window.cols, false);
   const ColumnSamples by_row = samplesByColumn(samples, window.rows, true);
-  const std::size_t n_dirs = static_cast<std::size_t>(M / 2);
-  std::atomic<std::size_t> next{0}, done{0};
-  auto process = [&](std::size_t k) {
+  const bool sparse = options.unknown_cells == BeamStop::kObstacle && options.map_border == BeamStop::kObstacle;
+  const RowRuns runs_t = sparse ? freeRunsOfRows(cells_t) : RowRuns{};
+  const RowRuns runs = sparse ? freeRunsOfRows(window) : RowRuns{};
+  // Directions k and k + M/2 share a family of lines; consecutive directions of the same kind (shallow: along
+  // the image's columns, read as the rows of its transpose; steep: along the image's rows) are swept in groups of
+  // up to kGroup (each column read once for the group). The groups do not change any range.
+  constexpr std::size_t kGroup = 16;
+  std::vector<std::vector<Family>> groups;
+  std::vector<bool> group_steep;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(M / 2); ++k) {
     // Direction k (image coordinates: dc = cos, dr = -sin) and its opposite k + M/2.
     const double th = 2.0 * M_PI * static_cast<double>(k) / M;
     const double dc = std::cos(th), dr = -std::sin(th);
     const int kb = static_cast<int>(k), ko = static_cast<int>(k) + M / 2;
-    if (std::abs(dc) >= std::abs(dr)) {
+    Family f;
+    const bool steep = std::abs(dc) < std::abs(dr);
+    if (!steep) {
       // Travelling +1 column moves dr/dc rows; direction k points to +col iff dc > 0.
-      sweepFamily(cells_t, by_col, occ.resolution, dr / dc, 0, dc > 0 ? ko : kb, dc > 0 ? kb : ko, max_mm,
-                  options.unknown_cells, options.map_border, by_beam);
+      f = {dr / dc, dc > 0 ? ko : kb, dc > 0 ? kb : ko};
     } else {
       // Steep: the same along the columns of the transposed image (+1 row moves dc/dr columns).
-      sweepFamily(window, by_row, occ.resolution, dc / dr, w0, dr > 0 ? ko : kb, dr > 0 ? kb : ko, max_mm,
-                  options.unknown_cells, options.map_border, by_beam);
+      f = {dc / dr, dr > 0 ? ko : kb, dr > 0 ? kb : ko};
     }
+    if (groups.empty() || group_steep.back() != steep || groups.back().size() == kGroup) {
+      groups.emplace_back();
+      group_steep.push_back(steep);
+    }
+    groups.back().push_back(f);
+  }
+  const std::size_t n_dirs = groups.size();
+  std::atomic<std::size_t> next{0}, done{0};
+  auto process = [&](std::size_t g) {
+    if (!group_steep[g])
+      sweepFamilies(cells_t, by_col, runs_t, occ.resolution, groups[g], 0, max_mm, options.unknown_cells,
+                    options.map_border, by_beam);
+    else
+      sweepFamilies(window, by_row, runs, occ.resolution, groups[g], w0, max_mm, options.unknown_cells,
+                    options.map_border, by_beam);
   };
   auto worker = [&](bool report) {
     for (std::size_t k; (k = next.fetch_add(1)) < n_dirs;) {

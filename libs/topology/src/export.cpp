@@ -1,6 +1,7 @@
 #include "gridtopo/topology/export.h"
 
 #include <algorithm>
+#include <thread>
 #include <iomanip>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -169,33 +170,45 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   const double inv = 1.0 / scale;
   std::vector<int> col_of(static_cast<std::size_t>(big.cols));
   for (int X = 0; X < big.cols; ++X) col_of[static_cast<std::size_t>(X)] = std::min(cvFloor(X * inv), cols - 1);
-  std::vector<cv::Vec3b> row(static_cast<std::size_t>(cols));
-  int row_y = -1;
-  for (int Y = 0; Y < big.rows; ++Y) {
-    const int y = std::min(cvFloor(Y * inv), rows - 1);
-    if (y == row_y) {  // the same cells as the output row above: a copy of it
-      std::copy(big.ptr<cv::Vec3b>(Y - 1), big.ptr<cv::Vec3b>(Y - 1) + big.cols, big.ptr<cv::Vec3b>(Y));
-      continue;
+  // Output rows in two halves, one per thread (each half starts with a row of its own: the same pixels).
+  auto band = [&](int Y0, int Y1) {
+    std::vector<cv::Vec3b> row(static_cast<std::size_t>(cols));
+    int row_y = -1;
+    for (int Y = Y0; Y < Y1; ++Y) {
+      const int y = std::min(cvFloor(Y * inv), rows - 1);
+      if (y == row_y) {  // the same cells as the output row above: a copy of it
+        std::copy(big.ptr<cv::Vec3b>(Y - 1), big.ptr<cv::Vec3b>(Y - 1) + big.cols, big.ptr<cv::Vec3b>(Y));
+        continue;
+      }
+      row_y = y;
+      const unsigned char* cells = occ.cells.ptr<unsigned char>(y);
+      const unsigned char* lab = labels.ptr<unsigned char>(y);
+      const int* ids = rm.ids.ptr<int>(y);
+      const int* ids_below = y + 1 < rows ? rm.ids.ptr<int>(y + 1) : nullptr;
+      for (int x = 0; x < cols; ++x) {
+        const unsigned char s = cells[x];
+        // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
+        cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
+                      : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
+                      : s == places::kSeen     ? seenNotPlaceColour(x, y)
+                                               : cv::Vec3b(180, 180, 180);
+        const unsigned char l = lab[x];
+        if (l < places::kNumLabels) c = tint[l];
+        // Region borders in dark grey.
+        const int id = ids[x];
+        if (id > 0 && ((x + 1 < cols && ids[x + 1] > 0 && ids[x + 1] != id) ||
+                       (ids_below && ids_below[x] > 0 && ids_below[x] != id)))
+          c = cv::Vec3b(60, 60, 60);
+        row[static_cast<std::size_t>(x)] = c;
+      }
+      cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);
+      for (int X = 0; X < big.cols; ++X) out[X] = row[static_cast<std::size_t>(col_of[static_cast<std::size_t>(X)])];
     }
-    row_y = y;
-    for (int x = 0; x < cols; ++x) {
-      const unsigned char s = occ.cells.at<unsigned char>(y, x);
-      // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
-      cv::Vec3b c = s == places::kFree       ? cv::Vec3b(255, 255, 255)
-                    : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
-                    : s == places::kSeen     ? seenNotPlaceColour(x, y)
-                                             : cv::Vec3b(180, 180, 180);
-      const unsigned char l = labels.at<unsigned char>(y, x);
-      if (l < places::kNumLabels) c = tint[l];
-      // Region borders in dark grey.
-      const int id = rm.ids.at<int>(y, x);
-      if (id > 0 && ((x + 1 < cols && rm.ids.at<int>(y, x + 1) > 0 && rm.ids.at<int>(y, x + 1) != id) ||
-                     (y + 1 < rows && rm.ids.at<int>(y + 1, x) > 0 && rm.ids.at<int>(y + 1, x) != id)))
-        c = cv::Vec3b(60, 60, 60);
-      row[static_cast<std::size_t>(x)] = c;
-    }
-    cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);
-    for (int X = 0; X < big.cols; ++X) out[X] = row[static_cast<std::size_t>(col_of[static_cast<std::size_t>(X)])];
+  };
+  {
+    std::thread second(band, big.rows / 2, big.rows);
+    band(0, big.rows / 2);
+    second.join();
   }
   auto px = [&](cv::Point2d p) { return cv::Point(static_cast<int>((p.x + 0.5) * scale), static_cast<int>((p.y + 0.5) * scale)); };
   auto pt = [&](const GraphNode& n) { return px(cv::Point2d(n.anchor_px)); };

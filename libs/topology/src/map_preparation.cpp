@@ -69,16 +69,25 @@ cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& sample
     dir[static_cast<std::size_t>(k)] = {0.5 * std::cos(a), 0.5 * std::sin(a)};
   }
   const int steps = static_cast<int>(std::ceil(2.0 * range_cells));
+  const int cols = free.cols, rows = free.rows;
+  const std::size_t free_step = free.step, seen_step = seen.step;
+  const unsigned char* free_data = free.data;
+  unsigned char* seen_data = seen.data;
   for (const cv::Point2d& p : samples) {
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
     if (px < 0 || py < 0 || px >= free.cols || py >= free.rows) continue;
     for (const cv::Point2d& d : dir) {
       double x = p.x, y = p.y;
+      int last_x = -1, last_y = -1;  // the cell of the previous step (free and marked)
       for (int s = 0; s <= steps; ++s, x += d.x, y += d.y) {
-        const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y));
-        if (cx < 0 || cy < 0 || cx >= free.cols || cy >= free.rows) break;
-        if (!free.at<unsigned char>(cy, cx)) break;
-        seen.at<unsigned char>(cy, cx) = 255;
+        // floor(v) < 0 exactly when v < 0; for v >= 0 the conversion truncates, as floor does.
+        if (x < 0 || y < 0) break;
+        const int cx = static_cast<int>(x), cy = static_cast<int>(y);
+        if (cx == last_x && cy == last_y) continue;  // half-cell steps: the same cell again
+        if (cx >= cols || cy >= rows) break;
+        if (!free_data[static_cast<std::size_t>(cy) * free_step + static_cast<std::size_t>(cx)]) break;
+        seen_data[static_cast<std::size_t>(cy) * seen_step + static_cast<std::size_t>(cx)] = 255;
+        last_x = cx, last_y = cy;
       }
     }
   }

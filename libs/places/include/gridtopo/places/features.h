@@ -52,9 +52,11 @@ cv::Mat extractFeatures(const SimulatedScans& scans, const FeatureOptions& optio
 /// The same of beam-major scans (simulateBeams: CV_16U, beams x samples), bit-identical.
 cv::Mat extractFeaturesOfBeams(const cv::Mat& by_beam, const FeatureOptions& options, int threads = 2);
 
-/// Scans per SIMD batch of the whole-map extraction: 4 with AVX, else 2. `allow_avx = false` forces the SSE2
-/// kernel for the rest of the process (for tests: both kernels must give the bits of the scalar function).
+/// Scans per SIMD batch of the whole-map extraction: 8 with AVX-512F, 4 with AVX, else 2. `allow_avx = false`
+/// forces the SSE2 kernel for the rest of the process (for tests: every kernel must give the bits of the scalar
+/// function); featureLanesUpTo(n) allows kernels of at most n lanes (2, 4 or 8) and returns the one chosen.
 int featureLanes(bool allow_avx = true);
+int featureLanesUpTo(int max_lanes);
 
 /// Appends the context features (see FeatureOptions::context_radius) to `features` (rows = lattice samples):
 /// for each column, the mean over the samples whose blocks lie within the window (masked box filter).
