@@ -47,7 +47,7 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// every older stretch of the trajectory, matched exactly, and enter the graph only once several independent
   /// matches agree with each other and with the trajectory between them. false: the windowed search alone.
   bool global_search = true;
-  double global_every_m = 3.0;     ///< m of travel between global searches
+  double global_every_m = 2.0;     ///< m of travel between global searches
   double global_query_m = 20.0;    ///< m of trajectory behind a pose whose points form its place (query and signature)
   double global_signature_every_m = 1.0;  ///< m of travel between the older poses that get a signature
   double global_min_travel = 30.0;  ///< m of travel between a place and the query before it is a candidate
@@ -60,9 +60,12 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// refinement and final score use every point); 0: every point throughout.
   double global_search_voxel = 0.3;
   /// Matches (this one included) whose queries lie at least global_independent_m apart that must agree before any
-  /// of them enters the graph.
+  /// of them enters the graph. Queries share most of their points (each is global_query_m long): 8 m apart they
+  /// share three fifths, 4 m apart four fifths, and the same look-alike corner in all of them is one piece of
+  /// evidence, not three (the simulated 1 km ring, queries every 2 m: at 4 or 6 m a false corner-to-corner clique
+  /// is accepted).
   int global_agree = 3;
-  double global_independent_m = 4.0;
+  double global_independent_m = 8.0;
   /// Two matches agree when the loop they close with the trajectory between their queries and between their places
   /// closes within global_consistency_xy (m) + global_consistency_per_m × that trajectory's length, and
   /// global_consistency_theta (rad) + a tenth of that per metre; places or queries further apart than
