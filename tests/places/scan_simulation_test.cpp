@@ -88,6 +88,35 @@ std::uint16_t walkDigitalLine(const OccupancyImage& occ, cv::Point p, int beam, 
   const double step_mm = occ.resolution * 1000.0 * std::sqrt(1.0 + slope * slope), max_mm = max_range * 1000.0;
   return static_cast<std::uint16_t>(std::lround(std::min((run + 0.5) * step_mm, max_mm)));
 }
+
+// Every free cell of the map, row by row.
+std::vector<cv::Point> freeCells(const OccupancyImage& occ) {
+  std::vector<cv::Point> s;
+  for (int r = 0; r < occ.rows(); ++r)
+    for (int c = 0; c < occ.cols(); ++c)
+      if (occ.isFree(r, c)) s.emplace_back(c, r);
+  return s;
+}
+
+struct WalkComparison {
+  int mismatches = 0;  ///< beams whose simulated range differs from the walk along their digital line
+  int saturated = 0;   ///< beams whose walk reaches max_range
+};
+
+// simulateScans at the samples s, beam by beam against walkDigitalLine.
+WalkComparison compareWithWalks(const OccupancyImage& occ, const std::vector<cv::Point>& s,
+                                const ScanSimulationOptions& o) {
+  const auto scans = simulateScans(occ, s, o);
+  const auto max_mm = static_cast<std::uint16_t>(std::lround(o.max_range * 1000.0));
+  WalkComparison w;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int b = 0; b < o.num_beams; ++b) {
+      const std::uint16_t ref = walkDigitalLine(occ, s[i], b, o.num_beams, o.max_range);
+      w.mismatches += scans.scan(i)[b] != ref;
+      w.saturated += ref == max_mm;
+    }
+  return w;
+}
 }  // namespace
 
 TEST(ScanSimulation, SweepsEqualWalkingEachDigitalLine) {
@@ -102,24 +131,14 @@ TEST(ScanSimulation, SweepsEqualWalkingEachDigitalLine) {
       if (rng.uniform(0.0, 1.0) < 0.3) occ.cells.at<unsigned char>(r, c) = kOccupied;
   occ.cells(cv::Rect(0, 20, 40, 1)).setTo(kOccupied);
   occ.cells(cv::Rect(10, 30, 45, 3)).setTo(kFree);  // a long free strip: runs beyond max range
-  std::vector<cv::Point> s;
-  for (int r = 0; r < occ.rows(); ++r)
-    for (int c = 0; c < occ.cols(); ++c)
-      if (occ.isFree(r, c)) s.emplace_back(c, r);
+  const std::vector<cv::Point> s = freeCells(occ);
   ScanSimulationOptions o;
   o.num_beams = 72;
   o.max_range = 1.5;
   o.threads = 2;
-  const auto scans = simulateScans(occ, s, o);
-  int mismatches = 0, saturated = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    for (int b = 0; b < o.num_beams; ++b) {
-      const std::uint16_t ref = walkDigitalLine(occ, s[i], b, o.num_beams, o.max_range);
-      mismatches += scans.scan(i)[b] != ref;
-      saturated += ref == 1500;
-    }
-  EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(saturated, 100);
+  const WalkComparison w = compareWithWalks(occ, s, o);
+  EXPECT_EQ(w.mismatches, 0);
+  EXPECT_GT(w.saturated, 100);
 }
 
 TEST(ScanSimulation, SweepsOverFreeSpansEqualWalkingEachDigitalLine) {
@@ -147,27 +166,18 @@ TEST(ScanSimulation, SweepsOverFreeSpansEqualWalkingEachDigitalLine) {
     }
   for (int k = 0; k < 120; ++k) occ.cells.at<unsigned char>(20 + k / 2, 40 + k) = kFree;  // a streak out of a room
   for (int k = 0; k < 90; ++k) occ.cells.at<unsigned char>(5 + k, 150) = kFree;            // a lone free line
-  std::vector<cv::Point> s;
-  for (int r = 0; r < occ.rows(); ++r)
-    for (int c = 0; c < occ.cols(); ++c)
-      if (occ.isFree(r, c)) s.emplace_back(c, r);
+  const std::vector<cv::Point> s = freeCells(occ);
   ScanSimulationOptions o;
   o.num_beams = 72;
   o.max_range = 3.0;
   o.threads = 2;
   ASSERT_EQ(o.unknown_cells, BeamStop::kObstacle);
   ASSERT_EQ(o.map_border, BeamStop::kObstacle);
-  const auto scans = simulateScans(occ, s, o);
-  int mismatches = 0, saturated = 0, at_border = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    for (int b = 0; b < o.num_beams; ++b) {
-      const std::uint16_t ref = walkDigitalLine(occ, s[i], b, o.num_beams, o.max_range);
-      mismatches += scans.scan(i)[b] != ref;
-      saturated += ref == 3000;
-    }
+  const WalkComparison w = compareWithWalks(occ, s, o);
+  int at_border = 0;
   for (std::size_t i = 0; i < s.size(); ++i) at_border += s[i].x == 0 || s[i].y == 0 || s[i].x == 259 || s[i].y == 149;
-  EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(saturated, 100);
+  EXPECT_EQ(w.mismatches, 0);
+  EXPECT_GT(w.saturated, 100);
   EXPECT_GT(at_border, 100);
   EXPECT_GT(s.size(), 7000u);
 }
