@@ -11,8 +11,9 @@ namespace gridtopo::slam {
 
 struct BeamOptions {
   /// Returns at or beyond this range (m) are not used as obstacles: free space is marked up to it and the
-  /// beam is not matched. 0 = the sensor's max_range.
-  double max_usable_range = 30.0;
+  /// beam is not matched. 0 = the sensor's max_range. 60 m: a long-range laser's far walls hold the heading
+  /// outdoors (the drifting campus log: 40.6 m with 30, 0.27 m with 60, the filter alone; doc/slam.md).
+  double max_usable_range = 60.0;
   double min_range = 0.05;  ///< returns closer than this (m) are ignored
   /// REP-117: a "no return" reading (+inf or >= max_range) clears free space up to no_return_range;
   /// NaN / zero / negative readings carry no information and are ignored.
