@@ -108,14 +108,16 @@ TEST(EvalApp, TheRunsLoopClosureSummaryFromTheStatsBesideTheTrajectory) {
   EXPECT_EQ(r.output.find("loop closure"), std::string::npos) << r.output;
   std::ofstream(stats) << "# step scan_index timestamp\n0 0 0\n"
                        << "# loop_closure: nodes 1963 searches 1193 closures 168 rejected 2 ambiguous 12 on_border 3 "
-                          "suspect_steps 27 optimisations 51 feedbacks 0 global_searches 515 global_proposed 32 "
+                          "suspect_steps 27 optimisations 51 feedbacks 0 global_searches 515 global_refuted 7 global_proposed 32 "
+                          "global_followed 5 "
                           "global_accepted 28 global_contradicted 4 global_dropped 1 largest_correction_xy 95.66 "
                           "largest_correction_theta 0.6816\n";
   r = run("-r " + rel.string() + " -t " + traj.string() + " --json " + json.string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("loop closure (" + stats.string() +
                           "): 168 accepted (28 global), 2 switched off, largest correction 95.66 m / 0.6816 rad; "
-                          "global search: 515 searches, 32 proposed, 4 contradicted, 1 dropped\n"),
+                          "global search: 515 searches, 7 refuted by what the place saw, 32 proposed (5 followed), 4 "
+                          "contradicted, 1 dropped\n"),
             std::string::npos)
       << r.output;
   const std::string j = slurp(json);

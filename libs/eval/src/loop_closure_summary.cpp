@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/ini_value.h"
@@ -59,8 +60,10 @@ std::string loopClosureSummaryText(const LoopClosureSummary& s) {
     o << ", largest correction " << io::formatDouble(*xy) << " m / "
       << io::formatDouble(s.get("largest_correction_theta").value_or(0.0)) << " rad";
   if (s.get("global_searches"))
-    o << "; global search: " << count("global_searches") << " searches, " << count("global_proposed")
-      << " proposed, " << count("global_contradicted") << " contradicted, " << count("global_dropped")
+    o << "; global search: " << count("global_searches") << " searches, "
+      << (s.get("global_refuted") ? std::to_string(count("global_refuted")) + " refuted by what the place saw, " : "")
+      << count("global_proposed") << " proposed"
+      << (s.get("global_followed") ? " (" + std::to_string(count("global_followed")) + " followed)" : "") << ", " << count("global_contradicted") << " contradicted, " << count("global_dropped")
       << " dropped";
   o << "\n";
   return o.str();

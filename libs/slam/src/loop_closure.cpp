@@ -153,6 +153,7 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   }
   thinInPlace(n.points, o_.resolution);
   n.points.shrink_to_fit();
+  n.sensor = {scan.sensor.x, scan.sensor.y};
   if (nodes_.empty()) {
     graph_.addNode(filter_pose);
   } else {
@@ -587,6 +588,17 @@ CorrelationGrid LoopCloser::placeGrid(std::size_t j, const std::vector<Pose2>& g
                          o_.refine_sigma);
 }
 
+ObservedArea LoopCloser::placeObservedArea(std::size_t j, const std::vector<Pose2>& geometry) const {
+  const auto [t0, t1] = stretchOf(j, o_.global_query_m, o_.global_query_m);
+  std::vector<ObservedScan> scans;
+  scans.reserve(t1 + 1 - t0);
+  for (std::size_t k = t0; k <= t1; ++k) scans.push_back({relative(geometry[j], geometry[k]), nodes_[k].sensor, &nodes_[k].points});
+  // Cells of twice the grid's resolution; a beam's last 0.3 m and 0.2 m around every hit are not free: the field
+  // of a hit reaches ~3 field_sigma, and a query point that close to a wall the place saw is a near miss, not a
+  // contradiction.
+  return ObservedArea(scans, 2.0 * o_.resolution, 0.3, 0.2);
+}
+
 bool LoopCloser::closedRecently(std::size_t submap, double since_travelled) const {
   for (auto c = closures_.rbegin(); c != closures_.rend(); ++c) {
     // (global and backfilled closures are appended after newer windowed ones: no early stop on the node's order)
@@ -636,102 +648,163 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
   std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.place < b.place;
   });
-  std::vector<std::size_t> tried;  // nodes of the places matched: distinct places only
   const std::vector<PathDrift> drift = driftToSubmaps(c);
   // The branch and bound's points: a search at a bound as low as global_min_score prunes little, and its cost grows
   // with the points; a thinned query finds the same best cell (the refinement below then scores every point). Its
   // bound is a little lower than the full query's (the thinned mean is a sample of it).
-  std::vector<Point2> search_query = query;
-  const bool thinned = o_.global_search_voxel > o_.query_voxel;
-  if (thinned) thinInPlace(search_query, o_.global_search_voxel);
-  const double search_bound = thinned ? 0.9 * o_.global_min_score : o_.global_min_score;
+  GlobalQuery q;
+  q.node = c;
+  q.points = query;
+  q.search_points = query;
+  q.thinned = o_.global_search_voxel > o_.query_voxel;
+  if (q.thinned) thinInPlace(q.search_points, o_.global_search_voxel);
   double d_max = o_.resolution;
-  for (const Point2& q : query) d_max = std::max(d_max, std::hypot(q.x, q.y));
-  const double dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
-  for (const Scored& cand : scored) {
-    if (tried.size() >= static_cast<std::size_t>(o_.global_candidates)) break;
-    const std::size_t j = places_[cand.place].node;
-    // A place the windowed search reaches and has just closed is closed: its window holds the drift the graph's
-    // least-drift path to the place can have gathered (not capped by window_xy_max), the estimate lies within that
-    // window plus half a view, and one of the newest query's nodes is tied to the place's submap or a neighbour by
-    // a windowed closure. The global search spends its exact matches elsewhere (on Intel it would otherwise re-close
-    // ~100 places the windowed search closes anyway, at +40 % CPU); a place in reach that the windowed search did
-    // not close (its match fell on the window's border, or on a look-alike) is still matched here.
-    {
-      const std::size_t s = std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes));
-      const PathDrift& pd = drift[s];
-      const double window = driftWindowXy(pd);
-      const Pose2& pj = graph_.pose(j);
-      const Pose2& pc = graph_.pose(c);
-      if (window <= o_.window_xy_max && std::hypot(pj.x - pc.x, pj.y - pc.y) < window + 0.5 * o_.point_range &&
-          closedRecently(s, nodes_[i].travelled - o_.global_query_m))
-        continue;
-    }
-    bool distinct = true;
+  for (const Point2& p : query) d_max = std::max(d_max, std::hypot(p.x, p.y));
+  q.dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
+  std::vector<std::size_t> tried;  // nodes of the places matched: distinct places only
+  const auto distinct = [&](std::size_t j) {
     for (std::size_t t : tried)
-      if (std::abs(nodes_[t].travelled - nodes_[j].travelled) < o_.global_independent_m) distinct = false;
-    if (!distinct) continue;
+      if (std::abs(nodes_[t].travelled - nodes_[j].travelled) < o_.global_independent_m) return false;
+    return true;
+  };
+  // First where the newest match waiting for agreement puts the query: the signatures of a return's later queries
+  // need not rank that place again (the hospital's return, doc/slam.md "Following a match").
+  if (const auto predicted = predictedPlace(c, latest, geometry)) {
+    const auto& [j, guess] = *predicted;
+    if (!leftToWindowedSearch(j, c, drift)) {
+      tried.push_back(j);
+      // The prediction is as good as the trajectory since the match: the windowed search's smallest window. The
+      // plain score's bar is lower (a return runs on past the places' stretches: the hospital's, past the log's
+      // start, plain 0.24-0.44); what the place saw judges the match as it judges every other.
+      SearchWindow w;
+      w.center = guess;
+      w.xy = o_.window_xy_min;
+      w.theta = o_.window_theta_min;
+      if (matchGlobally(q, j, w, o_.global_follow_min_score, drift, geometry)) ++global_followed_;
+    }
+  }
+  const std::size_t followed = tried.size();
+  for (const Scored& cand : scored) {
+    if (tried.size() >= followed + static_cast<std::size_t>(o_.global_candidates)) break;
+    const std::size_t j = places_[cand.place].node;
+    if (leftToWindowedSearch(j, c, drift) || !distinct(j)) continue;
     tried.push_back(j);
     // The exact match: the query against the place's stretches both ways, around the signature's heading.
-    const CorrelationGrid grid = placeGrid(j, geometry);
     SearchWindow w;
     w.center = {0.0, 0.0, cand.yaw};
     w.xy = o_.global_window_xy;
     w.theta = o_.global_window_theta;
-    const auto found = branchAndBoundSearch(grid, search_query, w, search_bound);
-    if (!found) continue;
-    const double margin_xy = 4.0 * grid.resolution(), margin_th = 4.0 * dtheta;
-    if (std::abs(found->pose.x) > w.xy - margin_xy || std::abs(found->pose.y) > w.xy - margin_xy ||
-        std::abs(wrapAngle(found->pose.theta - w.center.theta)) > w.theta - margin_th)
-      continue;
-    const CorrelativeMatch m = refineMatch(grid, query, found->pose, dtheta);
-    if (m.score < o_.global_min_score) continue;
-    if (o_.ambiguity_ratio < 1.0) {
-      // Another pose that scores nearly as well on the search's (thinned) points as the best one does.
-      const Point2 at{m.pose.x, m.pose.y};
-      const double own = thinned ? found->score : m.score;
-      if (branchAndBoundSearch(grid, search_query, w, std::max(search_bound, o_.ambiguity_ratio * own), &at,
-                               o_.ambiguity_distance))
-        continue;
-    }
-    ++global_proposed_;
-    // No bound from the drift a long trajectory can have gathered: a building's odometry can drift by a third of
-    // the travel (the outdoor campus log), and agreement decides (verifyGlobalClosures). But where the trajectory
-    // between the place and the query is short enough to trust (global_consistency_max_m), the match must agree
-    // with it as the windowed search's own window would (a look-alike corridor a few metres beside the place).
-    const Pose2 estimate = relative(graph_.pose(j), graph_.pose(c));
-    const double off_xy = std::hypot(m.pose.x - estimate.x, m.pose.y - estimate.y);
-    const double off_theta = std::abs(wrapAngle(m.pose.theta - estimate.theta));
-    // Beyond that, the heading: the filter's heading drifts by at most window_theta_per_m per metre of the graph's
-    // least-drift path (plus the suspect steps' disagreement), and so the position by that heading times the
-    // path; a match that turns the trajectory further is a look-alike (the same corner elsewhere in the building).
-    const PathDrift& pd = drift[std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes))];
-    const double bound_theta = o_.window_theta_min + o_.window_theta_per_m * pd.travel + pd.suspect_theta;
-    const double bound_xy = o_.window_xy_min + o_.window_xy_per_m * pd.travel + pd.suspect_xy + bound_theta * pd.travel;
-    if (off_theta > bound_theta || off_xy > bound_xy) {
-      ++global_contradicted_;
-      continue;
-    }
-    const double chain = nodes_[c].travelled - nodes_[j].travelled;
-    if (chain <= o_.global_consistency_max_m) {
-      const Pose2 along = relative(geometry[j], geometry[c]);
-      const Pose2 e = relative(along, m.pose);
-      if (std::hypot(e.x, e.y) > o_.global_consistency_xy + o_.window_xy_per_m * chain ||
-          std::abs(e.theta) > o_.window_theta_min + o_.window_theta_per_m * chain) {
-        ++global_contradicted_;
-        continue;
+    matchGlobally(q, j, w, o_.global_min_score, drift, geometry);
+  }
+}
+
+bool LoopCloser::leftToWindowedSearch(std::size_t j, std::size_t c, const std::vector<PathDrift>& drift) const {
+  // A place the windowed search reaches and has just closed is closed: its window holds the drift the graph's
+  // least-drift path to the place can have gathered (not capped by window_xy_max), the estimate lies within that
+  // window plus half a view, and one of the newest query's nodes is tied to the place's submap or a neighbour by
+  // a windowed closure. The global search spends its exact matches elsewhere (on Intel it would otherwise re-close
+  // ~100 places the windowed search closes anyway, at +40 % CPU); a place in reach that the windowed search did
+  // not close (its match fell on the window's border, or on a look-alike) is still matched here.
+  const std::size_t s = std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes));
+  const double window = driftWindowXy(drift[s]);
+  const Pose2& pj = graph_.pose(j);
+  const Pose2& pc = graph_.pose(c);
+  return window <= o_.window_xy_max && std::hypot(pj.x - pc.x, pj.y - pc.y) < window + 0.5 * o_.point_range &&
+         closedRecently(s, nodes_.back().travelled - o_.global_query_m);
+}
+
+std::optional<std::pair<std::size_t, Pose2>> LoopCloser::predictedPlace(std::size_t c, double latest,
+                                                                        const std::vector<Pose2>& geometry) const {
+  for (std::size_t k = pending_.size(); k-- > 0;) {
+    const GlobalMatch& g = pending_[k];
+    if (g.accepted || g.node == c) continue;
+    // The query's node in the frame of the match's place, through the trajectory since the match's query.
+    const Pose2 at = compose(g.z, relative(geometry[g.node], geometry[c]));
+    // The node of the place's pass nearest to it (a pass: the trajectory global_consistency_max_m either side).
+    const auto [p0, p1] = stretchOf(g.place, o_.global_consistency_max_m, o_.global_consistency_max_m);
+    std::size_t best = p0;
+    double best_d = 1e300;
+    for (std::size_t j = p0; j <= p1 && nodes_[j].travelled <= latest; ++j) {
+      const Pose2 pj = relative(geometry[g.place], geometry[j]);
+      const double d = std::hypot(pj.x - at.x, pj.y - at.y);
+      if (d < best_d) {
+        best_d = d;
+        best = j;
       }
     }
-    GlobalMatch g;
-    g.node = c;
-    g.place = j;
-    g.z = m.pose;
-    g.sqrt_information = closureSqrtInformation(grid, query, m.pose, dtheta);
-    g.score = m.score;
-    g.offset_xy = off_xy;
-    g.offset_theta = off_theta;
-    pending_.push_back(g);
+    // Beyond half a view from every pose of the pass, the query has left it.
+    if (best_d > 0.5 * o_.point_range) return std::nullopt;
+    return std::make_pair(best, relative(relative(geometry[g.place], geometry[best]), at));
   }
+  return std::nullopt;
+}
+
+bool LoopCloser::matchGlobally(const GlobalQuery& q, std::size_t j, const SearchWindow& w, double min_score,
+                               const std::vector<PathDrift>& drift, const std::vector<Pose2>& geometry) {
+  const CorrelationGrid grid = placeGrid(j, geometry);
+  const double search_bound = q.thinned ? 0.9 * min_score : min_score;
+  const auto found = branchAndBoundSearch(grid, q.search_points, w, search_bound);
+  if (!found) return false;
+  const double margin_xy = 4.0 * grid.resolution(), margin_th = 4.0 * q.dtheta;
+  if (std::abs(found->pose.x - w.center.x) > w.xy - margin_xy ||
+      std::abs(found->pose.y - w.center.y) > w.xy - margin_xy ||
+      std::abs(wrapAngle(found->pose.theta - w.center.theta)) > w.theta - margin_th)
+    return false;
+  const CorrelativeMatch m = refineMatch(grid, q.points, found->pose, q.dtheta);
+  if (m.score < min_score) return false;
+  // Judged where the place looked: the query's points inside what its scans saw must score global_min_observed,
+  // and few may fall where its beams passed freely (a look-alike's walls cross the true place's free space).
+  const MatchEvidence evidence = matchEvidence(grid, placeObservedArea(j, geometry), q.points, m.pose);
+  if (evidence.observed_score < o_.global_min_observed || evidence.contradiction > o_.global_max_contradiction) {
+    ++global_refuted_;
+    return false;
+  }
+  if (o_.ambiguity_ratio < 1.0) {
+    // Another pose that scores nearly as well on the search's (thinned) points as the best one does.
+    const Point2 at{m.pose.x, m.pose.y};
+    const double own = q.thinned ? found->score : m.score;
+    if (branchAndBoundSearch(grid, q.search_points, w, std::max(search_bound, o_.ambiguity_ratio * own), &at,
+                             o_.ambiguity_distance))
+      return false;
+  }
+  ++global_proposed_;
+  // No bound from the drift a long trajectory can have gathered: a building's odometry can drift by a third of
+  // the travel (the outdoor campus log), and agreement decides (verifyGlobalClosures). But where the trajectory
+  // between the place and the query is short enough to trust (global_consistency_max_m), the match must agree
+  // with it as the windowed search's own window would (a look-alike corridor a few metres beside the place).
+  const Pose2 estimate = relative(graph_.pose(j), graph_.pose(q.node));
+  const double off_xy = std::hypot(m.pose.x - estimate.x, m.pose.y - estimate.y);
+  const double off_theta = std::abs(wrapAngle(m.pose.theta - estimate.theta));
+  // Beyond that, the heading: the filter's heading drifts by at most window_theta_per_m per metre of the graph's
+  // least-drift path (plus the suspect steps' disagreement), and so the position by that heading times the
+  // path; a match that turns the trajectory further is a look-alike (the same corner elsewhere in the building).
+  const PathDrift& pd = drift[std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes))];
+  const double bound_theta = o_.window_theta_min + o_.window_theta_per_m * pd.travel + pd.suspect_theta;
+  const double bound_xy = o_.window_xy_min + o_.window_xy_per_m * pd.travel + pd.suspect_xy + bound_theta * pd.travel;
+  if (off_theta > bound_theta || off_xy > bound_xy) {
+    ++global_contradicted_;
+    return false;
+  }
+  const double chain = nodes_[q.node].travelled - nodes_[j].travelled;
+  if (chain <= o_.global_consistency_max_m) {
+    const Pose2 along = relative(geometry[j], geometry[q.node]);
+    const Pose2 e = relative(along, m.pose);
+    if (std::hypot(e.x, e.y) > o_.global_consistency_xy + o_.window_xy_per_m * chain ||
+        std::abs(e.theta) > o_.window_theta_min + o_.window_theta_per_m * chain) {
+      ++global_contradicted_;
+      return false;
+    }
+  }
+  GlobalMatch g;
+  g.node = q.node;
+  g.place = j;
+  g.z = m.pose;
+  g.sqrt_information = closureSqrtInformation(grid, q.points, m.pose, q.dtheta);
+  g.score = m.score;
+  g.offset_xy = off_xy;
+  g.offset_theta = off_theta;
+  pending_.push_back(g);
+  return true;
 }
 
 void LoopCloser::distributeLoopError(std::size_t place, std::size_t node, const Pose2& z) {
@@ -883,6 +956,8 @@ LoopClosureCounts LoopCloser::counts() const {
   c.global_proposed = global_proposed_;
   c.global_dropped = global_dropped_;
   c.global_contradicted = global_contradicted_;
+  c.global_refuted = global_refuted_;
+  c.global_followed = global_followed_;
   return c;
 }
 
@@ -901,7 +976,8 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
   out << std::setprecision(4) << "# loop_closure: nodes " << n.nodes << " searches " << n.searches << " closures "
       << n.accepted << " rejected " << n.rejected << " ambiguous " << n.ambiguous << " on_border " << n.on_border
       << " suspect_steps " << n.suspect_steps << " optimisations " << n.optimizations << " feedbacks " << feedbacks
-      << " global_searches " << n.global_searches << " global_proposed " << n.global_proposed
+      << " global_searches " << n.global_searches << " global_refuted " << n.global_refuted
+      << " global_proposed " << n.global_proposed << " global_followed " << n.global_followed
       << " global_accepted " << n.global_accepted
       << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped
       << " largest_correction_xy " << n.largest_correction_xy << " largest_correction_theta "

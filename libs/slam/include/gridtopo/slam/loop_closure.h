@@ -34,6 +34,7 @@
 #include "gridtopo/slam/correlative_matcher.h"
 #include "gridtopo/slam/loop_closure_options.h"
 #include "gridtopo/slam/motion_model.h"
+#include "gridtopo/slam/observed_area.h"
 #include "gridtopo/slam/place_signature.h"
 #include "gridtopo/slam/pose2.h"
 #include "gridtopo/slam/pose_graph.h"
@@ -63,10 +64,12 @@ struct LoopClosureRecord {
 struct LoopClosureCounts {
   std::size_t nodes = 0, searches = 0, accepted = 0, rejected = 0, ambiguous = 0, on_border = 0, suspect_steps = 0,
               optimizations = 0;
-  /// The global search: searches, exact matches proposed, matches refused because the short trajectory between the
-  /// place and the query contradicts them, matches accepted (after agreement), matches dropped for want of agreement.
-  std::size_t global_searches = 0, global_proposed = 0, global_contradicted = 0, global_accepted = 0,
-              global_dropped = 0;
+  /// The global search: searches, exact matches refuted by what the place saw (observed_area.h), matches proposed
+  /// (of them, followed: found where a waiting match predicted the query), matches refused because the short
+  /// trajectory between the place and the query contradicts them, matches accepted (after agreement), matches
+  /// dropped for want of agreement.
+  std::size_t global_searches = 0, global_refuted = 0, global_proposed = 0, global_followed = 0,
+              global_contradicted = 0, global_accepted = 0, global_dropped = 0;
   /// The largest move of the newest pose by an optimisation with new accepted closures (m, rad), from where the
   /// filter's motions since the previous optimisation put it.
   double largest_correction_xy = 0.0, largest_correction_theta = 0.0;
@@ -121,6 +124,7 @@ class LoopCloser {
     /// The filter's disagreement with the odometry summed over the suspect steps from the first node (m, rad).
     double suspect_xy = 0.0, suspect_theta = 0.0;
     std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
+    Point2 sensor;                ///< the laser's position in the robot frame (where the points' beams start)
     std::optional<Pose2> odometry;  ///< the odometry's motion since the previous node
     std::size_t motion_edge = 0;    ///< the edge from the previous node (none for the first)
   };
@@ -145,6 +149,8 @@ class LoopCloser {
   /// The points of nodes [first, last] in the frame of node `centre`, thinned to one per `voxel`.
   /// The correlation grid a global query is matched against: the place's stretches global_query_m both ways.
   CorrelationGrid placeGrid(std::size_t place_node, const std::vector<Pose2>& geometry) const;
+  /// What the same stretches saw (observed_area.h): a global match is judged on the query points inside it.
+  ObservedArea placeObservedArea(std::size_t place_node, const std::vector<Pose2>& geometry) const;
   std::vector<Point2> stretchPoints(std::size_t centre, std::size_t first, std::size_t last,
                                     const std::vector<Pose2>& geometry, double voxel) const;
   PlaceSignatureShape signatureShape() const;
@@ -183,6 +189,26 @@ class LoopCloser {
   double driftWindowXy(const PathDrift& p) const;
   /// Per submap, the drift from node `from` to the submap's nearest node.
   std::vector<PathDrift> driftToSubmaps(std::size_t from) const;
+  /// A global query: its points (in its middle node's frame), the branch and bound's thinned copy (thinned: a
+  /// copy, not the points) and the heading step of its refinement.
+  struct GlobalQuery {
+    std::size_t node = 0;
+    std::vector<Point2> points, search_points;
+    double dtheta = 0.0;
+    bool thinned = false;
+  };
+  /// The exact match of query `q` against the stretches of place node `place` within `window` (the query in the
+  /// place's frame), judged by its plain score (min_score), by what the place saw, by ambiguity and by the
+  /// trajectory's bounds; a surviving match waits for agreement in pending_ (true).
+  bool matchGlobally(const GlobalQuery& q, std::size_t place, const SearchWindow& window, double min_score,
+                     const std::vector<PathDrift>& drift, const std::vector<Pose2>& geometry);
+  /// Whether the windowed search reaches place node `place` from node `node` and has just closed it.
+  bool leftToWindowedSearch(std::size_t place, std::size_t node, const std::vector<PathDrift>& drift) const;
+  /// Where the newest match waiting for agreement puts node `node`: the node of its place's pass nearest to it
+  /// (none older than travel `latest`; nothing when all are further than half a view) and `node`'s pose in that
+  /// node's frame.
+  std::optional<std::pair<std::size_t, Pose2>> predictedPlace(std::size_t node, double latest,
+                                                              const std::vector<Pose2>& geometry) const;
   /// The square-root information of a match of `query` at `x` in `grid`, from the curvature of its score.
   Eigen::Matrix3d closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
                                          const Pose2& x, double dtheta) const;
@@ -229,7 +255,8 @@ class LoopCloser {
   std::vector<GlobalMatch> pending_;
   bool optimize_now_ = false;
   std::size_t backfill_from_ = static_cast<std::size_t>(-1);  ///< nodes the windowed search revisits (a new loop)
-  std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0;
+  std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0,
+              global_refuted_ = 0, global_followed_ = 0;
 };
 
 /// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then

@@ -55,7 +55,16 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double global_max_distance = 0.75; ///< a candidate's signature distance must be below this (0: identical, 1: unlike)
   double global_window_xy = 3.0;    ///< m, half-width of the exact search around the signature's place
   double global_window_theta = 0.2;  ///< rad, half-width around the signature's heading
-  double global_min_score = 0.45;   ///< the exact match's mean grid value over the query's points
+  /// The exact match's mean grid value over all the query's points. Points where the place never looked lower it
+  /// without contradicting anything, so this bar is low; the next two judge the match where the place looked.
+  double global_min_score = 0.40;
+  /// The mean grid value over the query's points that fall where the place's scans saw (observed_area.h).
+  double global_min_observed = 0.50;
+  /// The largest share of the query's points that may fall in space the place's beams saw free.
+  double global_max_contradiction = 0.10;
+  /// A match waiting for agreement predicts where each later query lies in its place's pass; the query is matched
+  /// there first, within the windowed search's smallest window, to this plain score (the last two bars unchanged).
+  double global_follow_min_score = 0.25;
   /// m: the branch and bound of a global match scores the query thinned to one point per voxel of this size (its
   /// refinement and final score use every point); 0: every point throughout.
   double global_search_voxel = 0.3;
