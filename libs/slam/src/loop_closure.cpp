@@ -592,7 +592,8 @@ ObservedArea LoopCloser::placeObservedArea(std::size_t j, const std::vector<Pose
   const auto [t0, t1] = stretchOf(j, o_.global_query_m, o_.global_query_m);
   std::vector<ObservedScan> scans;
   scans.reserve(t1 + 1 - t0);
-  for (std::size_t k = t0; k <= t1; ++k) scans.push_back({relative(geometry[j], geometry[k]), nodes_[k].sensor, &nodes_[k].points});
+  for (std::size_t k = t0; k <= t1; ++k)
+    scans.push_back({relative(geometry[j], geometry[k]), nodes_[k].sensor, &nodes_[k].points});
   // Cells of twice the grid's resolution; a beam's last 0.3 m and 0.2 m around every hit are not free: the field
   // of a hit reaches ~3 field_sigma, and a query point that close to a wall the place saw is a near miss, not a
   // contradiction.
