@@ -63,7 +63,8 @@ std::string loopClosureSummaryText(const LoopClosureSummary& s) {
     o << "; global search: " << count("global_searches") << " searches, "
       << (s.get("global_refuted") ? std::to_string(count("global_refuted")) + " refuted by what the place saw, " : "")
       << count("global_proposed") << " proposed"
-      << (s.get("global_followed") ? " (" + std::to_string(count("global_followed")) + " followed)" : "") << ", " << count("global_contradicted") << " contradicted, " << count("global_dropped")
+      << (s.get("global_followed") ? " (" + std::to_string(count("global_followed")) + " followed)" : "") << ", "
+      << count("global_contradicted") << " contradicted, " << count("global_dropped")
       << " dropped";
   o << "\n";
   return o.str();

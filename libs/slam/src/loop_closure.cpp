@@ -33,11 +33,6 @@ void thinInPlace(std::vector<Point2>& pts, double voxel) {
   pts.resize(k);
 }
 
-Point2 transform(const Pose2& t, const Point2& p) {
-  const double c = std::cos(t.theta), s = std::sin(t.theta);
-  return {t.x + c * p.x - s * p.y, t.y + s * p.x + c * p.y};
-}
-
 // How many of the values (travels, m) lie at least `gap` apart, taken greedily from the smallest.
 int spacedCount(std::vector<double> values, double gap) {
   std::sort(values.begin(), values.end());
@@ -618,7 +613,7 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
   // with).
   const std::size_t c = stretchOf(i, half, 0.0).first;
   const auto [q0, q1] = stretchOf(c, half, half);
-  const std::vector<Point2> query = stretchPoints(c, q0, q1, geometry, o_.query_voxel);
+  std::vector<Point2> query = stretchPoints(c, q0, q1, geometry, o_.query_voxel);
   if (query.size() < 50) return;
   const PlaceSignature signature(query, signatureShape());
   if (signature.empty()) return;
@@ -655,12 +650,12 @@ void LoopCloser::proposeGlobalClosures(const std::vector<Pose2>& geometry) {
   // bound is a little lower than the full query's (the thinned mean is a sample of it).
   GlobalQuery q;
   q.node = c;
-  q.points = query;
   q.search_points = query;
+  q.points = std::move(query);
   q.thinned = o_.global_search_voxel > o_.query_voxel;
   if (q.thinned) thinInPlace(q.search_points, o_.global_search_voxel);
   double d_max = o_.resolution;
-  for (const Point2& p : query) d_max = std::max(d_max, std::hypot(p.x, p.y));
+  for (const Point2& p : q.points) d_max = std::max(d_max, std::hypot(p.x, p.y));
   q.dtheta = std::acos(std::max(-1.0, 1.0 - o_.resolution * o_.resolution / (2.0 * d_max * d_max)));
   std::vector<std::size_t> tried;  // nodes of the places matched: distinct places only
   const auto distinct = [&](std::size_t j) {

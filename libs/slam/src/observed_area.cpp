@@ -4,14 +4,6 @@
 #include <cmath>
 
 namespace gridtopo::slam {
-namespace {
-
-Point2 apply(const Pose2& t, const Point2& p) {
-  const double c = std::cos(t.theta), s = std::sin(t.theta);
-  return {t.x + c * p.x - s * p.y, t.y + s * p.x + c * p.y};
-}
-
-}  // namespace
 
 ObservedArea::ObservedArea(const std::vector<ObservedScan>& scans, double cell, double free_margin,
                            double hit_clearance)
@@ -24,8 +16,8 @@ ObservedArea::ObservedArea(const std::vector<ObservedScan>& scans, double cell, 
     ymax = std::max(ymax, p.y);
   };
   for (const ObservedScan& s : scans) {
-    extend(apply(s.pose, s.sensor));
-    for (const Point2& p : *s.hits) extend(apply(s.pose, p));
+    extend(transform(s.pose, s.sensor));
+    for (const Point2& p : *s.hits) extend(transform(s.pose, p));
   }
   if (xmin > xmax) return;
   const int margin = static_cast<int>(std::ceil(hit_clearance / cell)) + 2;
@@ -40,9 +32,9 @@ ObservedArea::ObservedArea(const std::vector<ObservedScan>& scans, double cell, 
            static_cast<std::size_t>(static_cast<int>((x - x0_) / cell));
   };
   for (const ObservedScan& s : scans) {
-    const Point2 from = apply(s.pose, s.sensor);
+    const Point2 from = transform(s.pose, s.sensor);
     for (const Point2& p : *s.hits) {
-      const Point2 to = apply(s.pose, p);
+      const Point2 to = transform(s.pose, p);
       const double dx = to.x - from.x, dy = to.y - from.y, length = std::hypot(dx, dy);
       // Half-cell steps along the beam: every cell it crosses is visited.
       const int steps = static_cast<int>(length / (0.5 * cell)) + 1;
@@ -95,7 +87,7 @@ MatchEvidence matchEvidence(const CorrelationGrid& grid, const ObservedArea& are
   std::size_t seen = 0, free = 0;
   double sum = 0.0;
   for (const Point2& q : query) {
-    const Point2 p = apply(x, q);
+    const Point2 p = transform(x, q);
     if (area.seen(p)) {
       ++seen;
       sum += grid.interpolated(p.x, p.y);

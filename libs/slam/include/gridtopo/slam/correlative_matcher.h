@@ -7,6 +7,7 @@
 // so a candidate's score at level h bounds the scores of the 4^h finer candidates it covers. The result is the
 // best-scoring pose of the whole window on the finest level, then refined by hill climbing on the interpolated
 // grid.
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -19,6 +20,12 @@ namespace gridtopo::slam {
 struct Point2 {
   double x = 0.0, y = 0.0;
 };
+
+/// t ⊕ p: the point p, given in the frame of t, in t's parent frame.
+inline Point2 transform(const Pose2& t, const Point2& p) {
+  const double c = std::cos(t.theta), s = std::sin(t.theta);
+  return {t.x + c * p.x - s * p.y, t.y + s * p.x + c * p.y};
+}
 
 class CorrelationGrid {
  public:

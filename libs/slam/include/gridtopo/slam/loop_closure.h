@@ -189,8 +189,8 @@ class LoopCloser {
   double driftWindowXy(const PathDrift& p) const;
   /// Per submap, the drift from node `from` to the submap's nearest node.
   std::vector<PathDrift> driftToSubmaps(std::size_t from) const;
-  /// A global query: its points (in its middle node's frame), the branch and bound's thinned copy (thinned: a
-  /// copy, not the points) and the heading step of its refinement.
+  /// A global query: its points (in its middle node's frame), the copy the branch and bound scores (thinned to
+  /// global_search_voxel when `thinned`) and the heading step of its refinement.
   struct GlobalQuery {
     std::size_t node = 0;
     std::vector<Point2> points, search_points;

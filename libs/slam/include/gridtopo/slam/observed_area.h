@@ -33,8 +33,6 @@ class ObservedArea {
 
   bool seen(const Point2& p) const { return at(p, kSeen); }
   bool seenFree(const Point2& p) const { return at(p, kFree); }
-  double cell() const { return cell_; }
-  std::size_t bytes() const { return flags_.capacity(); }
 
  private:
   static constexpr std::uint8_t kSeen = 1, kFree = 2;
