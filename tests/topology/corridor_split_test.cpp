@@ -107,6 +107,49 @@ TEST(CorridorSplit, OtherRegionsSegmentationAndLabelsAreUnchanged) {
   EXPECT_EQ(b.graph.nodes.size(), 7u);
 }
 
+// The in-place overload (over the input's id image, the graph stage's) gives the copying one's regions and ids;
+// the copying one and a shallow copy given to the in-place one leave the caller's image as it was.
+TEST(CorridorSplit, InPlaceEqualsCopyAndSparesSharedImages) {
+  cv::Mat l = emptyLabels();
+  corridor(l, {50, 250}, {450, 250});
+  corridor(l, {250, 50}, {250, 450});
+  corridor(l, {50, 100}, {180, 100});                                              // a straight corridor of its own
+  cv::rectangle(l, cv::Rect(300, 300, 150, 150), cv::Scalar(kRoom), cv::FILLED);  // a room in a corner
+  cv::rectangle(l, cv::Rect(340, 268, 30, 32), cv::Scalar(kDoor), cv::FILLED);     // its door onto the corridor
+  const RegionMap before = extractRegions(l, kRes);
+  const cv::Mat ids_before = before.ids.clone();
+  const RegionMap copied = splitCorridors(before, kRes);
+  EXPECT_EQ(cv::countNonZero(before.ids != ids_before), 0);
+  RegionMap shared = before;  // shares the id image with `before`
+  const RegionMap from_shared = splitCorridors(std::move(shared), kRes);
+  EXPECT_EQ(cv::countNonZero(before.ids != ids_before), 0);
+  RegionMap own = before;
+  own.ids = before.ids.clone();
+  const int* own_data = own.ids.ptr<int>(0);
+  const RegionMap in_place = splitCorridors(std::move(own), kRes);
+  EXPECT_EQ(in_place.ids.ptr<int>(0), own_data);  // no second image
+  ASSERT_EQ(countLabel(copied, kCorridor), 6);     // the cross's five pieces and the straight corridor
+  for (const RegionMap* r : {&from_shared, &in_place}) {
+    EXPECT_EQ(cv::countNonZero(r->ids != copied.ids), 0);
+    ASSERT_EQ(r->regions.size(), copied.regions.size());
+    for (std::size_t i = 0; i < copied.regions.size(); ++i) {
+      EXPECT_EQ(r->regions[i].id, copied.regions[i].id);
+      EXPECT_EQ(r->regions[i].label, copied.regions[i].label);
+      EXPECT_EQ(r->regions[i].cells, copied.regions[i].cells);
+      EXPECT_EQ(r->regions[i].bbox, copied.regions[i].bbox);
+    }
+  }
+  // Every cell of an input region is in an output region of the same label, and no other cell is.
+  for (int y = 0; y < l.rows; ++y)
+    for (int x = 0; x < l.cols; ++x) {
+      const int a = before.ids.at<int>(y, x), b = in_place.ids.at<int>(y, x);
+      ASSERT_EQ(a > 0, b > 0) << x << "," << y;
+      if (a > 0) {
+        ASSERT_EQ(before.region(a).label, in_place.region(b).label);
+      }
+    }
+}
+
 // thinZhangSuen visits only the cells next to the last removals; it must give OpenCV's skeleton cell for cell, on
 // shapes that touch the image border, have holes and one-cell spurs, and with grey values either side of 128.
 TEST(CorridorSplit, ThinningEqualsOpenCvZhangSuen) {

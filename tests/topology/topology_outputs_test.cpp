@@ -74,3 +74,17 @@ TEST(TopologyOutputs, LeavesOutWhatTheRunDoesNotHave) {
   EXPECT_FALSE(fs::exists(dir / "segmentation_colour.png"));
   fs::remove_all(dir);
 }
+
+// overlay.png's enlargement stays within ImageMagick's default limits (16 384 px a side, 128 Mpx): the hospital's
+// SLAM map (10 079 x 5 034 cells) gets 1 instead of 2; small maps keep what was asked for.
+TEST(TopologyOutputs, OverlayScaleStaysWithinCommonImageLimits) {
+  EXPECT_EQ(overlayScaleFor({821, 773}, 2), 2);     // Intel
+  EXPECT_EQ(overlayScaleFor({821, 773}, 8), 8);     // 6 568 x 6 184 = 40.6 Mpx
+  EXPECT_EQ(overlayScaleFor({1030, 1028}, 0), 1);   // at least 1
+  EXPECT_EQ(overlayScaleFor({10079, 5034}, 2), 1);  // the hospital: 20 158 px wide at 2
+  EXPECT_EQ(overlayScaleFor({8192, 100}, 2), 2);    // 16 384 px: just fits
+  EXPECT_EQ(overlayScaleFor({8193, 100}, 2), 1);
+  EXPECT_EQ(overlayScaleFor({6000, 6000}, 2), 1);   // 144 Mpx at 2
+  EXPECT_EQ(overlayScaleFor({5000, 5000}, 3), 2);   // 225 Mpx at 3, 100 at 2
+  EXPECT_EQ(overlayScaleFor({20000, 20000}, 2), 1);  // larger than the limits even at 1: 1
+}

@@ -221,14 +221,27 @@ cv::Mat thinZhangSuen(const cv::Mat& mask) {
 
 RegionMap splitCorridors(const RegionMap& rm, double resolution, const CorridorSplitOptions& o) {
   if (!o.enabled) return rm;
+  RegionMap copy;
+  copy.ids = rm.ids.clone();
+  copy.regions = rm.regions;
+  return splitCorridors(std::move(copy), resolution, o);
+}
+
+RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitOptions& o) {
+  if (!o.enabled) return std::move(rm);
+  // In place: a region's new ids are written negated, so that the cells of the regions still to come keep their
+  // (positive) old ids and no new id is mistaken for an old one; the signs are turned at the end.
+  // An id image someone else also holds (a shallow copy of the caller's) is copied first.
   RegionMap out;
-  out.ids = cv::Mat(rm.ids.size(), CV_32S, cv::Scalar(0));
+  out.ids = rm.ids.u && rm.ids.u->refcount > 1 ? rm.ids.clone() : rm.ids;
+  rm.ids.release();
+  cv::Mat& ids = out.ids;
   for (const Region& r : rm.regions) {
     // ROI with a one-cell margin (thinning and the neighbour tests read one cell around every pixel).
-    const cv::Rect roi = (r.bbox + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, rm.ids.cols, rm.ids.rows);
+    const cv::Rect roi = (r.bbox + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, ids.cols, ids.rows);
     cv::Mat mask(r.bbox.height + 2, r.bbox.width + 2, CV_8U, cv::Scalar(0));
     const cv::Point off = r.bbox.tl() - cv::Point(1, 1);  // mask (0, 0) in image coordinates
-    cv::Mat(mask, cv::Rect(roi.tl() - off, roi.size())).setTo(255, rm.ids(roi) == r.id);
+    cv::Mat(mask, cv::Rect(roi.tl() - off, roi.size())).setTo(255, ids(roi) == r.id);
     cv::Mat pieces;
     const int k = r.label == static_cast<int>(places::PlaceLabel::Corridor) ? splitOne(mask, resolution, o, pieces)
                                                                              : (pieces = mask / 255, 1);
@@ -239,9 +252,13 @@ RegionMap splitCorridors(const RegionMap& rm, double resolution, const CorridorS
     for (int y = 0; y < pieces.rows; ++y)
       for (int x = 0; x < pieces.cols; ++x) {
         const int p = pieces.at<int>(y, x);
-        if (!p) continue;
         const int gx = x + off.x, gy = y + off.y;
-        out.ids.at<int>(gy, gx) = base + p;
+        if (!p) {
+          // a cell of the region in no piece (none today: the pieces cover the region) is in no region
+          if (mask.at<unsigned char>(y, x)) ids.at<int>(gy, gx) = 0;
+          continue;
+        }
+        ids.at<int>(gy, gx) = -(base + p);  // pieces lie inside the mask: only this region's cells are written
         const std::size_t i = static_cast<std::size_t>(p - 1);
         ++n[i], sx[i] += gx, sy[i] += gy;
         box[i] = n[i] == 1 ? cv::Rect(gx, gy, 1, 1) : (box[i] | cv::Rect(gx, gy, 1, 1));
@@ -257,6 +274,11 @@ RegionMap splitCorridors(const RegionMap& rm, double resolution, const CorridorS
       q.bbox = box[u];
       out.regions.push_back(q);
     }
+  }
+  // New ids positive; a cell whose old id no region listed is in no region (as a fresh image would have it).
+  for (int y = 0; y < ids.rows; ++y) {
+    int* row = ids.ptr<int>(y);
+    for (int x = 0; x < ids.cols; ++x) row[x] = row[x] < 0 ? -row[x] : 0;
   }
   return out;
 }

@@ -158,9 +158,19 @@ TopologicalGraph graphFromJson(const std::string& path) {
   return g;
 }
 
+int overlayScaleFor(cv::Size map, int requested) {
+  int scale = std::max(1, requested);
+  const auto fits = [&](int s) {
+    const long long w = static_cast<long long>(map.width) * s, h = static_cast<long long>(map.height) * s;
+    return w <= kOverlayMaxSide && h <= kOverlayMaxSide && w * h <= kOverlayMaxPixels;
+  };
+  while (scale > 1 && !fits(scale)) --scale;
+  return scale;
+}
+
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& rm,
                       const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages) {
-  scale = std::max(1, scale);
+  scale = overlayScaleFor(occ.cells.size(), scale);
   static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
   // The map's cells drawn straight at the overlay's scale: each output pixel takes the cell
   // cv::resize(..., INTER_NEAREST) would give it (cvFloor(pixel / scale), clamped), one row of cells at a time

@@ -165,8 +165,7 @@ RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double 
                        const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
   // Each step's input is let go once the next image exists (on a large map each is a full-map id image).
   if (rules.rooms_by_segment) regions = splitRoomsBySegments(regions, segmentation, resolution);
-  RegionMap pieces = splitCorridors(regions, resolution, split);
-  regions = RegionMap();
+  RegionMap pieces = splitCorridors(std::move(regions), resolution, split);  // over the input's id image
   return applyGraphRulesTo(pieces, resolution, rules, true);  // `pieces` is ours: its id image becomes the result's
 }
 

@@ -43,7 +43,7 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "smaller connected groups of places (and, with the path, groups it does not enter) are none")
           .add("places_path_step", field(&O::preparation, &MapPreparationOptions::path_step), R::closed(0.01, 10), "m",
                "the path is sampled this far apart for the visibility test")
-          .add("overlay_scale", &O::overlay_scale, R::closed(1, 8), "", "enlargement of overlay.png")
+          .add("overlay_scale", &O::overlay_scale, R::closed(1, 8), "", "enlargement of overlay.png (lowered on maps so large that the image would exceed 16384 px a side or 128 Mpx)")
           .addWords<std::string>("segmentation", field(&O::segmentation), {{"regions", "regions"}, {"doorways", "doorways"}},
                                  "room segmentation: every room / corridor region (regions) or only doorways split")
           .add("merge_contact", field(&O::seg_rules, &SegmentationRules::merge_contact), R::closed(0, 100), "m",

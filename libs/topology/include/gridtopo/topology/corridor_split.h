@@ -21,6 +21,9 @@ struct CorridorSplitOptions {
 /// (same label; new ids, all regions renumbered 1..N in the order rooms, corridors, doorways of the input). Other
 /// regions are kept as they are (with new ids).
 RegionMap splitCorridors(const RegionMap& regions, double resolution, const CorridorSplitOptions& options = {});
+/// The same result, written over `regions`' id image (no second full-map id image: on the hospital's map each is
+/// 200 MB, and this step held the run's peak).
+RegionMap splitCorridors(RegionMap&& regions, double resolution, const CorridorSplitOptions& options = {});
 
 /// Zhang-Suen thinning of `mask` (CV_8U; cells >= 128 are set): the same skeleton (0 / 255) as
 /// cv::ximgproc::thinning(mask, out, THINNING_ZHANGSUEN), cell for cell, but each sub-iteration looks only at the

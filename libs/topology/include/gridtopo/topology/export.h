@@ -25,8 +25,17 @@ inline cv::Vec3b seenNotPlaceColour(int x, int y) {
   return (x + y) % 6 < 2 ? cv::Vec3b(150, 150, 150) : cv::Vec3b(225, 225, 225);
 }
 
+/// The enlargement overlay.png gets: `requested` (at least 1) lowered until the image has at most
+/// kOverlayMaxSide pixels a side and kOverlayMaxPixels in all (ImageMagick's default limits on Debian 12: 16 KP
+/// width and height, 128 MP area), so that common tools open it; 1 if even that is larger. On the Freiburg
+/// hospital's SLAM map (10 079 x 5 034 cells) the default 2 would give a 20 158 x 10 068 image of 609 MB.
+inline constexpr int kOverlayMaxSide = 16384;
+inline constexpr long long kOverlayMaxPixels = 128LL * 1000 * 1000;
+int overlayScaleFor(cv::Size map, int requested);
+
 /// Colour overlay: the map in grey, free cells that are no place hatched (seenNotPlaceColour), place labels coloured (room blue, corridor green, doorway red), region
-/// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image.
+/// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image (as far as
+/// overlayScaleFor allows).
 /// `door_passages`, when given: the chords of the doors the robot's path went through (door_passages.h), in magenta.
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
                       const TopologicalGraph& g, int scale = 2,
