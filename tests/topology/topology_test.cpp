@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <regex>
 #include <set>
 
@@ -60,6 +61,28 @@ TEST(Regions, FloorPlanRegionsAndGraph) {
   EXPECT_NEAR(room->centroid_m.x, 3.0, 1e-9);
   EXPECT_NEAR(room->centroid_m.y, (140 - 49.5 - 0.5) * 0.05, 1e-9);
   EXPECT_EQ(room->cells, 6400);
+}
+
+// The edge routes work on the box of the regions' cells: the same plan in a corner of a large empty map gives the
+// same routes, moved by the plan's offset (an irregular plan, so that routes bend and ties are broken).
+TEST(Regions, EdgeRoutesDoNotDependOnTheEmptyMapAroundTheRegions) {
+  cv::Mat l = floorPlan();
+  cv::circle(l, {300, 60}, 25, cv::Scalar(C), cv::FILLED);  // a hall bulging off the third room
+  l(cv::Rect(150, 100, 30, 8)).setTo(N);                      // a pillar row in the corridor
+  const TopologicalGraph tight = buildGraph(extractRegions(l, 0.05), 0.05);
+  cv::Mat big(900, 1300, CV_8U, cv::Scalar(N));
+  const cv::Point off(777, 611);
+  l.copyTo(big(cv::Rect(off, l.size())));
+  const TopologicalGraph wide = buildGraph(extractRegions(big, 0.05), 0.05);
+  ASSERT_EQ(wide.edges.size(), tight.edges.size());
+  ASSERT_GE(tight.edges.size(), 6u);
+  for (std::size_t i = 0; i < tight.edges.size(); ++i) {
+    ASSERT_EQ(wide.edges[i].path_px.size(), tight.edges[i].path_px.size()) << i;
+    EXPECT_GE(tight.edges[i].path_px.size(), 2u);
+    for (std::size_t k = 0; k < tight.edges[i].path_px.size(); ++k)
+      EXPECT_EQ(wide.edges[i].path_px[k], tight.edges[i].path_px[k] + off) << i << " " << k;
+  }
+  for (std::size_t i = 0; i < tight.nodes.size(); ++i) EXPECT_EQ(wide.nodes[i].anchor_px, tight.nodes[i].anchor_px + off);
 }
 
 TEST(Segmentation, DoorsSplitRoomsAndJoinTheirNeighbours) {

@@ -87,7 +87,23 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
 
 EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
     : rm_(rm) {
-  const cv::Mat& ids = rm.ids;
+  // The box of the cells of every region (from the image: a region's stored box is not trusted here).
+  int x0 = rm.ids.cols, y0 = rm.ids.rows, x1 = -1, y1 = -1;
+  for (int y = 0; y < rm.ids.rows; ++y) {
+    const int* row = rm.ids.ptr<int>(y);
+    int first = -1, last = -1;
+    for (int x = 0; x < rm.ids.cols; ++x)
+      if (row[x] > 0) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    if (first < 0) continue;
+    x0 = std::min(x0, first), x1 = std::max(x1, last), y0 = std::min(y0, y), y1 = y;
+  }
+  if (x1 < 0) return;  // no region: no route
+  box_ = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+  const cv::Mat ids = rm.ids(box_);
+  const cv::Point off = box_.tl();
   const double scale = kPathClearanceScale / resolution;  // cells
   cv::Mat clearance;
   {
@@ -126,7 +142,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     std::memcpy(&both, clearance.ptr<float>(y) + x, sizeof both);
     return static_cast<int>(diagonal ? both >> 16 : both & 0xffff);
   };
-  cost_ = cv::Mat(ids.size(), CV_32S, cv::Scalar(kUnreached));
+  cv::Mat cost(ids.size(), CV_32S, cv::Scalar(kUnreached));  // (1/16 cells) from the cell's region anchor
   parent_ = cv::Mat(ids.size(), CV_8U, cv::Scalar(kNoParent));
   // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
   // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
@@ -134,8 +150,8 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   std::size_t queued = 0;
   for (const Region& r : rm.regions) {
     if (r.cells <= 0) continue;
-    const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)];
-    cost_.at<int>(s) = 0;
+    const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)] - off;
+    cost.at<int>(s) = 0;
     bucket[0].push_back(s.y * ids.cols + s.x);
     ++queued;
   }
@@ -144,14 +160,14 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
     for (std::size_t h = 0; h < b.size(); ++h) {  // steps cost 16..max_step: nothing is added to b meanwhile
       const int i = b[h];
       const int y = i / ids.cols, x = i % ids.cols;
-      if (cost_.at<int>(y, x) != c) continue;  // stale entry
+      if (cost.at<int>(y, x) != c) continue;  // stale entry
       const int id = ids.at<int>(y, x);
       for (int k = 0; k < 8; ++k) {
         const int yy = y + kDy[k], xx = x + kDx[k];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
         const long long nc = c + step(yy, xx, k % 2 != 0);
-        if (nc < cost_.at<int>(yy, xx)) {
-          cost_.at<int>(yy, xx) = static_cast<int>(nc);
+        if (nc < cost.at<int>(yy, xx)) {
+          cost.at<int>(yy, xx) = static_cast<int>(nc);
           parent_.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
           bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
           ++queued;
@@ -167,14 +183,14 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x) {
       const int a = ids.at<int>(y, x);
-      if (a <= 0 || cost_.at<int>(y, x) == kUnreached) continue;
+      if (a <= 0 || cost.at<int>(y, x) == kUnreached) continue;
       for (const auto& o : half) {
         const int yy = y + o[0], xx = x + o[1];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
         const int b = ids.at<int>(yy, xx);
-        if (b <= 0 || b == a || cost_.at<int>(yy, xx) == kUnreached) continue;
-        const double c = static_cast<double>(cost_.at<int>(y, x)) + cost_.at<int>(yy, xx);
-        const cv::Point p(x, y), q(xx, yy);
+        if (b <= 0 || b == a || cost.at<int>(yy, xx) == kUnreached) continue;
+        const double c = static_cast<double>(cost.at<int>(y, x)) + cost.at<int>(yy, xx);
+        const cv::Point p = cv::Point(x, y) + off, q = cv::Point(xx, yy) + off;
         const auto key = std::make_pair(std::min(a, b), std::max(a, b));
         auto it = joins_.find(key);
         if (it == joins_.end() || c < std::get<0>(it->second))
@@ -190,10 +206,11 @@ std::vector<cv::Point> EdgeRouter::route(int a, int b) const {
   const cv::Point lo = std::get<1>(found->second), hi = std::get<2>(found->second);  // cells in min(a, b), max(a, b)
   const cv::Point bp = a < b ? lo : hi, bq = a < b ? hi : lo;
   std::vector<cv::Point> half_a, half_b;
+  const cv::Point off = box_.tl();
   const auto walk = [&](cv::Point p, std::vector<cv::Point>& out) {
     for (;;) {
       out.push_back(p);
-      const int k = parent_.at<unsigned char>(p);
+      const int k = parent_.at<unsigned char>(p - off);
       if (k == kNoParent) break;
       p += cv::Point(kDx[k], kDy[k]);
     }

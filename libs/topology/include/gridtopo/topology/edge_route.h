@@ -36,9 +36,12 @@ struct EdgeRouter {
 
  private:
   const RegionMap& rm_;
-  cv::Mat cost_;    ///< CV_32S cost (1/16 cells) from the cell's region anchor (INT_MAX = not reached)
+  /// The images below cover the box of every region's cell (a cell outside it is in no region, so nothing
+  /// changes: the clearance's nearest non-region cell is never further than the empty frame around the box);
+  /// box_.tl() is their (0, 0) in the id image. On the hospital's map the box is 57 % of the image.
+  cv::Rect box_;
   cv::Mat parent_;  ///< CV_8U direction (0..7, edge_route.cpp kDx / kDy) to the previous cell; 8: anchor, unreached
-  /// (a, b), a < b -> (total cost, cell in a, cell in b) of the cheapest border cell pair
+  /// (a, b), a < b -> (total cost, cell in a, cell in b) of the cheapest border cell pair (id image coordinates)
   std::map<std::pair<int, int>, std::tuple<double, cv::Point, cv::Point>> joins_;
 };
 
