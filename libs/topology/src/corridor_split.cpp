@@ -37,7 +37,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   // Small holes (pillars, furniture, islands of another label) would make loops in the skeleton, and every loop
   // two junctions: they are filled for tracing the skeleton (the pieces still cover only the region's cells). The
   // coarse lattice is filled again: thin parts of the region can open new holes there.
-  const cv::Mat filled = fillSmallHoles(mask, o.max_hole_area / (resolution * resolution));
+  cv::Mat filled = fillSmallHoles(mask, o.max_hole_area / (resolution * resolution));
   cv::Mat small_mask = filled;
   if (f > 1) {
     cv::resize(filled, small_mask, cv::Size((mask.cols + f - 1) / f, (mask.rows + f - 1) / f), 0, 0, cv::INTER_AREA);
@@ -50,6 +50,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   sk = thinZhangSuen(small_mask);
   cv::Mat dist;
   dist = preciseDistance(filled);
+  filled.release();  // on a corridor spanning a large map each of these ROI images is tens of MB: let go early
   // Prune: remove dead-end pixels (min_branch + the corridor's half-width) times, the half-width being the median
   // distance to the wall along the skeleton: a side branch must reach min_branch beyond the corridor's wall to
   // survive (a recess or a bump of the wall makes a skeleton spur as long as the half-width plus its depth). Longer
@@ -87,7 +88,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   }
   // Junction zones: a disc of the local half-width (+1 cell) around every skeleton point with >= 3 branches.
   cv::Mat zone(mask.size(), CV_8U, cv::Scalar(0)), small_zone(sk.size(), CV_8U, cv::Scalar(0));
-  bool any = false;
+  int junctions = 0;
   for (int y = 1; y < sk.rows - 1; ++y)
     for (int x = 1; x < sk.cols - 1; ++x)
       if (sk.at<unsigned char>(y, x) && crossings(sk, y, x) >= 3) {
@@ -96,21 +97,26 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
         const double r = dist.at<float>(p) + f;
         cv::circle(zone, p, static_cast<int>(std::ceil(r)), cv::Scalar(255), cv::FILLED);
         cv::circle(small_zone, {x, y}, static_cast<int>(std::ceil(r / f)), cv::Scalar(255), cv::FILLED);
-        any = true;
+        ++junctions;
       }
-  if (!any) {
+  dist.release();
+  if (!junctions) {
     pieces.setTo(1, mask);
     return 1;
   }
   zone &= mask;
   // Seeds: junction zones (8-connected components) and the skeleton's branches outside them.
   cv::Mat zid, bid;
-  const int nz = cv::connectedComponents(zone, zid, 8, CV_32S) - 1;
+  // Zones are at most as many as junction points: 16-bit labels when they fit (half the memory of the ROI's ids).
+  const bool narrow = junctions < 0xffff;
+  const int nz = cv::connectedComponents(zone, zid, 8, narrow ? CV_16U : CV_32S) - 1;
+  zone.release();
   const cv::Mat branches = sk & ~small_zone;
   const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
   for (int y = 0; y < mask.rows; ++y)
     for (int x = 0; x < mask.cols; ++x)
-      if (const int z = zid.at<int>(y, x)) pieces.at<int>(y, x) = z;
+      if (const int z = narrow ? zid.at<unsigned short>(y, x) : zid.at<int>(y, x)) pieces.at<int>(y, x) = z;
+  zid.release();
   for (int y = 0; y < bid.rows; ++y)
     for (int x = 0; x < bid.cols; ++x)
       if (const int b = bid.at<int>(y, x)) {
