@@ -75,6 +75,27 @@ TEST(DoorwayGeometry, BothDoorsAreCriticalLinesTheNicheAndTheWallAreNot) {
   EXPECT_TRUE(findDoorways(w.free, kRes, narrow).empty());
 }
 
+// The lines are found over the box of the places: the same world in a large empty map (and touching its border)
+// gives the same lines, moved by its offset.
+TEST(DoorwayGeometry, LinesDoNotDependOnTheEmptyMapAroundThePlaces) {
+  const World w = makeWorld();
+  const std::vector<CriticalLine> tight = findDoorways(w.free, kRes, DoorwayGeometryOptions{});
+  ASSERT_EQ(tight.size(), 2u);
+  for (const cv::Point off : {cv::Point(913, 407), cv::Point(0, 0)}) {
+    cv::Mat big = cv::Mat::zeros(w.free.rows + 700, w.free.cols + 1100, CV_8U);
+    w.free.copyTo(big(cv::Rect(off, w.free.size())));
+    const std::vector<CriticalLine> wide = findDoorways(big, kRes, DoorwayGeometryOptions{});
+    ASSERT_EQ(wide.size(), tight.size());
+    for (std::size_t i = 0; i < tight.size(); ++i) {
+      EXPECT_EQ(wide[i].a, tight[i].a + cv::Point2d(off));
+      EXPECT_EQ(wide[i].b, tight[i].b + cv::Point2d(off));
+      EXPECT_EQ(wide[i].centre, tight[i].centre + off);
+      EXPECT_EQ(wide[i].width, tight[i].width);
+    }
+  }
+  EXPECT_TRUE(findDoorways(cv::Mat::zeros(50, 60, CV_8U), kRes, DoorwayGeometryOptions{}).empty());  // no place
+}
+
 TEST(DoorwayGeometry, TheMissedDoorBecomesTheDoorwayNodeBetweenItsRoomAndTheCorridor) {
   const World w = makeWorld();
   TopologyOptions o;
