@@ -151,6 +151,7 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   for (const Region& r : rm.regions) {
     if (r.cells <= 0) continue;
     const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)] - off;
+    if (!cv::Rect(cv::Point(), ids.size()).contains(s)) continue;  // a region listed without cells in the image
     cost.at<int>(s) = 0;
     bucket[0].push_back(s.y * ids.cols + s.x);
     ++queued;
