@@ -258,12 +258,8 @@ RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitO
     for (int y = 0; y < pieces.rows; ++y)
       for (int x = 0; x < pieces.cols; ++x) {
         const int p = pieces.at<int>(y, x);
+        if (!p) continue;
         const int gx = x + off.x, gy = y + off.y;
-        if (!p) {
-          // a cell of the region in no piece (none today: the pieces cover the region) is in no region
-          if (mask.at<unsigned char>(y, x)) ids.at<int>(gy, gx) = 0;
-          continue;
-        }
         ids.at<int>(gy, gx) = -(base + p);  // pieces lie inside the mask: only this region's cells are written
         const std::size_t i = static_cast<std::size_t>(p - 1);
         ++n[i], sx[i] += gx, sy[i] += gy;
@@ -281,7 +277,8 @@ RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitO
       out.regions.push_back(q);
     }
   }
-  // New ids positive; a cell whose old id no region listed is in no region (as a fresh image would have it).
+  // New ids positive; a cell still holding an old id (in no piece, or of a region not listed) is in no region, as
+  // in a fresh image.
   for (int y = 0; y < ids.rows; ++y) {
     int* row = ids.ptr<int>(y);
     for (int x = 0; x < ids.cols; ++x) row[x] = row[x] < 0 ? -row[x] : 0;
