@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "gridtopo/core/distance_transform.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/pipeline.h"
@@ -111,8 +112,7 @@ PlanGraph planGraphFromReference(const cv::Mat& map_free, const cv::Mat& referen
     if (x0 == 0 || y0 == 0 || x0 + w == size.width || y0 + ht == size.height) continue;
     if (stats.at<int>(h, cv::CC_STAT_AREA) < min_cells) continue;
     const cv::Rect roi(x0 - 1, y0 - 1, w + 2, ht + 2);
-    cv::Mat dist;
-    cv::distanceTransform(hole_ids(roi) == h, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    const cv::Mat dist = preciseDistance(hole_ids(roi) == h);
     cv::Point at;
     cv::minMaxLoc(dist, nullptr, nullptr, nullptr, &at);
     plan.loop_points.push_back(at + roi.tl());

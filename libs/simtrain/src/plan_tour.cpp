@@ -7,6 +7,7 @@
 #include <queue>
 #include <random>
 
+#include "gridtopo/core/distance_transform.h"
 #include "gridtopo/core/error.h"
 
 namespace gridtopo::simtrain {
@@ -98,8 +99,7 @@ Tour planTour(const cv::Mat& free_cells, const cv::Mat& codes, double res, const
   Tour t;
   const int rows = free_cells.rows, cols = free_cells.cols;
   cv::Mat free = free_cells != 0;
-  cv::Mat dist;
-  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat dist = preciseDistance(free);
   dist *= res;  // metres from the cell centre to the nearest non-free cell's centre
   cv::Mat trav = free & ((dist >= o.clearance) | ((codes == kDoorwayCode) & (dist >= o.door_clearance)));
   // The robot drives in the traversable component that holds most corridor cells.

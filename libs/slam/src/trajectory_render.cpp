@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "gridtopo/core/distance_transform.h"
+
 namespace gridtopo::slam {
 
 std::optional<LoopClosure> firstLoopClosure(const std::vector<TimedPose>& trajectory, double radius,
@@ -149,8 +151,7 @@ WallAgreement wallAgreement(const GridMap& a, const GridMap& b, const MapWindow&
   cv::Mat not_wall_a(ia.size(), CV_8UC1);
   for (int r = 0; r < ia.rows; ++r)
     for (int c = 0; c < ia.cols; ++c) not_wall_a.at<unsigned char>(r, c) = ia.at<unsigned char>(r, c) <= g_occ ? 0 : 255;
-  cv::Mat dist;
-  cv::distanceTransform(not_wall_a, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const cv::Mat dist = preciseDistance(not_wall_a);
   std::vector<double> d;
   for (int r = 0; r < ib.rows; ++r)
     for (int c = 0; c < ib.cols; ++c)

@@ -6,7 +6,7 @@
 
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {

@@ -13,7 +13,7 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/edge_route.h"
 #include "gridtopo/topology/regions.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 
 namespace gridtopo::topology {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 #include "mask_ops.h"
 #include "region_merge.h"
 

@@ -10,7 +10,7 @@
 
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/regions.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 
 namespace gridtopo::topology {
 

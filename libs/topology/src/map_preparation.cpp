@@ -1,5 +1,5 @@
 #include "gridtopo/topology/map_preparation.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 
 #include <opencv2/imgproc.hpp>
 

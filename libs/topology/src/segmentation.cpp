@@ -5,7 +5,7 @@
 #include <functional>
 
 #include "gridtopo/places/place_label.h"
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {

@@ -1,4 +1,4 @@
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <vector>
 
-namespace gridtopo::topology {
+namespace gridtopo {
 
 cv::Mat preciseDistance(const cv::Mat& mask) {
   CV_Assert(mask.type() == CV_8U);
@@ -85,4 +85,4 @@ cv::Mat preciseDistance(const cv::Mat& mask) {
   return dst;
 }
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo

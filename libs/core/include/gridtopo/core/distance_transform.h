@@ -1,9 +1,11 @@
 #pragma once
-// The exact Euclidean distance transform the topology uses everywhere (clearances, robot fit, corridor half-widths),
-// cache-friendly on large maps.
+// The exact Euclidean distance transform of every library (the topology's clearances, robot fit and corridor
+// half-widths; the SLAM render's wall agreement; the training tours' clearance; the graph evaluation's holes),
+// cache-friendly on large maps. Use it instead of cv::distanceTransform(..., DIST_MASK_PRECISE), which is wrong on
+// maps wider than 4 096 cells.
 #include <opencv2/core.hpp>
 
-namespace gridtopo::topology {
+namespace gridtopo {
 
 /// Distance of every cell of `mask` (CV_8U) to the nearest zero cell, in cells (CV_32F): the float of the root of the
 /// exact integer squared distance. The same two passes as cv::distanceTransform(mask, out, DIST_L2,
@@ -16,4 +18,4 @@ namespace gridtopo::topology {
 /// number. No zero cell in a column or row gives large values, as OpenCV's (1e15 squared cells before the root).
 cv::Mat preciseDistance(const cv::Mat& mask);
 
-}  // namespace gridtopo::topology
+}  // namespace gridtopo

@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
-#include "gridtopo/topology/distance_transform.h"
+#include "gridtopo/core/distance_transform.h"
 
-using namespace gridtopo::topology;
+using gridtopo::preciseDistance;
 
 namespace {
 // Number of cells whose floats differ in any bit.
