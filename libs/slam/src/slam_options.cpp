@@ -141,6 +141,10 @@ OptionSchema<SlamOptions> makeSchema() {
         "moments fit: Laplace approximation of the weight (false: Riemann sum over the K poses)");
   s.add("proposal_start_spread", field(&O::proposal, &ProposalOptions::start_spread), R::atLeast(0), "",
         "mode search starts at the prediction plus k times a motion-noise draw (0 = the prediction)");
+  s.add("proposal_max_motion_sigmas", field(&O::proposal, &ProposalOptions::max_motion_sigmas), R::atLeast(0),
+        "sigma", "matching fails when the mode lies further from the odometry's prediction (0 = no bound)");
+  s.add("proposal_weak_match_fraction", field(&O::proposal, &ProposalOptions::weak_match_fraction), R::closed(0, 1),
+        "", "proposal_max_motion_sigmas bounds only matches with fewer beams in correspondence than this fraction");
   s.add("proposal_report_mean", field(&O::proposal, &ProposalOptions::report_mean), R::any(), "",
         "trajectory poses are the proposal means (false: the samples)");
   s.add("proposal_beam_sigma", field(&O::proposal, &ProposalOptions::beam_sigma), R::above(0), "m",
