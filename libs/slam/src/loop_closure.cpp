@@ -169,12 +169,10 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
 std::optional<LoopCloser::Disagreement> LoopCloser::suspectDisagreement(const Pose2& motion,
                                                                           const Pose2* odometry) const {
   if (!odometry) return std::nullopt;
-  const OdometryMotionModel::Sigmas sg = motion_.sigmas(*odometry, true);
-  const double ex = motion.x - odometry->x, ey = motion.y - odometry->y;
-  const double et = wrapAngle(motion.theta - odometry->theta);
-  const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
-  if (d2 <= o_.disagreement_sigmas * o_.disagreement_sigmas) return std::nullopt;
-  return Disagreement{std::hypot(ex, ey), std::abs(et)};
+  if (motion_.squaredDeviations(motion, *odometry) <= o_.disagreement_sigmas * o_.disagreement_sigmas)
+    return std::nullopt;
+  return Disagreement{std::hypot(motion.x - odometry->x, motion.y - odometry->y),
+                      std::abs(wrapAngle(motion.theta - odometry->theta))};
 }
 
 PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const {

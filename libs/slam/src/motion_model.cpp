@@ -18,14 +18,18 @@ Pose2 OdometryMotionModel::sample(const Pose2& prev, const Pose2& u, Rng& rng, b
   return compose(prev, noisy);
 }
 
+double OdometryMotionModel::squaredDeviations(const Pose2& d, const Pose2& u, bool has_odometry) const {
+  const Sigmas s = sigmas(u, has_odometry);
+  const double ex = d.x - u.x, ey = d.y - u.y, et = wrapAngle(d.theta - u.theta);
+  return (ex * ex + ey * ey) / (s.xy * s.xy) + et * et / (s.theta * s.theta);
+}
+
 double OdometryMotionModel::logDensity(const Pose2& x, const Pose2& prev, const Pose2& u,
                                        bool has_odometry) const {
   const Sigmas s = sigmas(u, has_odometry);
-  const Pose2 d = relative(prev, x);
-  const double ex = d.x - u.x, ey = d.y - u.y, et = wrapAngle(d.theta - u.theta);
   constexpr double kLog2Pi = 1.8378770664093453;
-  return -0.5 * ((ex * ex + ey * ey) / (s.xy * s.xy) + et * et / (s.theta * s.theta)) - 2.0 * std::log(s.xy) -
-         std::log(s.theta) - 1.5 * kLog2Pi;
+  return -0.5 * squaredDeviations(relative(prev, x), u, has_odometry) - 2.0 * std::log(s.xy) - std::log(s.theta) -
+         1.5 * kLog2Pi;
 }
 
 }  // namespace gridtopo::slam

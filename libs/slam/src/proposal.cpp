@@ -188,15 +188,10 @@ ProposalPlan planProposal(const GridMap& map, const Pose2& prev, const Pose2& u,
   if (!m.ok) return plan;
   // A weakly supported mode far from the odometry's prediction is a wrong mode (an open square, a featureless
   // facade), not a correction: matching failed.
-  if (o.proposal.max_motion_sigmas > 0.0 && has_odometry &&
-      (o.proposal.weak_match_fraction >= 1.0 ||
-       m.score.matched < o.proposal.weak_match_fraction * static_cast<double>(scan.size()))) {
-    const OdometryMotionModel::Sigmas sg = motion.sigmas(u, true);
-    const Pose2 d = relative(prev, m.pose);
-    const double ex = d.x - u.x, ey = d.y - u.y, et = wrapAngle(d.theta - u.theta);
-    const double d2 = (ex * ex + ey * ey) / (sg.xy * sg.xy) + et * et / (sg.theta * sg.theta);
-    if (d2 > o.proposal.max_motion_sigmas * o.proposal.max_motion_sigmas) return plan;
-  }
+  const double bound = o.proposal.max_motion_sigmas, weak = o.proposal.weak_match_fraction;
+  if (bound > 0.0 && has_odometry && (weak >= 1.0 || m.score.matched < weak * static_cast<double>(scan.size())) &&
+      motion.squaredDeviations(relative(prev, m.pose), u) > bound * bound)
+    return plan;
   plan.matched = true;
   if (o.proposal.type == ProposalType::Hahnel) {
     plan.gaussian.mean = m.pose;  // the scan-matched pose; the motion model is sampled around it per particle

@@ -43,6 +43,9 @@ class OdometryMotionModel {
   Sigmas sigmas(const Pose2& u, bool has_odometry = true) const;
   /// Draws x_t ~ p(x_t | prev, u).
   Pose2 sample(const Pose2& prev, const Pose2& u, Rng& rng, bool has_odometry = true) const;
+  /// The squared Mahalanobis distance of the motion `d` (in the previous pose's frame) from the increment u, in
+  /// the deviations sigmas(u): the exponent of p(x | prev, u) times -2, for d = prev⁻¹ ⊕ x.
+  double squaredDeviations(const Pose2& d, const Pose2& u, bool has_odometry = true) const;
   /// ln p(x | prev, u) (full Gaussian normalisation).
   double logDensity(const Pose2& x, const Pose2& prev, const Pose2& u, bool has_odometry = true) const;
   const MotionModelOptions& options() const { return o_; }
