@@ -8,7 +8,8 @@ a column "variant" then names it): mean and worst seed of the all-relations tran
 50 s apart) and revisit means, median CPU and wall time, largest peak RSS; then every seed's error; then, for the
 runs with the loop closure on, its closures from the summary line of each run's stats.txt (kept with keep_maps = true):
 medians over the seeds of the closures proposed (matches that entered the pose graph), accepted, switched off (the
-outlier test), the global search's matches proposed / accepted / dropped, and the largest correction.
+outlier test), the global search's matches proposed / accepted / dropped, and the largest correction; and, per log,
+the loop closure against the filter alone seed by seed (issue 34: on at most 10 % + 1 cm worse than off).
 """
 import glob
 import json
@@ -86,6 +87,26 @@ def main(root):
                     f" {med(lambda c: c.get('global_dropped', 0)):.0f} |"
                     f" {med(lambda c: c.get('largest_correction_xy', 0)):.2f} |"
                     f" {max(c.get('largest_correction_xy', 0) for c in sums):.2f} |")
+    # The loop closure against the filter alone, seed by seed: on at most 10 % + 1 cm worse than off (issue 34).
+    pairs = []
+    for d in order:
+        for v in variants:
+            on, off = groups.get((d, "true", v)), groups.get((d, "false", v))
+            if not on or not off:
+                continue
+            common = sorted(set(on) & set(off))
+            worse = [s for s in common if on[s]["trans_mean_m"] > 1.1 * off[s]["trans_mean_m"] + 0.01]
+            ratio = max(on[s]["trans_mean_m"] / off[s]["trans_mean_m"] for s in common)
+            better = sum(on[s]["trans_mean_m"] < off[s]["trans_mean_m"] for s in common)
+            cpu = statistics.median(on[s]["cpu_s"] / off[s]["cpu_s"] for s in common)
+            pairs.append(f"| {NAMES[d]} |" + (f" {v} |" if vcol else "") + f" {len(common)} | {better} | {ratio:.2f} |"
+                         f" {', '.join(str(s) for s in worse) if worse else 'none'} | {cpu:.2f} |")
+    if pairs:
+        print()
+        print("| log |" + (" variant |" if vcol else "") + " seeds | on better than off | largest on / off |"
+              " seeds where on > 1.1 × off + 1 cm | CPU on / off (median) |")
+        print("|---|" + ("---|" if vcol else "") + "---|---|---|---|---|")
+        print("\n".join(pairs))
     if rows:
         print()
         print("| log | loop closure |" + (" variant |" if vcol else "") + " seeds | proposed | accepted | switched off |"
