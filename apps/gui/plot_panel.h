@@ -17,7 +17,7 @@ class PlotPanel : public wxPanel {
 
  private:
   mpWindow *neff_win_, *time_win_, *mem_win_;
-  mpFXYVector *neff_, *resampled_, *time_, *map_mem_, *rss_;
+  mpFXYVector *neff_, *resampled_, *count_, *time_, *map_mem_, *rss_;
   std::vector<double> rss_x_, rss_y_;
   std::uint64_t last_version_ = 0;
 };

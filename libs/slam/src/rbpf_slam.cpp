@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "gridtopo/slam/kld_sampling.h"
 #include "gridtopo/slam/prepared_scan.h"
 #include "gridtopo/slam/proposal.h"
 #include "gridtopo/slam/resampling.h"
@@ -65,12 +66,14 @@ bool RbpfSlam::processScan(const ScanRecord& record) {
   st.step = stats_.size();
   st.scan_index = index;
   st.timestamp = record.scan.timestamp;
-  const std::size_t n = static_cast<std::size_t>(o_.particles);
-
   if (!initialized_) {
     startParticles(record, scan, index);
-    st.neff = static_cast<double>(n);
+    st.particles = static_cast<int>(particles_.size());
+    st.neff = static_cast<double>(particles_.size());
   } else {
+    // The count this step runs with (the adaptive set changes it only when it resamples).
+    const std::size_t n = particles_.size();
+    st.particles = static_cast<int>(n);
     // The paper's steps (Grisetti et al. 2007, Table I), in order.
     const Odometry odo = odometrySinceLastStep(record);
     const std::vector<Pose2> u = predictWithOdometry(record, odo);
@@ -251,7 +254,6 @@ std::vector<double> RbpfSlam::normaliseWeights() {
 }
 
 void RbpfSlam::recordStep(StepStats& st, std::chrono::steady_clock::time_point t0) {
-  st.particles = o_.particles;
   // Counting distinct tiles hashes every tile pointer of every particle: done every 20 steps only.
   if (stats_.empty() || stats_.size() % 20 == 0) {
     last_unique_tiles_ = uniqueTiles(&last_map_bytes_);
@@ -300,7 +302,19 @@ std::size_t RbpfSlam::coalescenceDepth() const {
 
 void RbpfSlam::resample(const std::vector<double>& w) {
   Rng rng(o_.seed, stats_.size(), 0, kPurposeResample);
-  const std::vector<std::size_t> keep = lowVarianceResample(w, rng);
+  std::vector<std::size_t> keep;
+  if (o_.kld.adaptive()) {
+    // KLD-sampling (Fox 2003): the bins of the particles the full (maximum) count would keep give the new count;
+    // the same comb offset draws it.
+    const std::size_t maximum = static_cast<std::size_t>(o_.particles);
+    Rng probe = rng;
+    const std::vector<std::size_t> full = lowVarianceResample(w, probe, maximum);
+    std::vector<Pose2> poses(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i) poses[i] = particles_[i].pose;
+    keep = lowVarianceResample(w, rng, kldParticleCount(poses, full, o_.kld, maximum));
+  } else {
+    keep = lowVarianceResample(w, rng);
+  }
   // The last copy of a particle takes its state over (moved, not copied): copying every survivor while the old
   // set still lives would hold two sets of tile-pointer arrays (the hospital's map spans 10^5 tile slots per
   // particle) at once. Copies share the map tiles and the trajectory.

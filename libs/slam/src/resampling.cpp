@@ -23,15 +23,19 @@ double effectiveSampleSize(const std::vector<double>& normalized) {
 }
 
 std::vector<std::size_t> lowVarianceResample(const std::vector<double>& normalized, Rng& rng) {
+  return lowVarianceResample(normalized, rng, normalized.size());
+}
+
+std::vector<std::size_t> lowVarianceResample(const std::vector<double>& normalized, Rng& rng, std::size_t count) {
   const std::size_t n = normalized.size();
   std::vector<std::size_t> out;
-  out.reserve(n);
-  if (n == 0) return out;
-  const double step = 1.0 / static_cast<double>(n);
+  out.reserve(count);
+  if (n == 0 || count == 0) return out;
+  const double step = 1.0 / static_cast<double>(count);
   const double r = rng.uniform() * step;
   double c = normalized[0];
   std::size_t i = 0;
-  for (std::size_t m = 0; m < n; ++m) {
+  for (std::size_t m = 0; m < count; ++m) {
     const double u = r + static_cast<double>(m) * step;
     while (u > c && i + 1 < n) c += normalized[++i];
     out.push_back(i);

@@ -34,6 +34,16 @@ OptionSchema<SlamOptions> makeSchema() {
   s.add("threads", &O::threads, R::atLeast(0), "", "worker threads, 0 = all cores");
   s.add("resample_threshold", &O::resample_threshold, R::closed(0, 1), "",
         "resample when N_eff < resample_threshold * particles");
+  s.add("min_particles", field(&O::kld, &KldOptions::min_particles), R::atLeast(0), "",
+        "adaptive particle set: the fewest particles after a resampling (KLD-sampling, Fox 2003; 0 = always "
+        "`particles`, which is then the maximum)");
+  s.add("kld_epsilon", field(&O::kld, &KldOptions::epsilon), R::above(0), "",
+        "KLD-sampling: bound on the KL distance between the particles and the binned posterior");
+  s.add("kld_z", field(&O::kld, &KldOptions::z), R::above(0), "",
+        "KLD-sampling: upper 1 - delta quantile of the standard normal (2.326: delta = 0.01)");
+  s.add("kld_bin_xy", field(&O::kld, &KldOptions::bin_xy), R::above(0), "m", "KLD-sampling: histogram bin size in x and y");
+  s.add("kld_bin_theta", field(&O::kld, &KldOptions::bin_theta), R::above(0), "rad",
+        "KLD-sampling: histogram bin size in heading");
   s.add("likelihood_gain", &O::likelihood_gain, R::above(0), "",
         "the observation log-likelihood is divided by this (softens the independent-beam model)");
   // Update policy
@@ -213,6 +223,10 @@ void SlamOptions::dumpToTextStream(std::ostream& out) const {
 
 void SlamOptions::validate(const std::string& file, const std::string& section) const {
   slamOptionSchema().validate(*this, file, section);
+  if (kld.min_particles > particles)
+    throw InputError(file, 0, "[" + section + "] min_particles",
+                     "min_particles (" + std::to_string(kld.min_particles) + ") exceeds particles (" +
+                         std::to_string(particles) + "), the adaptive set's maximum");
   loop_closure.validate(file);
 }
 

@@ -14,5 +14,8 @@ std::vector<double> normalizedWeights(const std::vector<double>& log_weights);
 double effectiveSampleSize(const std::vector<double>& normalized);
 /// Indices of the particles to keep (one per new particle, sorted), drawn with a single random offset.
 std::vector<std::size_t> lowVarianceResample(const std::vector<double>& normalized, Rng& rng);
+/// The same with `count` new particles (any count >= 1; the adaptive particle set, kld_sampling.h): the offset is
+/// the same first draw of `rng`, the comb's teeth 1 / count apart.
+std::vector<std::size_t> lowVarianceResample(const std::vector<double>& normalized, Rng& rng, std::size_t count);
 
 }  // namespace gridtopo::slam

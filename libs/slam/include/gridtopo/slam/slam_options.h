@@ -10,6 +10,7 @@
 
 #include "gridtopo/core/option_schema.h"
 #include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/kld_sampling.h"
 #include "gridtopo/slam/loop_closure_options.h"
 #include "gridtopo/slam/motion_model.h"
 #include "gridtopo/slam/prepared_scan.h"
@@ -24,6 +25,9 @@ struct SlamOptions : public mrpt::config::CLoadableOptions {
   std::uint64_t seed = 1;
   int threads = 0;                  ///< 0 = all cores
   double resample_threshold = 0.5;  ///< resample when N_eff < threshold · N
+  /// The adaptive particle set (KLD-sampling at each resampling; off while kld.min_particles = 0): `particles` is
+  /// then the maximum.
+  KldOptions kld;
   /// The observation log-likelihood is divided by this before it enters τ_j and the weights (GMapping's
   /// softening of the over-confident independent-beam model).
   double likelihood_gain = 10.0;
