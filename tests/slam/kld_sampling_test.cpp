@@ -62,6 +62,19 @@ TEST(KldSampling, CountIsClampedAndFixedWhenNotAdaptive) {
   EXPECT_EQ(kldParticleCount(tight, all, o, 30), 30u);
 }
 
+TEST(KldSampling, FailedMatchesCallForTheMaximum) {
+  KldOptions o;
+  EXPECT_FALSE(growOnFailedMatches(8, 8, 30, o));  // not adaptive
+  o.min_particles = 8;
+  EXPECT_TRUE(growOnFailedMatches(2, 8, 30, o));   // a quarter of 8
+  EXPECT_FALSE(growOnFailedMatches(1, 8, 30, o));
+  EXPECT_FALSE(growOnFailedMatches(30, 30, 30, o));  // already at the maximum
+  o.grow_failed_fraction = 2.0;
+  EXPECT_FALSE(growOnFailedMatches(8, 8, 30, o));  // never
+  o.grow_failed_fraction = 0.0;
+  EXPECT_TRUE(growOnFailedMatches(0, 8, 30, o));   // always back to the maximum: KLD only shrinks between steps
+}
+
 TEST(KldSampling, LowVarianceResampleDrawsAnyCountInProportion) {
   const std::vector<double> w = {0.5, 0.25, 0.125, 0.125};
   Rng a(7, 1, 0, 2), b(7, 1, 0, 2);

@@ -14,6 +14,11 @@ double kldBound(std::size_t k, double epsilon, double z) {
   return km1 / (2.0 * epsilon) * c * c * c;
 }
 
+bool growOnFailedMatches(int failed, std::size_t n, std::size_t maximum, const KldOptions& o) {
+  if (!o.adaptive() || n >= maximum || n == 0) return false;
+  return static_cast<double>(failed) >= o.grow_failed_fraction * static_cast<double>(n);
+}
+
 std::size_t occupiedBins(const std::vector<Pose2>& poses, const std::vector<std::size_t>& which, double bin_xy,
                          double bin_theta) {
   std::vector<std::tuple<long long, long long, long long>> bins;

@@ -84,7 +84,11 @@ bool RbpfSlam::processScan(const ScanRecord& record) {
     updateMaps(poses, estimates, scan, index);
     const std::vector<double> w = normaliseWeights();
     st.neff = effectiveSampleSize(w);
-    if (st.neff < o_.resample_threshold * static_cast<double>(n)) {
+    const std::size_t maximum = static_cast<std::size_t>(o_.particles);
+    if (growOnFailedMatches(st.failed_matches, n, maximum, o_.kld)) {
+      resample(w, maximum);
+      st.resampled = true;
+    } else if (st.neff < o_.resample_threshold * static_cast<double>(n)) {
       resample(w);
       st.resampled = true;
     }
@@ -300,10 +304,12 @@ std::size_t RbpfSlam::coalescenceDepth() const {
   }
 }
 
-void RbpfSlam::resample(const std::vector<double>& w) {
+void RbpfSlam::resample(const std::vector<double>& w, std::size_t count) {
   Rng rng(o_.seed, stats_.size(), 0, kPurposeResample);
   std::vector<std::size_t> keep;
-  if (o_.kld.adaptive()) {
+  if (count > 0) {
+    keep = lowVarianceResample(w, rng, count);
+  } else if (o_.kld.adaptive()) {
     // KLD-sampling (Fox 2003): the bins of the particles the full (maximum) count would keep give the new count;
     // the same comb offset draws it.
     const std::size_t maximum = static_cast<std::size_t>(o_.particles);

@@ -44,6 +44,9 @@ OptionSchema<SlamOptions> makeSchema() {
   s.add("kld_bin_xy", field(&O::kld, &KldOptions::bin_xy), R::above(0), "m", "KLD-sampling: histogram bin size in x and y");
   s.add("kld_bin_theta", field(&O::kld, &KldOptions::bin_theta), R::above(0), "rad",
         "KLD-sampling: histogram bin size in heading");
+  s.add("kld_grow_failed_fraction", field(&O::kld, &KldOptions::grow_failed_fraction), R::atLeast(0), "",
+        "adaptive particle set: resample to `particles` at once when this share of the matches failed at a step "
+        "(> 1: never)");
   s.add("likelihood_gain", &O::likelihood_gain, R::above(0), "",
         "the observation log-likelihood is divided by this (softens the independent-beam model)");
   // Update policy

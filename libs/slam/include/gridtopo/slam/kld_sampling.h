@@ -21,9 +21,15 @@ struct KldOptions {
   double z = 2.326;           ///< upper 1 - delta quantile of the standard normal (2.326: delta = 0.01)
   double bin_xy = 0.1;        ///< m, bin size in x and y
   double bin_theta = 0.1;     ///< rad, bin size in heading
+  /// Ambiguity the pose bins do not show: when at least this share of the particles' scan matches failed at a step
+  /// (they took the odometry proposal), the set is resampled to the maximum at once. > 1: never.
+  double grow_failed_fraction = 0.25;
   bool adaptive() const { return min_particles > 0; }
 };
 
+/// Whether a step with `failed` of `n` particles' matches failed calls for the maximum count (KldOptions::
+/// grow_failed_fraction; never when the set is not adaptive or already at the maximum).
+bool growOnFailedMatches(int failed, std::size_t n, std::size_t maximum, const KldOptions& o);
 /// Fox's bound (above) for k occupied bins; 1 for k <= 1 (one bin needs no spread).
 double kldBound(std::size_t k, double epsilon, double z);
 /// Distinct (x, y, θ) bins of `poses[i]` over the indices `which` (heading wrapped to [-π, π) first).

@@ -143,8 +143,9 @@ class RbpfSlam {
   std::vector<double> normaliseWeights();
   /// Processed scans back to the particles' most recent common ancestor (StepStats::coalescence).
   std::size_t coalescenceDepth() const;
-  /// Resample (low variance) with the normalised weights `w`; survivors restart at weight 1.
-  void resample(const std::vector<double>& w);
+  /// Resample (low variance) with the normalised weights `w`; survivors restart at weight 1. The new count:
+  /// `count` when given, else KLD-sampling's (kld_sampling.h) or the fixed `particles`.
+  void resample(const std::vector<double>& w, std::size_t count = 0);
   /// Completes the step's statistics (tile counts every 20 steps, wall time since `t0`) and keeps them.
   void recordStep(StepStats& st, std::chrono::steady_clock::time_point t0);
 
