@@ -261,6 +261,71 @@ TEST(LoopClosure, AHeadingErrorWhereTheOdometryDisagreedIsFoundAtTheRevisit) {
 }
 
 namespace {
+// The loop closure alone fed the large loop's path with a heading drift of 0.01 degrees per step (5.6 degrees over
+// the loop: it comes back metres off, within the windowed search's reach); with `force_at` > 0, a closure forced in at that node that
+// puts it 3 m and 0.3 rad away from where it truly is relative to node 5 (the start). Returns the final poses.
+std::vector<slam::Pose2> driftingLoopPoses(const sim::SimLog& log, std::size_t force_at,
+                                           const slam::LoopClosureRecord** forced_record, slam::LoopCloser& closer) {
+  const slam::SlamOptions o = testOptions();
+  const auto& truth = log.truth;
+  slam::Pose2 filter = toPose(truth.front());
+  std::size_t forced_index = 0;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    slam::Pose2 motion{0, 0, 0};
+    if (k > 0) {
+      motion = slam::relative(toPose(truth[k - 1]), toPose(truth[k]));
+      motion.theta += 0.01 * M_PI / 180.0;
+      filter = slam::compose(filter, motion);
+    }
+    const slam::PreparedScan ps = slam::prepareScan(log.records[k].scan, o.beams, o.resolution);
+    closer.addScan(k, log.records[k].scan.timestamp, filter, motion, nullptr, ps);
+    if (force_at > 0 && k == force_at) {
+      const slam::Pose2 truly = slam::relative(toPose(truth[5]), toPose(truth[k]));
+      closer.addExternalClosure(5, {truly.x + 3.0, truly.y, truly.theta + 0.3}, 0.05, 0.0125);
+      forced_index = closer.closures().size() - 1;
+    }
+  }
+  if (forced_record) *forced_record = force_at > 0 ? &closer.closures()[forced_index] : nullptr;
+  return closer.finalPoses();
+}
+}  // namespace
+
+TEST(LoopClosure, AClosureForcedInAtAWrongPlaceIsSwitchedOffAndTheMapStaysAsWithoutIt) {
+  const sim::SimLog log = largeLoopLog();
+  const slam::SlamOptions o = testOptions();
+  // Where the path first comes back within 3 m of the start after the loop: there the windowed search closes too.
+  std::size_t back = 0;
+  for (std::size_t k = 100; k < log.truth.size() && !back; ++k)
+    if (std::hypot(log.truth[k].x - log.truth[5].x, log.truth[k].y - log.truth[5].y) < 3.0) back = k;
+  ASSERT_GT(back, 0u);
+  slam::LoopCloser plain(o.loop_closure, o.motion), forced(o.loop_closure, o.motion);
+  const std::vector<slam::Pose2> without = driftingLoopPoses(log, 0, nullptr, plain);
+  const slam::LoopClosureRecord* record = nullptr;
+  const std::vector<slam::Pose2> with = driftingLoopPoses(log, back, &record, forced);
+  ASSERT_NE(record, nullptr);
+  ASSERT_EQ(without.size(), with.size());
+  double largest_difference = 0.0, err_without = 0.0, err_with = 0.0;
+  for (std::size_t k = 0; k < with.size(); ++k) {
+    largest_difference = std::max(largest_difference, std::hypot(with[k].x - without[k].x, with[k].y - without[k].y));
+    err_without = std::max(err_without, std::hypot(without[k].x - log.truth[k].x, without[k].y - log.truth[k].y));
+    err_with = std::max(err_with, std::hypot(with[k].x - log.truth[k].x, with[k].y - log.truth[k].y));
+  }
+  std::printf("forced closure at node %zu: residual %.1f deviations, %s; largest error %.3f m without it, %.3f m "
+              "with it; the two results differ by at most %.4f m\n",
+              back, record->residual, record->rejected ? "switched off" : "kept", err_without, err_with,
+              largest_difference);
+  EXPECT_TRUE(record->rejected);
+  EXPECT_GT(record->residual, o.loop_closure.outlier_sigmas);
+  EXPECT_GT(plain.closures().size(), 5u);  // the windowed search closes the loop on its own
+  EXPECT_LT(err_without, 0.5);                // measured 0.369 m (the largest over every pose)
+  EXPECT_LT(err_with, err_without + 0.02);    // no worse with it (0.342 m)
+  // Once it is out, the graph is optimised again from where the wrong closure had pulled it: the same result to a
+  // few centimetres (0.040 m), where keeping it would bend the loop by metres.
+  EXPECT_LT(largest_difference, 0.1);
+  EXPECT_THROW(forced.addExternalClosure(forced.nodes() - 1, {0, 0, 0}, 0.05, 0.01), std::invalid_argument);
+}
+
+namespace {
 // Points every 5 cm along a wall y = const from x0 to x1, and a small L-shaped feature at (fx, fy).
 void addWall(std::vector<slam::Point2>& pts, double y, double x0, double x1) {
   for (double x = x0; x <= x1 + 1e-9; x += 0.05) pts.push_back({x, y});

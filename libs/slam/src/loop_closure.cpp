@@ -9,6 +9,8 @@
 #include <limits>
 #include <queue>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <unordered_set>
 
 #include "gridtopo/slam/proposal.h"
@@ -472,6 +474,21 @@ void LoopCloser::addClosure(std::size_t from, std::size_t node, const Pose2& z, 
   rec.offset_theta = offset_theta;
   rec.global = global;
   closures_.push_back(rec);
+}
+
+void LoopCloser::addExternalClosure(std::size_t from, const Pose2& z, double sigma_xy, double sigma_theta) {
+  if (nodes_.empty() || from + 1 >= nodes_.size())
+    throw std::invalid_argument("LoopCloser::addExternalClosure: node " + std::to_string(from) +
+                                " is not older than the newest node (" + std::to_string(nodes_.size()) + " nodes)");
+  if (!(sigma_xy > 0.0) || !(sigma_theta > 0.0))
+    throw std::invalid_argument("LoopCloser::addExternalClosure: the deviations must be > 0");
+  const std::size_t i = nodes_.size() - 1;
+  const Pose2 estimate = relative(graph_.pose(from), graph_.pose(i));
+  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Zero();
+  sqrt_information(0, 0) = sqrt_information(1, 1) = 1.0 / sigma_xy;
+  sqrt_information(2, 2) = 1.0 / sigma_theta;
+  addClosure(from, i, z, sqrt_information, 0.0, 0.0, std::hypot(z.x - estimate.x, z.y - estimate.y),
+             std::abs(wrapAngle(z.theta - estimate.theta)), false);
 }
 
 void LoopCloser::optimizePoseGraph(LoopClosureStep& step) {

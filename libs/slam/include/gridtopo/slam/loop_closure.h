@@ -102,6 +102,12 @@ class LoopCloser {
 
   LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
                           const Pose2* odometry, const PreparedScan& scan);
+  /// A closure from outside the search (a person's, a fiducial's, a test's): the newest node seen from node `from`
+  /// at `z` (in `from`'s frame), with deviations `sigma_xy` (m) and `sigma_theta` (rad). It is judged as the
+  /// windowed search's closures are: Huber loss, and left out when it still disagrees by more than
+  /// `outlier_sigmas` after the next optimisation (due within `optimize_every` nodes). Before any addScan, or
+  /// with `from` not older than the newest node: std::invalid_argument.
+  void addExternalClosure(std::size_t from, const Pose2& z, double sigma_xy, double sigma_theta);
   /// The poses of the result: the graph with its motion edges re-derived from the filter's path and optimised
   /// once more (on a copy: the loop closure goes on as it was, and asking twice gives the same poses). Without a
   /// closure, the filter's path itself.
