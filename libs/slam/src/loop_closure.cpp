@@ -484,10 +484,8 @@ void LoopCloser::addExternalClosure(std::size_t from, const Pose2& z, double sig
     throw std::invalid_argument("LoopCloser::addExternalClosure: the deviations must be > 0");
   const std::size_t i = nodes_.size() - 1;
   const Pose2 estimate = relative(graph_.pose(from), graph_.pose(i));
-  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Zero();
-  sqrt_information(0, 0) = sqrt_information(1, 1) = 1.0 / sigma_xy;
-  sqrt_information(2, 2) = 1.0 / sigma_theta;
-  addClosure(from, i, z, sqrt_information, 0.0, 0.0, std::hypot(z.x - estimate.x, z.y - estimate.y),
+  addClosure(from, i, z, sqrtInformationOfSigmas(sigma_xy, sigma_xy, sigma_theta), 0.0, 0.0,
+             std::hypot(z.x - estimate.x, z.y - estimate.y),
              std::abs(wrapAngle(z.theta - estimate.theta)), false);
 }
 

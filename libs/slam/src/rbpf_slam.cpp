@@ -306,10 +306,7 @@ std::size_t RbpfSlam::coalescenceDepth() const {
 
 void RbpfSlam::resample(const std::vector<double>& w, std::size_t count) {
   Rng rng(o_.seed, stats_.size(), 0, kPurposeResample);
-  std::vector<std::size_t> keep;
-  if (count > 0) {
-    keep = lowVarianceResample(w, rng, count);
-  } else if (o_.kld.adaptive()) {
+  if (count == 0 && o_.kld.adaptive()) {
     // KLD-sampling (Fox 2003): the bins of the particles the full (maximum) count would keep give the new count;
     // the same comb offset draws it.
     const std::size_t maximum = static_cast<std::size_t>(o_.particles);
@@ -317,10 +314,10 @@ void RbpfSlam::resample(const std::vector<double>& w, std::size_t count) {
     const std::vector<std::size_t> full = lowVarianceResample(w, probe, maximum);
     std::vector<Pose2> poses(particles_.size());
     for (std::size_t i = 0; i < particles_.size(); ++i) poses[i] = particles_[i].pose;
-    keep = lowVarianceResample(w, rng, kldParticleCount(poses, full, o_.kld, maximum));
-  } else {
-    keep = lowVarianceResample(w, rng);
+    count = kldParticleCount(poses, full, o_.kld, maximum);
   }
+  if (count == 0) count = particles_.size();  // the fixed set
+  const std::vector<std::size_t> keep = lowVarianceResample(w, rng, count);
   // The last copy of a particle takes its state over (moved, not copied): copying every survivor while the old
   // set still lives would hold two sets of tile-pointer arrays (the hospital's map spans 10^5 tile slots per
   // particle) at once. Copies share the map tiles and the trajectory.
