@@ -84,7 +84,7 @@ TEST(MapApp, LoopClosureRunMatchesGridtopoSlam) {
     std::string out;
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);)
-      if (line.rfind("# closure", 0) == 0 || line.rfind("# loop_closure", 0) == 0) out += line + "\n";
+      if (line.rfind("# closure", 0) == 0 || line.rfind("# loop_closure:", 0) == 0) out += line + "\n";
     return out;
   };
   EXPECT_EQ(closureLines(slurp(d / "out/slam/stats.txt")), closureLines(stats));

@@ -84,9 +84,10 @@ TEST(TopologyScale, FourThousandSquareMapInBoundedMemory) {
   EXPECT_LT(peak_growth_mb, 480.0);
   // The scans cost the free cells, not the image (simulateBeams sweeps only the spans of free cells): on this map
   // (a tenth free) they take 0.7 of the features' time (2026-12-05, branch issue-35e); sweeping every cell of
-  // every stripe's rows, as before, took 2.5 times the features.
-  EXPECT_LT(lab.seconds_scans, 1.5 * lab.seconds_features)
-      << "scans " << lab.seconds_scans << " s, features " << lab.seconds_features << " s";
+  // every stripe's rows, as before, took 2.5 times the features. Processor seconds: the wall seconds of two
+  // threads stretch unevenly when another test shares the two cores (1.07 s against 0.98 s once, in CI's suite).
+  EXPECT_LT(lab.cpu_seconds_scans, 1.5 * lab.cpu_seconds_features)
+      << "scans " << lab.cpu_seconds_scans << " s, features " << lab.cpu_seconds_features << " s of processor";
   // The graph stage (doorways, correction, segmentation, corridor pieces, graph and routes: one thread) stays
   // within twice the labelling (scans, features, classification, relaxation: two threads) that feeds it: 0.56-0.75
   // of it here before the faster scans and features, 1.1 after (2026-12-05). On the hospital's SLAM map it was 1.7

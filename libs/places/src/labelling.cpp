@@ -1,6 +1,7 @@
 #include "gridtopo/places/labelling.h"
 
 #include <chrono>
+#include <ctime>
 
 #include "gridtopo/core/error.h"
 
@@ -10,6 +11,8 @@ namespace {
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+// Processor seconds of the whole process (every thread) since `c0`.
+double cpuSince(std::clock_t c0) { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
 }  // namespace
 
 cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs) {
@@ -101,26 +104,31 @@ std::vector<std::pair<std::size_t, std::size_t>> latticeStripes(const Lattice& l
 
 cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const PlacesModel& model, int threads,
                         std::size_t stripe_samples, const std::function<void(std::size_t, std::size_t)>& progress,
-                        double* seconds_scans, double* seconds_features, double* seconds_classify) {
+                        double* seconds_scans, double* seconds_features, double* seconds_classify,
+                        double* cpu_seconds_scans, double* cpu_seconds_features) {
   CV_Assert(model.features.context_radius <= 0);
   ScanSimulationOptions scan = model.scan;
   scan.threads = threads;
   const auto stripes = latticeStripes(lattice, stripe_samples);
   cv::Mat p(static_cast<int>(lattice.samples.size()), 1, CV_32FC3);
-  double ts = 0, tf = 0, tc = 0;
+  double ts = 0, tf = 0, tc = 0, cs = 0, cf = 0;
   for (std::size_t k = 0; k < stripes.size(); ++k) {
     const auto [a, b] = stripes[k];
     auto t0 = std::chrono::steady_clock::now();
+    std::clock_t c0 = std::clock();
     const std::vector<cv::Point> samples(lattice.samples.begin() + static_cast<long>(a),
                                          lattice.samples.begin() + static_cast<long>(b));
     cv::Mat beams = simulateBeams(occ, samples, scan, [&](std::size_t d, std::size_t n) {
       if (progress) progress(k * n + d, stripes.size() * n);
     });
     ts += since(t0);
+    cs += cpuSince(c0);
     t0 = std::chrono::steady_clock::now();
+    c0 = std::clock();
     cv::Mat features = extractFeaturesOfBeams(beams, model.features, threads);
     beams.release();
     tf += since(t0);
+    cf += cpuSince(c0);
     t0 = std::chrono::steady_clock::now();
     model.classify(features, threads).copyTo(p.rowRange(static_cast<int>(a), static_cast<int>(b)));
     tc += since(t0);
@@ -128,6 +136,8 @@ cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const
   if (seconds_scans) *seconds_scans = ts;
   if (seconds_features) *seconds_features = tf;
   if (seconds_classify) *seconds_classify = tc;
+  if (cpu_seconds_scans) *cpu_seconds_scans = cs;
+  if (cpu_seconds_features) *cpu_seconds_features = cf;
   return p;
 }
 
@@ -139,33 +149,37 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
   const Lattice lattice = buildLattice(occ, model.scan.lattice_spacing);
   if (!keep_scans_and_features && model.features.context_radius <= 0) {
     // A stripe of the lattice at a time: its scans, features and class probabilities (nothing of it is kept).
-    double ts = 0, tf = 0, tc = 0;
+    double ts = 0, tf = 0, tc = 0, cs = 0, cf = 0;
     const cv::Mat p = classifyLattice(
         occ, lattice, model, threads, kStripeSamples,
         [&](std::size_t d, std::size_t n) {
           if (progress) progress("scans", d, n);
         },
-        &ts, &tf, &tc);
+        &ts, &tf, &tc, &cs, &cf);
     if (progress) progress("features", 1, 1);
     LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads);
     res.seconds_scans = ts, res.seconds_features = tf, res.seconds_classify = tc;
+    res.cpu_seconds_scans = cs, res.cpu_seconds_features = cf;
     return res;
   }
   ScanSimulationOptions scan = model.scan;
   scan.threads = threads;
   auto t0 = std::chrono::steady_clock::now();
+  std::clock_t c0 = std::clock();
   SimulatedScans scans = simulateScans(occ, lattice.samples, scan, [&](std::size_t d, std::size_t n) {
     if (progress) progress("scans", d, n);
   });
-  const double ts = since(t0);
+  const double ts = since(t0), cs = cpuSince(c0);
   t0 = std::chrono::steady_clock::now();
+  c0 = std::clock();
   cv::Mat features = extractFeatures(scans, model.features, threads);
   if (model.features.context_radius > 0)
     features = addContextFeatures(lattice, features, model.features.context_radius, occ.resolution);
-  const double tf = since(t0);
+  const double tf = since(t0), cf = cpuSince(c0);
   if (progress) progress("features", 1, 1);
   LabellingResult res = labelFromFeatures(occ, lattice, features, model, relax, threads);
   res.seconds_scans = ts, res.seconds_features = tf;
+  res.cpu_seconds_scans = cs, res.cpu_seconds_features = cf;
   if (keep_scans_and_features) {
     res.scans = std::move(scans);
     res.features = std::move(features);

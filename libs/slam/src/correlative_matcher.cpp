@@ -77,46 +77,51 @@ CorrelationGrid::CorrelationGrid(const std::vector<Point2>& points, double resol
     for (std::size_t m = 0; m < seed_cells.size(); ++m)
       mean_of_label[static_cast<std::size_t>(label[seed_cells[m]])] = static_cast<std::uint32_t>(m);
     const double k = -0.5 / (sigma * sigma);
+    // Beyond this squared distance the value rounds to 0 (255 exp(k d^2) < 0.5, with a margin for hypot's and the
+    // float's rounding): most of a grid's cells, which then need neither hypot nor exp.
+    const double zero_d2 = 1.001 * std::log(510.0) / -k;
     std::vector<std::uint8_t>& base = levels_[0].v;
     for (int y = 0; y < h0; ++y)
       for (int x = 0; x < w0; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * w0 + x;
         const std::uint32_t m = mean_of_label[static_cast<std::size_t>(label[i])];
         nearest_[i] = m;
-        const double mx = means[m].first, my = means[m].second;
-        const double dd = static_cast<float>(std::hypot(x0_ + (x + 0.5) * res_ - mx, y0_ + (y + 0.5) * res_ - my));
+        const double dx = x0_ + (x + 0.5) * res_ - means[m].first, dy = y0_ + (y + 0.5) * res_ - means[m].second;
+        if (dx * dx + dy * dy > zero_d2) continue;  // base[i] stays 0
+        const double dd = static_cast<float>(std::hypot(dx, dy));
         base[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(k * dd * dd)));
       }
   }
-  // Level h: the maximum of level h−1 over the cell and its neighbours 2^(h−1) cells right, up, and both.
+  // Level h: the maximum of level h−1 over the cell and its neighbours 2^(h−1) cells right, up, and both; 0 outside
+  // level h−1. Separably: the maximum of each of level h−1's rows with itself shifted by s = 2^(h−1), then of those
+  // rows with the ones s further. (Level h−1's padding is s − 1, level h's 2s − 1: level h's column x reads level
+  // h−1's columns x − s and x, its row y the rows y − s and y.)
+  std::vector<std::uint8_t> rows;  // level h−1's rows maxed horizontally, with s rows of zeros above and below
+  std::vector<std::uint8_t> padded;  // one row of level h−1 with s zeros either side
   for (int h = 1; h <= depth_; ++h) {
     const int s = 1 << (h - 1);
     const int pad = (1 << h) - 1;
     Level& cur = levels_[static_cast<std::size_t>(h)];
+    const Level& prev = levels_[static_cast<std::size_t>(h) - 1];
     cur.pad = pad;
     cur.w = w0 + pad;
     cur.h = h0 + pad;
-    cur.v.assign(static_cast<std::size_t>(cur.w) * cur.h, 0);
-    const Level& prev = levels_[static_cast<std::size_t>(h) - 1];
-    // Row by row: the maximum of the previous level's row at cx and cx + s (0 outside it), then of two such rows.
-    std::vector<std::uint8_t> r0(static_cast<std::size_t>(cur.w)), r1(r0.size());
-    auto rowMax = [&](int cy, std::vector<std::uint8_t>& out) {
-      std::fill(out.begin(), out.end(), std::uint8_t{0});
-      const int py = cy + prev.pad;
-      if (py < 0 || py >= prev.h) return;
-      const std::uint8_t* row = prev.v.data() + static_cast<std::size_t>(py) * prev.w;
-      for (int x = 0; x < cur.w; ++x) {
-        const int a = x - pad + prev.pad, b = a + s;
-        const std::uint8_t va = (a >= 0 && a < prev.w) ? row[a] : 0;
-        const std::uint8_t vb = (b >= 0 && b < prev.w) ? row[b] : 0;
-        out[static_cast<std::size_t>(x)] = std::max(va, vb);
-      }
-    };
+    const std::size_t cw = static_cast<std::size_t>(cur.w);
+    rows.assign(cw * static_cast<std::size_t>(prev.h + 2 * s), 0);
+    padded.assign(static_cast<std::size_t>(prev.w + 2 * s), 0);
+    for (int py = 0; py < prev.h; ++py) {
+      std::copy_n(prev.v.data() + static_cast<std::size_t>(py) * prev.w, prev.w, padded.data() + s);
+      std::uint8_t* out = rows.data() + static_cast<std::size_t>(py + s) * cw;
+      const std::uint8_t* a = padded.data();
+      const std::uint8_t* b = padded.data() + s;
+      for (std::size_t x = 0; x < cw; ++x) out[x] = std::max(a[x], b[x]);
+    }
+    cur.v.resize(cw * static_cast<std::size_t>(cur.h));
     for (int y = 0; y < cur.h; ++y) {
-      rowMax(y - pad, r0);
-      rowMax(y - pad + s, r1);
-      std::uint8_t* dst = cur.v.data() + static_cast<std::size_t>(y) * cur.w;
-      for (int x = 0; x < cur.w; ++x) dst[x] = std::max(r0[static_cast<std::size_t>(x)], r1[static_cast<std::size_t>(x)]);
+      const std::uint8_t* a = rows.data() + static_cast<std::size_t>(y) * cw;
+      const std::uint8_t* b = a + static_cast<std::size_t>(s) * cw;
+      std::uint8_t* dst = cur.v.data() + static_cast<std::size_t>(y) * cw;
+      for (std::size_t x = 0; x < cw; ++x) dst[x] = std::max(a[x], b[x]);
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <iomanip>
 #include <limits>
 #include <queue>
@@ -35,6 +36,24 @@ void thinInPlace(std::vector<Point2>& pts, double voxel) {
   pts.resize(k);
 }
 
+// Adds the calling thread's processor seconds between its construction and its destruction to `total`.
+class ThreadCpuTimer {
+ public:
+  explicit ThreadCpuTimer(double& total) : total_(total), start_(now()) {}
+  ~ThreadCpuTimer() { total_ += now() - start_; }
+  ThreadCpuTimer(const ThreadCpuTimer&) = delete;
+  ThreadCpuTimer& operator=(const ThreadCpuTimer&) = delete;
+
+ private:
+  static double now() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+  double& total_;
+  double start_;
+};
+
 // How many of the values (travels, m) lie at least `gap` apart, taken greedily from the smallest.
 int spacedCount(std::vector<double> values, double gap) {
   std::sort(values.begin(), values.end());
@@ -61,21 +80,30 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
   addFilterMotion(scan_index, timestamp, filter_pose, motion, odometry, scan);
   const std::size_t i = nodes_.size() - 1;
   step.newest_before = step.newest_after = graph_.pose(i);
-  if (backfill_from_ < i) backfillClosures(step, i);
-  if (i % static_cast<std::size_t>(o_.search_every) == 0) searchForClosures(step, i);
+  {
+    const ThreadCpuTimer timer(cpu_windowed_);
+    if (backfill_from_ < i) backfillClosures(step, i);
+    if (i % static_cast<std::size_t>(o_.search_every) == 0) searchForClosures(step, i);
+  }
   if (o_.global_search) {
     std::vector<Pose2> geometry;  // the filter's path, read once per step and only when needed
     const auto geo = [&]() -> const std::vector<Pose2>& {
       if (geometry.empty()) geometry = localGeometry();
       return geometry;
     };
-    if (next_to_sign_ < nodes_.size() && nodes_[i].travelled - nodes_[next_to_sign_].travelled >= o_.global_query_m)
+    if (next_to_sign_ < nodes_.size() && nodes_[i].travelled - nodes_[next_to_sign_].travelled >= o_.global_query_m) {
+      const ThreadCpuTimer timer(cpu_global_sign_);
       signOlderPlaces(geo());
+    }
     if (nodes_[i].travelled - last_global_travel_ >= o_.global_every_m) {
+      const ThreadCpuTimer timer(cpu_global_query_);
       last_global_travel_ = nodes_[i].travelled;
       proposeGlobalClosures(geo());
     }
-    if (!pending_.empty()) verifyGlobalClosures(step, geo());
+    if (!pending_.empty()) {
+      const ThreadCpuTimer timer(cpu_global_verify_);
+      verifyGlobalClosures(step, geo());
+    }
   }
   const bool pending = pending_from_ < closures_.size();
   // Optimise every optimize_every scans while closures are pending, and at once after a closure that moves the
@@ -83,8 +111,10 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
   // closures.
   const bool large = optimize_now_ || (step.accepted > 0 && closures_.back().offset_xy > 10.0 * o_.loop_sigma_xy);
   optimize_now_ = false;
-  if (pending && (i - last_optimized_node_ >= static_cast<std::size_t>(o_.optimize_every) || large))
+  if (pending && (i - last_optimized_node_ >= static_cast<std::size_t>(o_.optimize_every) || large)) {
+    const ThreadCpuTimer timer(cpu_optimize_);
     optimizePoseGraph(step);
+  }
   return step;
 }
 
@@ -967,6 +997,11 @@ LoopClosureCounts LoopCloser::counts() const {
   c.global_contradicted = global_contradicted_;
   c.global_refuted = global_refuted_;
   c.global_followed = global_followed_;
+  c.cpu_windowed = cpu_windowed_;
+  c.cpu_global_sign = cpu_global_sign_;
+  c.cpu_global_query = cpu_global_query_;
+  c.cpu_global_verify = cpu_global_verify_;
+  c.cpu_optimize = cpu_optimize_;
   return c;
 }
 
@@ -991,6 +1026,14 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
       << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped
       << " largest_correction_xy " << n.largest_correction_xy << " largest_correction_theta "
       << n.largest_correction_theta << '\n';
+  return out.str();
+}
+
+std::string loopClosureCpuText(const LoopClosureCounts& n) {
+  std::ostringstream out;
+  out << std::setprecision(4) << "# loop_closure_cpu_seconds: windowed " << n.cpu_windowed << " global_sign "
+      << n.cpu_global_sign << " global_query " << n.cpu_global_query << " global_verify " << n.cpu_global_verify
+      << " optimise " << n.cpu_optimize << '\n';
   return out.str();
 }
 

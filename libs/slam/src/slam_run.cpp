@@ -208,7 +208,8 @@ std::string SlamRun::statsText() const {
   std::ostringstream out;
   out << "# " << kStatsColumns << " rss_kb\n";
   for (std::size_t i = 0; i < st.size(); ++i) out << statsRow(st[i]) << ' ' << rss_kb_[i] << '\n';
-  if (closer_) out << closuresText(closer_->closures(), closer_->counts(), feedbacks_);
+  if (closer_) out << closuresText(closer_->closures(), closer_->counts(), feedbacks_)
+                    << loopClosureCpuText(closer_->counts());
   return out.str();
 }
 

@@ -23,6 +23,9 @@ struct LabellingResult {
   RelaxationResult relaxation;
   cv::Mat labels_initial, labels;  ///< CV_8U per map cell: 0 room, 1 corridor, 2 doorway, kNoLabel not free
   double seconds_scans = 0, seconds_features = 0, seconds_classify = 0, seconds_relax = 0;
+  /// The scans' and features' processor time (every thread's, std::clock): unlike the wall seconds, not stretched by
+  /// other processes sharing the machine.
+  double cpu_seconds_scans = 0, cpu_seconds_features = 0;
   /// The simulated scans and the features of the lattice samples: filled only when labelPlaces is asked to keep
   /// them (the GUI inspects them per cell).
   SimulatedScans scans;
@@ -48,11 +51,13 @@ std::vector<std::pair<std::size_t, std::size_t>> latticeStripes(const Lattice& l
 /// The classifier's output (samples x 1, CV_32FC3) for every sample of `lattice`: scans (simulateBeams), features
 /// and classification a stripe (latticeStripes(lattice, stripe_samples)) at a time; the same bits for any stripe
 /// size. `progress(done, total)` counts pairs of beam directions over all stripes. Needs a model without context
-/// features (they need every sample's features at once). The seconds of each step are added up over the stripes.
+/// features (they need every sample's features at once). The seconds of each step are added up over the stripes
+/// (wall; the scans' and features' processor seconds too, when asked for).
 cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const PlacesModel& model, int threads,
                         std::size_t stripe_samples, const std::function<void(std::size_t, std::size_t)>& progress = {},
                         double* seconds_scans = nullptr, double* seconds_features = nullptr,
-                        double* seconds_classify = nullptr);
+                        double* seconds_classify = nullptr, double* cpu_seconds_scans = nullptr,
+                        double* cpu_seconds_features = nullptr);
 
 /// Classifies precomputed features (as from computeSamples) and relaxes: used by training/evaluation.
 LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,

@@ -73,6 +73,11 @@ struct LoopClosureCounts {
   /// The largest move of the newest pose by an optimisation with new accepted closures (m, rad), from where the
   /// filter's motions since the previous optimisation put it.
   double largest_correction_xy = 0.0, largest_correction_theta = 0.0;
+  /// Processor seconds (of the thread that ran them) spent in each part: the windowed search (with its backfill),
+  /// the global search's signatures, its queries (ranking and exact matches) and the agreement of its matches, and
+  /// the optimisations. Not deterministic: written apart from the counts (loopClosureCpuText).
+  double cpu_windowed = 0.0, cpu_global_sign = 0.0, cpu_global_query = 0.0, cpu_global_verify = 0.0,
+         cpu_optimize = 0.0;
 };
 
 /// What one step of the loop closure did.
@@ -263,6 +268,8 @@ class LoopCloser {
   std::size_t backfill_from_ = static_cast<std::size_t>(-1);  ///< nodes the windowed search revisits (a new loop)
   std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0,
               global_refuted_ = 0, global_followed_ = 0;
+  double cpu_windowed_ = 0.0, cpu_global_sign_ = 0.0, cpu_global_query_ = 0.0, cpu_global_verify_ = 0.0,
+         cpu_optimize_ = 0.0;
 };
 
 /// The text of the closures table of stats.txt ("# closures" header, one row per closure, rejected ones too), then
@@ -270,5 +277,9 @@ class LoopCloser {
 /// lines are the same for a seed whatever the machine, but for their time and RSS columns).
 std::string closuresText(const std::vector<LoopClosureRecord>& closures, const LoopClosureCounts& counts,
                          std::size_t feedbacks);
+
+/// The line "# loop_closure_cpu_seconds: ..." of stats.txt: the processor seconds of the loop closure's parts
+/// (LoopClosureCounts::cpu_*), which differ from run to run.
+std::string loopClosureCpuText(const LoopClosureCounts& counts);
 
 }  // namespace gridtopo::slam
