@@ -227,14 +227,29 @@ struct Search {
           return false;
     return true;
   }
-  void descend(std::vector<Candidate>& list, int h) {
-    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
+  /// The scores at level h of the four children of a candidate: offsets (ox, oy), (ox + s, oy), (ox, oy + s) and
+  /// (ox + s, oy + s), in one pass over the query's cells (the four cells of a point lie close together).
+  void childScores(int h, int angle, int ox, int oy, int s, long out[4]) const {
+    const std::vector<int>& c = cells[static_cast<std::size_t>(angle)];
+    long s00 = 0, s10 = 0, s01 = 0, s11 = 0;
+    for (std::size_t i = 0; i < c.size(); i += 2) {
+      const int x = c[i] + ox, y = c[i + 1] + oy;
+      s00 += grid.value(h, x, y);
+      s10 += grid.value(h, x + s, y);
+      s01 += grid.value(h, x, y + s);
+      s11 += grid.value(h, x + s, y + s);
+    }
+    out[0] = s00, out[1] = s10, out[2] = s01, out[3] = s11;
+  }
+  void descend(Candidate* first, Candidate* last, int h) {
+    std::sort(first, last, [](const Candidate& a, const Candidate& b) {
       if (a.score != b.score) return a.score > b.score;
       if (a.angle != b.angle) return a.angle < b.angle;  // a total order: the result does not depend on sort details
       if (a.ox != b.ox) return a.ox < b.ox;
       return a.oy < b.oy;
     });
-    for (const Candidate& c : list) {
+    for (const Candidate* it = first; it != last; ++it) {
+      const Candidate& c = *it;
       if (c.score <= best.score) break;
       if (whollyExcluded(h, c.ox, c.oy)) continue;
       if (h == 0) {
@@ -242,15 +257,18 @@ struct Search {
         break;  // the list is sorted: the rest score less
       }
       const int s = 1 << (h - 1);
-      std::vector<Candidate> children;
-      children.reserve(4);
+      long sums[4];
+      childScores(h - 1, c.angle, c.ox, c.oy, s, sums);
+      Candidate children[4];
+      int n = 0, k = 0;
       for (int dy : {0, s})
         for (int dx : {0, s}) {
           const int ox = c.ox + dx, oy = c.oy + dy;
+          const long sc = sums[k++];
           if (ox > wx || oy > wx) continue;
-          children.push_back({c.angle, ox, oy, score(h - 1, c.angle, ox, oy)});
+          children[n++] = {c.angle, ox, oy, sc};
         }
-      descend(children, h - 1);
+      descend(children, children + n, h - 1);
     }
   }
 };
@@ -289,7 +307,7 @@ std::optional<CorrelativeMatch> branchAndBoundSearch(const CorrelationGrid& grid
   for (int a = 0; a < static_cast<int>(cells.size()); ++a)
     for (int oy = -wx; oy <= wx; oy += step)
       for (int ox = -wx; ox <= wx; ox += step) top.push_back({a, ox, oy, search.score(H, a, ox, oy)});
-  search.descend(top, H);
+  search.descend(top.data(), top.data() + top.size(), H);
   if (search.best.angle < 0) return std::nullopt;
   CorrelativeMatch m;
   m.pose = {window.center.x + search.best.ox * r, window.center.y + search.best.oy * r,
