@@ -231,13 +231,29 @@ struct Search {
   /// (ox + s, oy + s), in one pass over the query's cells (the four cells of a point lie close together).
   void childScores(int h, int angle, int ox, int oy, int s, long out[4]) const {
     const std::vector<int>& c = cells[static_cast<std::size_t>(angle)];
+    // The level's fields in locals (the compiler cannot keep them in registers through grid.value's loads), the
+    // cells in the level's storage coordinates.
+    const CorrelationGrid::LevelView l = grid.level(h);
+    const std::uint8_t* const data = l.data;
+    const unsigned w = static_cast<unsigned>(l.w), rows = static_cast<unsigned>(l.rows);
+    const int dx = ox + l.pad, dy = oy + l.pad;
     long s00 = 0, s10 = 0, s01 = 0, s11 = 0;
-    for (std::size_t i = 0; i < c.size(); i += 2) {
-      const int x = c[i] + ox, y = c[i + 1] + oy;
-      s00 += grid.value(h, x, y);
-      s10 += grid.value(h, x + s, y);
-      s01 += grid.value(h, x, y + s);
-      s11 += grid.value(h, x + s, y + s);
+    const int* p = c.data();
+    const int* const end = p + c.size();
+    for (; p != end; p += 2) {
+      const unsigned x0 = static_cast<unsigned>(p[0] + dx), y0 = static_cast<unsigned>(p[1] + dy);
+      const unsigned x1 = x0 + static_cast<unsigned>(s), y1 = y0 + static_cast<unsigned>(s);
+      const bool in_x0 = x0 < w, in_x1 = x1 < w;
+      if (y0 < rows) {
+        const std::uint8_t* row = data + static_cast<std::size_t>(y0) * w;
+        if (in_x0) s00 += row[x0];
+        if (in_x1) s10 += row[x1];
+      }
+      if (y1 < rows) {
+        const std::uint8_t* row = data + static_cast<std::size_t>(y1) * w;
+        if (in_x0) s01 += row[x0];
+        if (in_x1) s11 += row[x1];
+      }
     }
     out[0] = s00, out[1] = s10, out[2] = s01, out[3] = s11;
   }

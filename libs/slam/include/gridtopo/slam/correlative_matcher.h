@@ -44,6 +44,16 @@ class CorrelationGrid {
       return 0;
     return l.v[static_cast<std::size_t>(y) * l.w + x];
   }
+  /// Level `h`'s storage, for loops that read many of its cells: value(h, cx, cy) is data[(cy + pad) * w + cx + pad]
+  /// where 0 <= cx + pad < w and 0 <= cy + pad < rows, else 0.
+  struct LevelView {
+    const std::uint8_t* data;
+    int pad, w, rows;
+  };
+  LevelView level(int h) const {
+    const Level& l = levels_[static_cast<std::size_t>(h)];
+    return {l.v.data(), l.pad, l.w, l.h};
+  }
   /// The finest level interpolated bilinearly at a point of the submap's frame, in [0, 1].
   double interpolated(double x, double y) const;
   /// The refinement's value at a point: exp(−d²/2·refine_sigma²) of the exact distance d to the submap point
