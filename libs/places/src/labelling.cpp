@@ -11,8 +11,14 @@ namespace {
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-// Processor seconds of the whole process (every thread) since `c0`.
-double cpuSince(std::clock_t c0) { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
+// Wall and processor seconds (the whole process's, every thread's) since construction or the last restart.
+struct Stopwatch {
+  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  std::clock_t cpu = std::clock();
+  double wallSeconds() const { return since(wall); }
+  double cpuSeconds() const { return static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC; }
+  void restart() { *this = Stopwatch(); }
+};
 }  // namespace
 
 cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs) {
@@ -104,40 +110,31 @@ std::vector<std::pair<std::size_t, std::size_t>> latticeStripes(const Lattice& l
 
 cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const PlacesModel& model, int threads,
                         std::size_t stripe_samples, const std::function<void(std::size_t, std::size_t)>& progress,
-                        double* seconds_scans, double* seconds_features, double* seconds_classify,
-                        double* cpu_seconds_scans, double* cpu_seconds_features) {
+                        LatticeSeconds* seconds) {
   CV_Assert(model.features.context_radius <= 0);
   ScanSimulationOptions scan = model.scan;
   scan.threads = threads;
   const auto stripes = latticeStripes(lattice, stripe_samples);
   cv::Mat p(static_cast<int>(lattice.samples.size()), 1, CV_32FC3);
-  double ts = 0, tf = 0, tc = 0, cs = 0, cf = 0;
+  LatticeSeconds t;
   for (std::size_t k = 0; k < stripes.size(); ++k) {
     const auto [a, b] = stripes[k];
-    auto t0 = std::chrono::steady_clock::now();
-    std::clock_t c0 = std::clock();
+    Stopwatch sw;
     const std::vector<cv::Point> samples(lattice.samples.begin() + static_cast<long>(a),
                                          lattice.samples.begin() + static_cast<long>(b));
     cv::Mat beams = simulateBeams(occ, samples, scan, [&](std::size_t d, std::size_t n) {
       if (progress) progress(k * n + d, stripes.size() * n);
     });
-    ts += since(t0);
-    cs += cpuSince(c0);
-    t0 = std::chrono::steady_clock::now();
-    c0 = std::clock();
+    t.scans += sw.wallSeconds(), t.cpu_scans += sw.cpuSeconds();
+    sw.restart();
     cv::Mat features = extractFeaturesOfBeams(beams, model.features, threads);
     beams.release();
-    tf += since(t0);
-    cf += cpuSince(c0);
-    t0 = std::chrono::steady_clock::now();
+    t.features += sw.wallSeconds(), t.cpu_features += sw.cpuSeconds();
+    sw.restart();
     model.classify(features, threads).copyTo(p.rowRange(static_cast<int>(a), static_cast<int>(b)));
-    tc += since(t0);
+    t.classify += sw.wallSeconds();
   }
-  if (seconds_scans) *seconds_scans = ts;
-  if (seconds_features) *seconds_features = tf;
-  if (seconds_classify) *seconds_classify = tc;
-  if (cpu_seconds_scans) *cpu_seconds_scans = cs;
-  if (cpu_seconds_features) *cpu_seconds_features = cf;
+  if (seconds) *seconds = t;
   return p;
 }
 
@@ -149,33 +146,31 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
   const Lattice lattice = buildLattice(occ, model.scan.lattice_spacing);
   if (!keep_scans_and_features && model.features.context_radius <= 0) {
     // A stripe of the lattice at a time: its scans, features and class probabilities (nothing of it is kept).
-    double ts = 0, tf = 0, tc = 0, cs = 0, cf = 0;
+    LatticeSeconds t;
     const cv::Mat p = classifyLattice(
         occ, lattice, model, threads, kStripeSamples,
         [&](std::size_t d, std::size_t n) {
           if (progress) progress("scans", d, n);
         },
-        &ts, &tf, &tc, &cs, &cf);
+        &t);
     if (progress) progress("features", 1, 1);
     LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads);
-    res.seconds_scans = ts, res.seconds_features = tf, res.seconds_classify = tc;
-    res.cpu_seconds_scans = cs, res.cpu_seconds_features = cf;
+    res.seconds_scans = t.scans, res.seconds_features = t.features, res.seconds_classify = t.classify;
+    res.cpu_seconds_scans = t.cpu_scans, res.cpu_seconds_features = t.cpu_features;
     return res;
   }
   ScanSimulationOptions scan = model.scan;
   scan.threads = threads;
-  auto t0 = std::chrono::steady_clock::now();
-  std::clock_t c0 = std::clock();
+  Stopwatch sw;
   SimulatedScans scans = simulateScans(occ, lattice.samples, scan, [&](std::size_t d, std::size_t n) {
     if (progress) progress("scans", d, n);
   });
-  const double ts = since(t0), cs = cpuSince(c0);
-  t0 = std::chrono::steady_clock::now();
-  c0 = std::clock();
+  const double ts = sw.wallSeconds(), cs = sw.cpuSeconds();
+  sw.restart();
   cv::Mat features = extractFeatures(scans, model.features, threads);
   if (model.features.context_radius > 0)
     features = addContextFeatures(lattice, features, model.features.context_radius, occ.resolution);
-  const double tf = since(t0), cf = cpuSince(c0);
+  const double tf = sw.wallSeconds(), cf = sw.cpuSeconds();
   if (progress) progress("features", 1, 1);
   LabellingResult res = labelFromFeatures(occ, lattice, features, model, relax, threads);
   res.seconds_scans = ts, res.seconds_features = tf;

@@ -51,13 +51,15 @@ std::vector<std::pair<std::size_t, std::size_t>> latticeStripes(const Lattice& l
 /// The classifier's output (samples x 1, CV_32FC3) for every sample of `lattice`: scans (simulateBeams), features
 /// and classification a stripe (latticeStripes(lattice, stripe_samples)) at a time; the same bits for any stripe
 /// size. `progress(done, total)` counts pairs of beam directions over all stripes. Needs a model without context
-/// features (they need every sample's features at once). The seconds of each step are added up over the stripes
-/// (wall; the scans' and features' processor seconds too, when asked for).
+/// features (they need every sample's features at once). `seconds`, when given, receives each step's seconds added
+/// up over the stripes.
+struct LatticeSeconds {
+  double scans = 0, features = 0, classify = 0;  ///< wall
+  double cpu_scans = 0, cpu_features = 0;        ///< processor (every thread's, std::clock)
+};
 cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const PlacesModel& model, int threads,
                         std::size_t stripe_samples, const std::function<void(std::size_t, std::size_t)>& progress = {},
-                        double* seconds_scans = nullptr, double* seconds_features = nullptr,
-                        double* seconds_classify = nullptr, double* cpu_seconds_scans = nullptr,
-                        double* cpu_seconds_features = nullptr);
+                        LatticeSeconds* seconds = nullptr);
 
 /// Classifies precomputed features (as from computeSamples) and relaxes: used by training/evaluation.
 LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& features,
