@@ -618,11 +618,55 @@ TEST(LoopClosure, LookAlikeMatchesBesideTheTrajectoryAreProposedAndRefused) {
     const slam::Pose2 t = slam::relative(toPose(log.truth[0]), toPose(log.truth[k]));
     max_err = std::max(max_err, std::hypot(e.x - t.x, e.y - t.y));
   }
-  std::printf("look-alike, global: proposed %zu contradicted %zu accepted %zu; closures %zu, across corridors %zu; "
-              "max error %.3f m\n",
-              counts.global_proposed, counts.global_contradicted, counts.global_accepted, closures.size(), wrong,
-              max_err);
-  EXPECT_GT(counts.global_contradicted, 0u);
+  std::printf("look-alike, global: proposed %zu contradicted %zu beyond the drift bound %zu accepted %zu; closures "
+              "%zu, across corridors %zu; max error %.3f m\n",
+              counts.global_proposed, counts.global_contradicted, counts.global_beyond_bound, counts.global_accepted,
+              closures.size(), wrong, max_err);
+  EXPECT_GT(counts.global_contradicted + counts.global_beyond_bound, 0u);
   EXPECT_EQ(wrong, 0u);
   EXPECT_LT(max_err, 0.1);
+}
+
+TEST(LoopClosure, CandidatesBeyondTheDriftBoundAreSkippedWithoutChangingAnyClosure) {
+  // The look-alike corridors of the test above, driven with a drifting heading: the global search proposes places
+  // of both corridors in all headings. Skipping the candidates whose whole search window lies beyond the drift
+  // bound (global_prejudge) must give the closures and poses of matching every candidate, bit for bit.
+  sim::SimOptions so;
+  so.max_range = 10.0;
+  so.scan_spacing = 0.3;
+  so.seed = 9;
+  const double pi = 3.14159265358979;
+  const sim::SimLog log = sim::simulate(lookAlikePlan(),
+                                        {{3, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi},
+                                         {1.25, 6.25, 0}, {28.5, 6.25, 0}, {28.5, 6.25, pi}, {1.25, 6.25, pi},
+                                         {1.25, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi}},
+                                        so);
+  slam::SlamOptions o = testOptions();
+  slam::LoopClosureCounts skip_counts, all_counts;
+  std::vector<slam::LoopClosureRecord> skip_closures, all_closures;
+  const FedLoop skip = feedDrifting(log, o, 0.002, &skip_counts, &skip_closures);
+  o.loop_closure.global_prejudge = false;
+  const FedLoop all = feedDrifting(log, o, 0.002, &all_counts, &all_closures);
+  std::printf("drift bound: searches %zu, skipped %zu; proposed %zu / %zu, contradicted %zu / %zu, closures %zu / %zu\n",
+              skip_counts.global_searches, skip_counts.global_beyond_bound, skip_counts.global_proposed,
+              all_counts.global_proposed, skip_counts.global_contradicted, all_counts.global_contradicted,
+              skip_closures.size(), all_closures.size());
+  EXPECT_GT(skip_counts.global_beyond_bound, 0u);
+  EXPECT_EQ(all_counts.global_beyond_bound, 0u);
+  EXPECT_EQ(skip_counts.global_searches, all_counts.global_searches);
+  EXPECT_LE(skip_counts.global_proposed, all_counts.global_proposed);
+  EXPECT_EQ(skip_counts.global_accepted, all_counts.global_accepted);
+  ASSERT_EQ(skip_closures.size(), all_closures.size());
+  for (std::size_t k = 0; k < skip_closures.size(); ++k) {
+    EXPECT_EQ(skip_closures[k].node, all_closures[k].node);
+    EXPECT_EQ(skip_closures[k].submap_node, all_closures[k].submap_node);
+    EXPECT_EQ(skip_closures[k].offset_xy, all_closures[k].offset_xy);
+    EXPECT_EQ(skip_closures[k].global, all_closures[k].global);
+  }
+  ASSERT_EQ(skip.closed.size(), all.closed.size());
+  for (std::size_t k = 0; k < skip.closed.size(); ++k) {
+    EXPECT_EQ(skip.closed[k].x, all.closed[k].x);
+    EXPECT_EQ(skip.closed[k].y, all.closed[k].y);
+    EXPECT_EQ(skip.closed[k].theta, all.closed[k].theta);
+  }
 }

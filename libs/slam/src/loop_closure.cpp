@@ -778,8 +778,34 @@ std::optional<std::pair<std::size_t, Pose2>> LoopCloser::predictedPlace(std::siz
   return std::nullopt;
 }
 
+LoopCloser::DriftBound LoopCloser::driftBound(std::size_t j, const std::vector<PathDrift>& drift) const {
+  // The filter's heading drifts by at most window_theta_per_m per metre of the graph's least-drift path (plus the
+  // suspect steps' disagreement), and so the position by that heading times the path.
+  const PathDrift& pd = drift[std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes))];
+  const double theta = o_.window_theta_min + o_.window_theta_per_m * pd.travel + pd.suspect_theta;
+  return {o_.window_xy_min + o_.window_xy_per_m * pd.travel + pd.suspect_xy + theta * pd.travel, theta};
+}
+
+bool LoopCloser::beyondDriftBound(const GlobalQuery& q, std::size_t j, const SearchWindow& w,
+                                  const std::vector<PathDrift>& drift) const {
+  // matchGlobally's match: the search's best pose inside the window (it refuses one on the border), then
+  // refineMatch's climb, at most 50 steps per level of half a cell (half an angular step), halved at each level:
+  // less than 50 cells (50 angular steps) in all.
+  const DriftBound bound = driftBound(j, drift);
+  const Pose2 estimate = relative(graph_.pose(j), graph_.pose(q.node));
+  const double reach_xy = w.xy + 50.0 * o_.resolution, reach_theta = w.theta + 50.0 * q.dtheta;
+  const double gap_x = std::max(0.0, std::abs(estimate.x - w.center.x) - reach_xy);
+  const double gap_y = std::max(0.0, std::abs(estimate.y - w.center.y) - reach_xy);
+  const double gap_theta = std::abs(wrapAngle(estimate.theta - w.center.theta)) - reach_theta;
+  return gap_theta > bound.theta || std::hypot(gap_x, gap_y) > bound.xy;
+}
+
 bool LoopCloser::matchGlobally(const GlobalQuery& q, std::size_t j, const SearchWindow& w, double min_score,
                                const std::vector<PathDrift>& drift, const std::vector<Pose2>& geometry) {
+  if (o_.global_prejudge && beyondDriftBound(q, j, w, drift)) {
+    ++global_beyond_bound_;
+    return false;
+  }
   const CorrelationGrid grid = placeGrid(j, geometry);
   const double search_bound = q.thinned ? 0.9 * min_score : min_score;
   const auto found = branchAndBoundSearch(grid, q.search_points, w, search_bound);
@@ -814,13 +840,10 @@ bool LoopCloser::matchGlobally(const GlobalQuery& q, std::size_t j, const Search
   const Pose2 estimate = relative(graph_.pose(j), graph_.pose(q.node));
   const double off_xy = std::hypot(m.pose.x - estimate.x, m.pose.y - estimate.y);
   const double off_theta = std::abs(wrapAngle(m.pose.theta - estimate.theta));
-  // Beyond that, the heading: the filter's heading drifts by at most window_theta_per_m per metre of the graph's
-  // least-drift path (plus the suspect steps' disagreement), and so the position by that heading times the
-  // path; a match that turns the trajectory further is a look-alike (the same corner elsewhere in the building).
-  const PathDrift& pd = drift[std::min(drift.size() - 1, j / static_cast<std::size_t>(o_.submap_nodes))];
-  const double bound_theta = o_.window_theta_min + o_.window_theta_per_m * pd.travel + pd.suspect_theta;
-  const double bound_xy = o_.window_xy_min + o_.window_xy_per_m * pd.travel + pd.suspect_xy + bound_theta * pd.travel;
-  if (off_theta > bound_theta || off_xy > bound_xy) {
+  // Beyond that, the drift bound (driftBound): a match that turns or moves the trajectory further is a look-alike
+  // (the same corner elsewhere in the building).
+  const DriftBound bound = driftBound(j, drift);
+  if (off_theta > bound.theta || off_xy > bound.xy) {
     ++global_contradicted_;
     return false;
   }
@@ -997,6 +1020,7 @@ LoopClosureCounts LoopCloser::counts() const {
   c.global_contradicted = global_contradicted_;
   c.global_refuted = global_refuted_;
   c.global_followed = global_followed_;
+  c.global_beyond_bound = global_beyond_bound_;
   c.cpu_windowed = cpu_windowed_;
   c.cpu_global_sign = cpu_global_sign_;
   c.cpu_global_query = cpu_global_query_;
@@ -1024,6 +1048,7 @@ std::string closuresText(const std::vector<LoopClosureRecord>& closures, const L
       << " global_proposed " << n.global_proposed << " global_followed " << n.global_followed
       << " global_accepted " << n.global_accepted
       << " global_contradicted " << n.global_contradicted << " global_dropped " << n.global_dropped
+      << " global_beyond_bound " << n.global_beyond_bound
       << " largest_correction_xy " << n.largest_correction_xy << " largest_correction_theta "
       << n.largest_correction_theta << '\n';
   return out.str();

@@ -45,6 +45,7 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
           .add("global_max_contradiction", &O::global_max_contradiction, R::closed(0, 1), "", "largest share of its points in space the place saw free")
           .add("global_follow_min_score", &O::global_follow_min_score, R::closed(0, 1), "", "a query matched where a waiting match predicts it: its mean grid value over all its points")
           .add("global_search_voxel", &O::global_search_voxel, R::atLeast(0), "m", "the branch and bound of a global match thins its query to a point per voxel this size (0: every point)")
+          .add("global_prejudge", &O::global_prejudge, R::any(), "", "skip a candidate whose whole search window lies beyond the drift bound (false: match it anyway; the same closures, slower)")
           .add("global_agree", &O::global_agree, R::closed(1, 100), "", "agreeing independent matches before a global closure is accepted")
           .add("global_independent_m", &O::global_independent_m, R::atLeast(0), "m", "travel between independent matches")
           .add("global_consistency_xy", &O::global_consistency_xy, R::above(0), "m", "two matches agree within this")

@@ -70,6 +70,9 @@ struct LoopClosureCounts {
   /// dropped for want of agreement.
   std::size_t global_searches = 0, global_refuted = 0, global_proposed = 0, global_followed = 0,
               global_contradicted = 0, global_accepted = 0, global_dropped = 0;
+  /// Candidates not matched because every pose of their search window lies beyond the drift bound: the match
+  /// would have been refused (or never found); deciding it first saves the place's grid and the search.
+  std::size_t global_beyond_bound = 0;
   /// The largest move of the newest pose by an optimisation with new accepted closures (m, rad), from where the
   /// filter's motions since the previous optimisation put it.
   double largest_correction_xy = 0.0, largest_correction_theta = 0.0;
@@ -213,6 +216,16 @@ class LoopCloser {
   /// trajectory's bounds; a surviving match waits for agreement in pending_ (true).
   bool matchGlobally(const GlobalQuery& q, std::size_t place, const SearchWindow& window, double min_score,
                      const std::vector<PathDrift>& drift, const std::vector<Pose2>& geometry);
+  /// How far (m, rad) a match of the query at node `node` to place node `place` may move the query from where the
+  /// graph puts it: the drift the graph's least-drift path between them can have gathered.
+  struct DriftBound {
+    double xy, theta;
+  };
+  DriftBound driftBound(std::size_t place, const std::vector<PathDrift>& drift) const;
+  /// Whether every match matchGlobally can return within `window` (the window plus the refinement's longest climb)
+  /// lies beyond the drift bound, so that the match would be refused whatever the place's grid holds.
+  bool beyondDriftBound(const GlobalQuery& q, std::size_t place, const SearchWindow& window,
+                        const std::vector<PathDrift>& drift) const;
   /// Whether the windowed search reaches place node `place` from node `node` and has just closed it.
   bool leftToWindowedSearch(std::size_t place, std::size_t node, const std::vector<PathDrift>& drift) const;
   /// Where the newest match waiting for agreement puts node `node`: the node of its place's pass nearest to it
@@ -267,7 +280,7 @@ class LoopCloser {
   bool optimize_now_ = false;
   std::size_t backfill_from_ = static_cast<std::size_t>(-1);  ///< nodes the windowed search revisits (a new loop)
   std::size_t global_searches_ = 0, global_proposed_ = 0, global_contradicted_ = 0, global_dropped_ = 0,
-              global_refuted_ = 0, global_followed_ = 0;
+              global_refuted_ = 0, global_followed_ = 0, global_beyond_bound_ = 0;
   double cpu_windowed_ = 0.0, cpu_global_sign_ = 0.0, cpu_global_query_ = 0.0, cpu_global_verify_ = 0.0,
          cpu_optimize_ = 0.0;
 };

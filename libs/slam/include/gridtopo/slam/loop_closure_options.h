@@ -68,6 +68,10 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// m: the branch and bound of a global match scores the query thinned to one point per voxel of this size (its
   /// refinement and final score use every point); 0: every point throughout.
   double global_search_voxel = 0.3;
+  /// true: a candidate whose whole search window (with the refinement's longest climb) lies beyond the drift bound
+  /// the match would be judged by is not matched (it could only be refused: the same closures, without its grid
+  /// and search). false: every candidate is matched (slower; for checking that the two agree).
+  bool global_prejudge = true;
   /// Matches (this one included) whose queries lie at least global_independent_m apart that must agree before any
   /// of them enters the graph. Queries share most of their points (each is global_query_m long): 8 m apart they
   /// share three fifths, 4 m apart four fifths, and the same look-alike corner in all of them is one piece of
