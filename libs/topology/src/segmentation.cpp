@@ -132,19 +132,27 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     // `area`: the segment plus the obstacles it encloses (furniture standing in the room), so that the distance
     // transform measures the room's walls, not the gaps between chairs.
     const cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
-    cv::Mat dist, core, cc, stats, cent;
-    dist = preciseDistance(area);
-    cv::compare(dist, half_px, core, cv::CMP_GT);
+    // One segment can span most of a large map (the hospital's corridors: a box of 8 000 × 4 500 cells), so its
+    // crop-sized images are let go as soon as they are used: the distance once the core is marked, and the core's
+    // components become the seed image in place.
+    cv::Mat core, cc, stats, cent;
+    cv::compare(preciseDistance(area), half_px, core, cv::CMP_GT);
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
+    core.release();
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);
     int parts = 0;
     for (int c = 1; c < n; ++c)
       if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_part_px) part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
     if (parts < 2) continue;
-    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet).
-    cv::Mat own(mask.size(), CV_32S, cv::Scalar(0));
-    for (int y = 0; y < cc.rows; ++y)
-      for (int x = 0; x < cc.cols; ++x) own.at<int>(y, x) = part_id[static_cast<std::size_t>(cc.at<int>(y, x))];
+    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet,
+    // written over the components).
+    cv::Mat own = cc;
+    for (int y = 0; y < own.rows; ++y)
+      for (int x = 0; x < own.cols; ++x) {
+        int& id = own.at<int>(y, x);
+        id = part_id[static_cast<std::size_t>(id)];
+      }
+    cc.release();
     growSeeds(own, area);
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
