@@ -30,7 +30,7 @@ LIBDIR=$(sed -n 's/^CMAKE_INSTALL_LIBDIR:PATH=//p' "$BUILD/CMakeCache.txt")
 cmake --install "$BUILD" --prefix "$P" > "$W/install.log"
 for f in bin/gridtopo-slam bin/gridtopo-topology bin/gridtopo-map bin/gridtopo-import \
          "$LIBDIR/libgridtopo_slam.so" "$LIBDIR/libgridtopo_mapping.so" "$LIBDIR/libgridtopo_core.so.0.1" \
-         include/gridtopo/slam/map_builder.h include/gridtopo/mapping/topology_builder.h \
+         include/gridtopo/mapping/rbpf_map_builder.h include/gridtopo/mapping/topology_builder.h \
          include/gridtopo/core/error.h "$LIBDIR/cmake/gridtopo/gridtopoConfig.cmake" \
          "$LIBDIR/cmake/gridtopo/gridtopoConfigVersion.cmake" "$LIBDIR/cmake/gridtopo/gridtopoTargets.cmake" \
          share/gridtopo/datasets/models/places_model.yml share/gridtopo/config-ini/slam.ini \
@@ -136,7 +136,7 @@ for f in ./usr/bin/gridtopo-slam ./usr/bin/gridtopo-topology ./usr/bin/gridtopo-
          ./usr/share/gridtopo/config-ini/slam.ini; do
   grep -qxF "$f" "$W/run.txt" || fail "$(basename "$RUN_DEB") lacks $f"
 done
-for f in ./usr/include/gridtopo/slam/map_builder.h "./usr/$LIBDIR/cmake/gridtopo/gridtopoConfig.cmake"; do
+for f in ./usr/include/gridtopo/mapping/rbpf_map_builder.h "./usr/$LIBDIR/cmake/gridtopo/gridtopoConfig.cmake"; do
   grep -qxF "$f" "$W/dev.txt" || fail "$(basename "$DEV_DEB") lacks $f"
 done
 ! grep -q '^./usr/include' "$W/run.txt" || fail "headers in the runtime package"

@@ -1,5 +1,5 @@
 // gridtopo-map: log -> SLAM -> semantic and topological map in one process, through the two MRPT map builders
-// (mapping::CMetricMapBuilderTopology over slam::CMetricMapBuilderGridRbpf).
+// (mapping::CMetricMapBuilderTopology over mapping::CMetricMapBuilderGridRbpf).
 #include <tclap/CmdLine.h>
 
 #include <iostream>

@@ -4,7 +4,7 @@
 //
 // The rawlog (either MRPT layout: action / sensory-frame pairs or observations, gzip or plain) is read with
 // MRPT's own CRawlog over a CFileGZInputStream and fed, entry by entry, to a
-// gridtopo::mapping::CMetricMapBuilderTopology wrapping a gridtopo::slam::CMetricMapBuilderGridRbpf. CONFIG.ini
+// gridtopo::mapping::CMetricMapBuilderTopology wrapping a gridtopo::mapping::CMetricMapBuilderGridRbpf. CONFIG.ini
 // may hold a [slam] section (config-ini/slam.ini's keys) and a [topology_builder] section (update_every).
 // Writes OUTDIR/map.gridmap.gz (MRPT's COccupancyGridMap2D, serialized), OUTDIR/map.png, OUTDIR/path.txt (the
 // positions of the map's scans, gridtopo's trajectory format, for gridtopo-topology -t), OUTDIR/topology.json and OUTDIR/topology.graphml, and prints a
@@ -28,7 +28,7 @@
 
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/mapping/topology_builder.h"
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 #include "gridtopo/topology/export.h"
 
 namespace {
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
       slam_options.loadFromConfigFile(ini, "slam");
       schedule.loadFromConfigFile(ini, "topology_builder");
     }
-    auto slam = std::make_shared<gridtopo::slam::CMetricMapBuilderGridRbpf>(slam_options);
+    auto slam = std::make_shared<gridtopo::mapping::CMetricMapBuilderGridRbpf>(slam_options);
     auto model = std::make_shared<const gridtopo::places::PlacesModel>(gridtopo::places::PlacesModel::load(model_path));
     gridtopo::mapping::CMetricMapBuilderTopology builder(model, gridtopo::topology::TopologyOptions(), schedule, slam);
     builder.initialize();

@@ -27,7 +27,7 @@
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/topology/export.h"
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 
 using namespace gridtopo;
 namespace fs = std::filesystem;
@@ -45,11 +45,11 @@ std::shared_ptr<const places::PlacesModel> model() {
   return m;
 }
 
-std::shared_ptr<slam::CMetricMapBuilderGridRbpf> ourSlam() {
+std::shared_ptr<mapping::CMetricMapBuilderGridRbpf> ourSlam() {
   slam::SlamOptions o;
   o.particles = 10;
   o.threads = 2;
-  return std::make_shared<slam::CMetricMapBuilderGridRbpf>(o);
+  return std::make_shared<mapping::CMetricMapBuilderGridRbpf>(o);
 }
 
 std::array<int, 3> nodeCounts(const topology::TopologicalGraph& g) {

@@ -11,7 +11,7 @@
 #include "gridtopo/io/log_reader.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/places/model.h"
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 #include "gridtopo/slam/slam_outputs.h"
 #include "gridtopo/slam/slam_run_ini.h"
 #include "gridtopo/topology/topology_outputs.h"
@@ -48,7 +48,7 @@ MapRunSummary runMapping(const MapRunSpec& spec, const MapRunHooks& hooks) {
 
   // The two builders: the topology one wraps the SLAM one and is the only one fed.
   const auto t_map = std::chrono::steady_clock::now();
-  auto slam_builder = std::make_shared<slam::CMetricMapBuilderGridRbpf>(spec.slam);
+  auto slam_builder = std::make_shared<mapping::CMetricMapBuilderGridRbpf>(spec.slam);
   CMetricMapBuilderTopology builder(model, spec.topology, spec.builder, slam_builder);
   builder.onTopologyUpdated = hooks.topologyUpdated;
   for (std::size_t i = 0; i < records.size(); ++i) {

@@ -10,7 +10,7 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/core/map_image.h"
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 
 namespace gridtopo::mapping {
 
@@ -58,7 +58,7 @@ CMetricMapBuilderTopology::CMetricMapBuilderTopology(std::shared_ptr<const place
     : builderOptions(builder_options),
       topologyOptions(topology_options),
       model_(std::move(model)),
-      metric_(metric ? std::move(metric) : std::make_shared<slam::CMetricMapBuilderGridRbpf>()) {
+      metric_(metric ? std::move(metric) : std::make_shared<mapping::CMetricMapBuilderGridRbpf>()) {
   if (!model_) throw std::invalid_argument("CMetricMapBuilderTopology: a place model is required");
 }
 
@@ -89,7 +89,7 @@ void CMetricMapBuilderTopology::processActionObservation(mrpt::obs::CActionColle
 void CMetricMapBuilderTopology::processObservation(const mrpt::obs::CObservation::Ptr& obs) {
   if (!obs) return;
   forwardOptions();
-  if (auto* ours = dynamic_cast<slam::CMetricMapBuilderGridRbpf*>(metric_.get())) {
+  if (auto* ours = dynamic_cast<mapping::CMetricMapBuilderGridRbpf*>(metric_.get())) {
     ours->processObservation(obs);
   } else if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
     odometry_ = odo->odometry;

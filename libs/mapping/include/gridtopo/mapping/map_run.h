@@ -1,6 +1,6 @@
 #pragma once
 // One gridtopo-map run: log -> SLAM -> topology in one process through the two MRPT map builders. The log's scans go
-// to a CMetricMapBuilderTopology wrapping slam::CMetricMapBuilderGridRbpf as MRPT observations (the observation-only
+// to a CMetricMapBuilderTopology wrapping mapping::CMetricMapBuilderGridRbpf as MRPT observations (the observation-only
 // rawlog layout: CObservationOdometry, then CObservation2DRangeScan), the topology is recomputed on the builder's
 // schedule and once more on the final map, and the outputs land in OUT/slam (slam::addSlamOutputs: what
 // gridtopo-slam writes), OUT/topology (topology::addTopologyOutputs: what gridtopo-topology writes) and

@@ -1,6 +1,6 @@
 #pragma once
 // Topology as an MRPT map builder: a mrpt::slam::CMetricMapBuilder that wraps a metric map builder (gridtopo's RBPF,
-// slam::CMetricMapBuilderGridRbpf, by default; any CMetricMapBuilder whose metric map holds a COccupancyGridMap2D
+// mapping::CMetricMapBuilderGridRbpf, by default; any CMetricMapBuilder whose metric map holds a COccupancyGridMap2D
 // works), forwards every observation to it, and keeps the semantic and topological map of its current map: place
 // labels, regions and the topological graph, recomputed every TopologyBuilderOptions::update_every processed scans
 // or on request (updateTopology()). The topology is made by the one pipeline of gridtopo-topology
@@ -68,7 +68,7 @@ MapTopology topologyOfBuiltMap(const mrpt::maps::COccupancyGridMap2D& grid, unsi
 class CMetricMapBuilderTopology : public mrpt::slam::CMetricMapBuilder {
  public:
   /// `model`: the place model (gridtopo-train; required). `metric`: the builder to wrap; null = a
-  /// slam::CMetricMapBuilderGridRbpf with default SlamOptions.
+  /// mapping::CMetricMapBuilderGridRbpf with default SlamOptions.
   explicit CMetricMapBuilderTopology(std::shared_ptr<const places::PlacesModel> model,
                                      const topology::TopologyOptions& topology_options = topology::TopologyOptions(),
                                      const TopologyBuilderOptions& builder_options = TopologyBuilderOptions(),

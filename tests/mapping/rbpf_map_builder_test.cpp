@@ -14,7 +14,7 @@
 #include "common/rawlog_feed.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/sim/simulator.h"
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 
 using namespace gridtopo;
 namespace fs = std::filesystem;
@@ -35,7 +35,7 @@ slam::SlamOptions smallOptions() {
 
 TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
   const auto log = shortLog();
-  slam::CMetricMapBuilderGridRbpf builder(smallOptions());
+  mapping::CMetricMapBuilderGridRbpf builder(smallOptions());
   testing_feed::feedActionObservation(builder, log.records);
   // The builder's odometry starts at (0,0,0) (rawlog actions carry increments only): compare the motion from
   // the first pose with the ground truth's.
@@ -78,7 +78,7 @@ TEST(MapBuilder, ActionSensoryFrameLayoutMatchesTheFilter) {
 
 TEST(MapBuilder, ObservationOnlyLayoutAndInitialPose) {
   const auto log = shortLog();
-  slam::CMetricMapBuilderGridRbpf builder(smallOptions());
+  mapping::CMetricMapBuilderGridRbpf builder(smallOptions());
   mrpt::poses::CPosePDFGaussian x0(mrpt::poses::CPose2D(log.truth[0].x, log.truth[0].y, log.truth[0].phi));
   builder.initialize(mrpt::maps::CSimpleMap(), &x0);
   for (const auto& r : log.records) {

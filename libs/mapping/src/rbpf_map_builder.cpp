@@ -1,4 +1,4 @@
-#include "gridtopo/slam/map_builder.h"
+#include "gridtopo/mapping/rbpf_map_builder.h"
 
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -14,7 +14,13 @@
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/resampling.h"
 
-namespace gridtopo::slam {
+namespace gridtopo::mapping {
+
+using slam::compose;
+using slam::Pose2;
+using slam::RbpfSlam;
+using slam::SlamOptions;
+using slam::SlamRun;
 
 CMetricMapBuilderGridRbpf::CMetricMapBuilderGridRbpf(const SlamOptions& options) : slamOptions(options) {
   initialize();
@@ -81,7 +87,7 @@ mrpt::poses::CPose3DPDF::Ptr CMetricMapBuilderGridRbpf::getCurrentPoseEstimation
   if (ps.empty()) return pdf;
   std::vector<double> lw;
   for (const auto& p : ps) lw.push_back(p.log_weight);
-  const auto w = normalizedWeights(lw);
+  const auto w = slam::normalizedWeights(lw);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     pdf->m_particles[i].d = mrpt::math::TPose3D(ps[i].pose.x, ps[i].pose.y, 0, ps[i].pose.theta, 0, 0);
     pdf->m_particles[i].log_w = std::log(std::max(w[i], 1e-300));
@@ -112,8 +118,8 @@ void CMetricMapBuilderGridRbpf::saveCurrentEstimationToImage(const std::string& 
   const RbpfSlam& filter = run_->filter();
   if (filter.particles().empty()) throw std::runtime_error("saveCurrentEstimationToImage: no map yet");
   const auto grid = toOccupancyGrid(run_->resultMap());
-  if (!cv::imwrite(file, renderMap(grid, run_->trajectory())))
+  if (!cv::imwrite(file, slam::renderMap(grid, run_->trajectory())))
     throw std::runtime_error("saveCurrentEstimationToImage: cannot write " + file);
 }
 
-}  // namespace gridtopo::slam
+}  // namespace gridtopo::mapping
