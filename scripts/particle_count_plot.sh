@@ -40,7 +40,7 @@ set multiplot layout $n,1
 set yrange [0:32]
 set ylabel 'count'
 set xlabel 'log time (s)'
-set key top right horizontal
+set key top right horizontal opaque box
 $plots
 unset multiplot
 GP
