@@ -543,6 +543,21 @@ FedLoop feedDrifting(const sim::SimLog& log, const slam::SlamOptions& o, double 
   return r;
 }
 
+// The look-alike corridors driven A east and back, B east and back, A east again (and back to the start with
+// `back_again`).
+sim::SimLog lookAlikeRun(bool back_again) {
+  sim::SimOptions so;
+  so.max_range = 10.0;
+  so.scan_spacing = 0.3;
+  so.seed = 9;
+  const double pi = 3.14159265358979;
+  std::vector<mrpt::math::TPose2D> path{{3, 1.25, 0},    {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi},
+                                        {1.25, 6.25, 0}, {28.5, 6.25, 0}, {28.5, 6.25, pi}, {1.25, 6.25, pi},
+                                        {1.25, 1.25, 0}, {28.5, 1.25, 0}};
+  if (back_again) path.insert(path.end(), {{28.5, 1.25, pi}, {1.25, 1.25, pi}});
+  return sim::simulate(lookAlikePlan(), path, so);
+}
+
 }  // namespace
 
 TEST(LoopClosure, AKilometreLoopThirtyMetresOffAtTheReturnClosesThroughTheGlobalSearch) {
@@ -595,16 +610,7 @@ TEST(LoopClosure, LookAlikeMatchesBesideTheTrajectoryAreProposedAndRefused) {
   // A east and back, B east and back, A east again, fed to the loop closure alone (no drift). B's places look like
   // A's, 5 m beside them: the global search proposes B-to-A matches, and the short trajectory between the two
   // corridors contradicts them. None may enter the graph; the real revisit of A does close.
-  sim::SimOptions so;
-  so.max_range = 10.0;
-  so.scan_spacing = 0.3;
-  so.seed = 9;
-  const double pi = 3.14159265358979;
-  const sim::SimLog log = sim::simulate(lookAlikePlan(),
-                                        {{3, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi},
-                                         {1.25, 6.25, 0}, {28.5, 6.25, 0}, {28.5, 6.25, pi}, {1.25, 6.25, pi},
-                                         {1.25, 1.25, 0}, {28.5, 1.25, 0}},
-                                        so);
+  const sim::SimLog log = lookAlikeRun(false);
   slam::SlamOptions o = testOptions();
   slam::LoopClosureCounts counts;
   std::vector<slam::LoopClosureRecord> closures;
@@ -631,16 +637,7 @@ TEST(LoopClosure, CandidatesBeyondTheDriftBoundAreSkippedWithoutChangingAnyClosu
   // The look-alike corridors of the test above, driven with a drifting heading: the global search proposes places
   // of both corridors in all headings. Skipping the candidates whose whole search window lies beyond the drift
   // bound (global_prejudge) must give the closures and poses of matching every candidate, bit for bit.
-  sim::SimOptions so;
-  so.max_range = 10.0;
-  so.scan_spacing = 0.3;
-  so.seed = 9;
-  const double pi = 3.14159265358979;
-  const sim::SimLog log = sim::simulate(lookAlikePlan(),
-                                        {{3, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi},
-                                         {1.25, 6.25, 0}, {28.5, 6.25, 0}, {28.5, 6.25, pi}, {1.25, 6.25, pi},
-                                         {1.25, 1.25, 0}, {28.5, 1.25, 0}, {28.5, 1.25, pi}, {1.25, 1.25, pi}},
-                                        so);
+  const sim::SimLog log = lookAlikeRun(true);
   slam::SlamOptions o = testOptions();
   slam::LoopClosureCounts skip_counts, all_counts;
   std::vector<slam::LoopClosureRecord> skip_closures, all_closures;

@@ -175,7 +175,7 @@ CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Poin
   CorrelativeMatch best{start, refinementScore(grid, query, start)};
   double sxy = 0.5 * grid.resolution(), st = 0.5 * theta_step;
   for (int level = 0; level <= refinements; ++level) {
-    for (int it = 0; it < 50; ++it) {
+    for (int it = 0; it < kRefineStepsPerLevel; ++it) {
       const Pose2 moves[6] = {{sxy, 0, 0}, {-sxy, 0, 0}, {0, sxy, 0}, {0, -sxy, 0}, {0, 0, st}, {0, 0, -st}};
       CorrelativeMatch next = best;
       for (const Pose2& m : moves) {

@@ -787,13 +787,12 @@ LoopCloser::DriftBound LoopCloser::driftBound(std::size_t j, const std::vector<P
 }
 
 bool LoopCloser::beyondDriftBound(const GlobalQuery& q, std::size_t j, const SearchWindow& w,
-                                  const std::vector<PathDrift>& drift) const {
+                                  const DriftBound& bound) const {
   // matchGlobally's match: the search's best pose inside the window (it refuses one on the border), then
-  // refineMatch's climb, at most 50 steps per level of half a cell (half an angular step), halved at each level:
-  // less than 50 cells (50 angular steps) in all.
-  const DriftBound bound = driftBound(j, drift);
+  // refineMatch's climb, less than kRefineStepsPerLevel cells (angular steps) in all.
   const Pose2 estimate = relative(graph_.pose(j), graph_.pose(q.node));
-  const double reach_xy = w.xy + 50.0 * o_.resolution, reach_theta = w.theta + 50.0 * q.dtheta;
+  const double reach_xy = w.xy + kRefineStepsPerLevel * o_.resolution;
+  const double reach_theta = w.theta + kRefineStepsPerLevel * q.dtheta;
   const double gap_x = std::max(0.0, std::abs(estimate.x - w.center.x) - reach_xy);
   const double gap_y = std::max(0.0, std::abs(estimate.y - w.center.y) - reach_xy);
   const double gap_theta = std::abs(wrapAngle(estimate.theta - w.center.theta)) - reach_theta;
@@ -802,7 +801,8 @@ bool LoopCloser::beyondDriftBound(const GlobalQuery& q, std::size_t j, const Sea
 
 bool LoopCloser::matchGlobally(const GlobalQuery& q, std::size_t j, const SearchWindow& w, double min_score,
                                const std::vector<PathDrift>& drift, const std::vector<Pose2>& geometry) {
-  if (o_.global_prejudge && beyondDriftBound(q, j, w, drift)) {
+  const DriftBound bound = driftBound(j, drift);
+  if (o_.global_prejudge && beyondDriftBound(q, j, w, bound)) {
     ++global_beyond_bound_;
     return false;
   }
@@ -842,7 +842,6 @@ bool LoopCloser::matchGlobally(const GlobalQuery& q, std::size_t j, const Search
   const double off_theta = std::abs(wrapAngle(m.pose.theta - estimate.theta));
   // Beyond that, the drift bound (driftBound): a match that turns or moves the trajectory further is a look-alike
   // (the same corner elsewhere in the building).
-  const DriftBound bound = driftBound(j, drift);
   if (off_theta > bound.theta || off_xy > bound.xy) {
     ++global_contradicted_;
     return false;

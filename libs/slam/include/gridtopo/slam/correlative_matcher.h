@@ -107,9 +107,14 @@ std::optional<CorrelativeMatch> branchAndBoundSearch(const CorrelationGrid& grid
                                                      const Point2* exclude_center = nullptr,
                                                      double exclude_radius = 0.0);
 
+/// refineMatch's most steps at each step size: with steps of half a cell (half `theta_step`) halved at each level,
+/// a refinement moves its start by less than kRefineStepsPerLevel cells (angular steps) in all.
+constexpr int kRefineStepsPerLevel = 50;
+
 /// Local refinement of a match: hill climbing on the grid's refinement value (CorrelationGrid::refined) from
-/// `start` (steps of half a cell and the given angular step, halved `refinements` times); the score returned is
-/// the mean of the search value (correlationScore) at the refined pose, comparable with the search's.
+/// `start` (steps of half a cell and the given angular step, halved `refinements` times, at most
+/// kRefineStepsPerLevel steps each); the score returned is the mean of the search value (correlationScore) at the
+/// refined pose, comparable with the search's.
 CorrelativeMatch refineMatch(const CorrelationGrid& grid, const std::vector<Point2>& query, const Pose2& start,
                              double theta_step, int refinements = 5);
 

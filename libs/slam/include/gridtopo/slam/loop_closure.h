@@ -223,9 +223,9 @@ class LoopCloser {
   };
   DriftBound driftBound(std::size_t place, const std::vector<PathDrift>& drift) const;
   /// Whether every match matchGlobally can return within `window` (the window plus the refinement's longest climb)
-  /// lies beyond the drift bound, so that the match would be refused whatever the place's grid holds.
+  /// lies beyond `bound` (driftBound), so that the match would be refused whatever the place's grid holds.
   bool beyondDriftBound(const GlobalQuery& q, std::size_t place, const SearchWindow& window,
-                        const std::vector<PathDrift>& drift) const;
+                        const DriftBound& bound) const;
   /// Whether the windowed search reaches place node `place` from node `node` and has just closed it.
   bool leftToWindowedSearch(std::size_t place, std::size_t node, const std::vector<PathDrift>& drift) const;
   /// Where the newest match waiting for agreement puts node `node`: the node of its place's pass nearest to it
