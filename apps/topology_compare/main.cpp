@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
     TCLAP::ValueArg<std::string> ref_seg("", "reference-segmentation",
                                          "reference room-segmentation ground truth (rooms white), same frame", false,
                                          "", "png", cmd);
+    TCLAP::SwitchArg same_frame("", "same-frame",
+                                "the reference plan is pixel-aligned with the map (a simulated map of the plan, "
+                                "gridtopo-simulate-maps): use the identity instead of searching the alignment",
+                                cmd);
     TCLAP::MultiArg<std::string> ref_topo("", "reference-topology",
                                           "instead of a plan: another topology of the same building, given twice: "
                                           "its map, then its gridtopo-topology output directory",
@@ -74,6 +78,7 @@ int main(int argc, char** argv) {
                                              options);
       if (errors.isSet()) throw UsageError("--errors needs a reference plan");
       if (traj.isSet()) throw UsageError("--trajectory needs a reference plan");
+      if (same_frame.isSet()) throw UsageError("--same-frame needs a reference plan");
       OutputSet outs;
       if (!json.getValue().empty())
         outs.write(json.getValue(), [&](const std::string& p) { writeTextFileAtomically(p, eval::agreementJson(a)); });
@@ -90,7 +95,8 @@ int main(int argc, char** argv) {
                        "--reference-topology MAP DIR");
 
     const auto c = eval::compareWithReference(map_arg.getValue(), dir_arg.getValue(),
-                                              {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue()},
+                                              {ref_map.getValue(), ref_labels.getValue(), ref_seg.getValue(),
+                                               same_frame.getValue()},
                                               options, traj.getValue());
     OutputSet outs;
     const auto png = [&](const std::string& path, const cv::Mat& img) {

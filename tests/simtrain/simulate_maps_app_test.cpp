@@ -2,9 +2,12 @@
 // culprit and writes nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "common/run_app.h"
 #include "common/scratch.h"
@@ -30,7 +33,26 @@ TEST(SimulateMapsApp, RemakesTheStoredMapByteForByte) {
     const auto made = slurp(out / (std::string(name) + "_sim_map.png"));
     ASSERT_FALSE(made.empty()) << name;
     EXPECT_EQ(made, slurp(fs::path(kData) / "places/derived" / (std::string(name) + "_sim_map.png"))) << name;
+    const auto poses = slurp(out / (std::string(name) + "_sim_trajectory.txt"));
+    EXPECT_TRUE(poses == slurp(fs::path(kData) / "places/derived" / (std::string(name) + "_sim_trajectory.txt")))
+        << name;
   }
+  // The trajectory is in the plan's frame (lower-left corner at 0 0, 0.05 m cells): every pose of lab_ipa's run lies
+  // on a free cell of the plan, one pose per scan.
+  const cv::Mat plan = cv::imread(kData + "/places/maps/lab_ipa_original.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(plan.empty());
+  std::istringstream lines(slurp(out / "lab_ipa_sim_trajectory.txt"));
+  int poses = 0, off_free = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    double t = 0, x = 0, y = 0, theta = 0;
+    ASSERT_TRUE(static_cast<bool>(std::istringstream(line) >> t >> x >> y >> theta)) << line;
+    const int col = static_cast<int>(std::floor(x / 0.05)), row = plan.rows - 1 - static_cast<int>(std::floor(y / 0.05));
+    ++poses;
+    off_free += !(row >= 0 && row < plan.rows && col >= 0 && col < plan.cols && plan.at<unsigned char>(row, col) >= 250);
+  }
+  EXPECT_EQ(poses, 688);
+  EXPECT_EQ(off_free, 0);
   EXPECT_NE(slurp(out / "manifest.txt").find("lab_ipa 688 "), std::string::npos) << slurp(out / "manifest.txt");
 }
 
@@ -45,6 +67,10 @@ TEST(SimulateMapsApp, RemakesTheStoredSlamVariantByteForByte) {
   ASSERT_FALSE(made.empty());
   EXPECT_EQ(made, slurp(fs::path(kData) / "places/derived/slam/lab_ipa_sim_map.png"));
   EXPECT_NE(made, slurp(fs::path(kData) / "places/derived/lab_ipa_sim_map.png"));  // not the exact variant's map
+  // The SLAM's poses, not the true ones.
+  const auto poses = slurp(out / "lab_ipa_sim_trajectory.txt");
+  EXPECT_TRUE(poses == slurp(fs::path(kData) / "places/derived/slam/lab_ipa_sim_trajectory.txt"));
+  EXPECT_FALSE(poses == slurp(fs::path(kData) / "places/derived/lab_ipa_sim_trajectory.txt"));
   // name scans path rooms entered unreachable goals known free | processed final_error heading max_error ...
   EXPECT_NE(slurp(out / "manifest.txt").find("lab_ipa 688 64.4 6 5 0 14 0.7622 0.6883 338 0.013 "), std::string::npos)
       << slurp(out / "manifest.txt");

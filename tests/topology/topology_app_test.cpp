@@ -320,6 +320,55 @@ TEST(TopologyCompareApp, ScoresAMapInAnotherFrameAgainstTheReference) {
   EXPECT_FALSE(fs::exists(d / "bad.json"));
 }
 
+// A simulated run through a plan (gridtopo-simulate-maps: the map and the trajectory in the plan's pixel frame) is
+// scored with --same-frame: the identity, not a searched alignment (ECC shifts it by the cells the map lacks), and the
+// graph along the run's trajectory against the plan (scripts/bench_topology_runs.sh does it for every plan).
+TEST(TopologyCompareApp, SimulatedRunIsScoredInThePlansOwnFrame) {
+  const fs::path d = fresh("compare_same_frame");
+  const std::string sim = kData + "/places/derived/lab_ipa_sim_map.png";
+  const std::string traj = kData + "/places/derived/lab_ipa_sim_trajectory.txt";
+  // Read as a ROS map, as gridtopo-slam's map.yaml (grid thresholds and the map preparation of a SLAM map).
+  std::ofstream(d / "map.yaml") << "image: " << sim
+                                << "\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n"
+                                   "free_thresh: 0.196\n";
+  const std::string ini = std::string(GRIDTOPO_SOURCE_DIR) + "/config-ini/topology.ini";
+  ASSERT_EQ(run((d / "map.yaml").string() + " -t " + traj + " -m " + kModel + " -c " + ini + " -o " +
+                    (d / "out").string(),
+                d / "err"),
+            0)
+      << slurp(d / "err");
+  const std::string cmp = std::string(GRIDTOPO_BIN_DIR) + "/gridtopo-topology-compare " + (d / "map.yaml").string() +
+                          " " + (d / "out").string() + " -c " + ini + " -t " + traj + " --same-frame";
+  const std::string plan = " --reference-map " + kData + "/places/maps/lab_ipa_original.png --reference-labels " +
+                           kData + "/places/labelled/training_lab_ipa.png --reference-segmentation " + kData +
+                           "/places/groundtruth/lab_ipa_gt_segmentation.png";
+  ASSERT_EQ(std::system((cmp + plan + " -j " + (d / "c.json").string() + " > " + (d / "c.txt").string() + " 2>&1")
+                            .c_str()),
+            0)
+      << slurp(d / "c.txt");
+  const std::string j = slurp(d / "c.json");
+  EXPECT_NE(j.find("\"map_to_reference\": [1, 0, 0, 0, 1, 0]"), std::string::npos) << j;
+  // The map lacks the plan's unseen cells: the masks' ECC as they lie is well below 1 (0.834 on 2026-12-06).
+  EXPECT_GT(jsonNumber(j, "correlation"), 0.8) << j;
+  EXPECT_LT(jsonNumber(j, "correlation"), 0.9) << j;
+  // The run crossed 5 of the plan's doors; the shipped model (which saw lab_ipa's plan, not this map) finds all 5 as
+  // doorway nodes between the right spaces, and 90.8 % of the cells (2026-12-06); regression bounds.
+  EXPECT_EQ(jsonNumber(j, "doors_crossed", "\"trajectory\""), 5) << j;
+  EXPECT_GE(jsonNumber(j, "doors_found", "\"trajectory\""), 4) << j;
+  EXPECT_GT(jsonNumber(j, "cell_accuracy"), 0.87) << j;
+  // A plan of another size is refused, naming it, and nothing is written.
+  const std::string other = " --reference-map " + kData + "/places/maps/Fr52_original.png --reference-labels " +
+                            kData + "/places/labelled/training_Fr52.png --reference-segmentation " + kData +
+                            "/places/groundtruth/Freiburg52_scan_gt_segmentation.png";
+  EXPECT_EQ(std::system((cmp + other + " -j " + (d / "bad.json").string() + " > " + (d / "bad.txt").string() +
+                         " 2>&1")
+                            .c_str()),
+            1 << 8);
+  EXPECT_NE(slurp(d / "bad.txt").find("Fr52_original.png: the reference plan is 643x354"), std::string::npos)
+      << slurp(d / "bad.txt");
+  EXPECT_FALSE(fs::exists(d / "bad.json"));
+}
+
 // issue 36: the -c INI is read as strictly as a RUN.ini: typos refused with file, line and a "did you mean",
 // [topology] required (as gridtopo-slam requires [slam]), a binary file refused up front; nothing written.
 TEST(TopologyApp, OptionsFileTyposMissingSectionAndBinaryFilesAreRefused) {

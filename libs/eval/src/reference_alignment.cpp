@@ -25,6 +25,14 @@ cv::Point2d centroid(const cv::Mat& mask) {
 }
 }  // namespace
 
+ReferenceAlignment identityAlignment(const cv::Mat& map_free, const cv::Mat& reference_free) {
+  CV_Assert(map_free.size() == reference_free.size());
+  ReferenceAlignment a;
+  a.map_to_reference = cv::Matx23d(1, 0, 0, 0, 1, 0);
+  a.correlation = cv::computeECC(smoothMask(map_free, 3.0), smoothMask(reference_free, 3.0));
+  return a;
+}
+
 ReferenceAlignment alignReference(const cv::Mat& map_free, const cv::Mat& reference_free, const std::string& source) {
   const double area_map = cv::countNonZero(map_free), area_ref = cv::countNonZero(reference_free);
   if (area_map <= 0) throw InputError(source, "the map has no free cell to align");

@@ -68,8 +68,18 @@ TopologyComparison compareWithReference(const std::string& map, const std::strin
     throw InputError(plan.labels, "reference map, labels and segmentation differ in size");
   const cv::Mat ref_free = rmap > 250;
 
-  c.score = scoreAgainstReference(c.map_free, c.labels, c.segmentation, ref_free, c.reference_codes,
-                                  c.reference_rooms, 100, plan.map);
+  if (plan.same_frame) {
+    if (rmap.size() != c.map_free.size())
+      throw InputError(plan.map, "the reference plan is " + std::to_string(rmap.cols) + "x" +
+                                     std::to_string(rmap.rows) + " but the map " + map + " is " +
+                                     std::to_string(c.map_free.cols) + "x" + std::to_string(c.map_free.rows) +
+                                     " (the same frame needs the same size)");
+    c.score = scoreAligned(c.map_free, c.labels, c.segmentation, c.reference_codes, c.reference_rooms,
+                           identityAlignment(c.map_free, ref_free), 100);
+  } else {
+    c.score = scoreAgainstReference(c.map_free, c.labels, c.segmentation, ref_free, c.reference_codes,
+                                    c.reference_rooms, 100, plan.map);
+  }
   // The graph as gridtopo-topology built it from labels.png (the same INI is needed: checked on topology.json).
   c.graph = compareGraphWithPlan(c.map_free, c.labels, m.resolution, opt, ref_free, c.reference_codes,
                                  c.reference_rooms, c.score.alignment);

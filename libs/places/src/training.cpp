@@ -56,6 +56,10 @@ std::string simulatedMapPath(const std::string& dir, const std::string& name) {
   return dir + "/" + name + "_sim_map.png";
 }
 
+std::string simulatedTrajectoryPath(const std::string& dir, const std::string& name) {
+  return dir + "/" + name + "_sim_trajectory.txt";
+}
+
 std::optional<LabelledMap> loadSimulatedLabelledMap(const LabelledMapFiles& files, const TrainingOptions& o,
                                                     double resolution) {
   if (o.simulated_maps.empty()) return std::nullopt;

@@ -11,6 +11,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/places/training.h"
 #include "gridtopo/slam/slam_options.h"
 #include "gridtopo/slam/slam_run_ini.h"
@@ -59,6 +60,7 @@ std::vector<SimulatedPlan> simulatePlans(
       throw InputError("--maps", 0, n, "not a standard labelled map of " + places_dir);
   const double res = 0.05;  // every plan of datasets/places (datasets/README.md)
   std::vector<SimulatedPlan> out;
+  const bool slam = o.variant == MapVariant::Slam;
   checkOutputFolder(out_dir);
   OutputSet outputs(out_dir);
   for (const auto& f : files) {
@@ -95,22 +97,31 @@ std::vector<SimulatedPlan> simulatePlans(
     outputs.write(places::simulatedMapPath(out_dir, f.name), [&img](const std::string& tmp) {
       if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write " + tmp);
     });
+    // The run's poses, so that the topology can be scored along the path as on a real SLAM map (gridtopo-topology
+    // -t, gridtopo-topology-compare -t; scripts/bench_topology_runs.sh).
+    const std::vector<TimedPose> poses = slam ? tm.slam_trajectory : tm.log.timedTruth();
+    const std::vector<std::string> header = {
+        f.name + ": " + (slam ? "the SLAM's pose of every scan" : "the true pose of every scan") +
+            " of the simulated run, in the plan's frame (lower-left corner at 0 0, 0.05 m cells); command: manifest.txt"};
+    outputs.write(places::simulatedTrajectoryPath(out_dir, f.name),
+                  [&](const std::string& tmp) { io::writeTrajectory(tmp, poses, header); });
     out.push_back(p);
     if (progress) progress(out.size(), files.size(), f.name);
   }
-  const bool slam = o.variant == MapVariant::Slam;
   std::ostringstream m;
   if (slam)
     m << "# Simulated SLAM-like maps of the labelled plans (issue 15), SLAM variant: NAME_sim_map.png is the map the\n"
       << "# SLAM built from the simulated run, started at the true start pose and placed in the plan's pixel lattice\n"
-      << "# (labels: labelled/training_*.png of the same plan, which land where the SLAM put the cells). Made by:\n# "
+      << "# (labels: labelled/training_*.png of the same plan, which land where the SLAM put the cells);\n"
+      << "# NAME_sim_trajectory.txt holds the SLAM's pose of every scan. Made by:\n# "
       << command_line << "\n"
       << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction"
       << " processed_scans final_error_m final_heading_error_deg max_error_m occupied_cells occupied_within_1"
       << " occupied_within_2 labelled_free_cells label_agreement\n";
   else
     m << "# Simulated SLAM-like maps of the labelled plans (issue 15): NAME_sim_map.png is pixel-aligned with the plan\n"
-      << "# (labels: labelled/training_*.png of the same plan). Made by:\n# " << command_line << "\n"
+      << "# (labels: labelled/training_*.png of the same plan); NAME_sim_trajectory.txt holds the true pose of every\n"
+      << "# scan. Made by:\n# " << command_line << "\n"
       << "# name scans path_m rooms rooms_entered rooms_unreachable corridor_goals known_fraction free_fraction\n";
   m << std::fixed;
   for (const auto& p : out) {

@@ -26,6 +26,9 @@ struct ReferenceAlignment {
 ReferenceAlignment alignReference(const cv::Mat& map_free, const cv::Mat& reference_free,
                                   const std::string& source = "<reference>");
 
+/// The identity (a reference pixel-aligned with the map, of the same size), with the ECC of the two masks as they
+/// lie as its correlation.
+ReferenceAlignment identityAlignment(const cv::Mat& map_free, const cv::Mat& reference_free);
 /// Resamples a reference image (CV_8U or CV_32S ids) into the map's frame (nearest neighbour; 0 outside).
 cv::Mat warpReferenceToMap(const cv::Mat& reference, const ReferenceAlignment& a, cv::Size map_size);
 

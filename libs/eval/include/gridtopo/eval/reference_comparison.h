@@ -19,6 +19,10 @@ namespace gridtopo::eval {
 /// truth (rooms white), all in one frame.
 struct ReferencePlan {
   std::string map, labels, segmentation;
+  /// The plan is pixel-aligned with the map (the same size and lattice: a simulated map of the plan,
+  /// gridtopo-simulate-maps): the alignment is the identity, not searched (ECC would shift it by the cells the map
+  /// lacks); its correlation is the ECC of the two free masks as they lie. InputError when the sizes differ.
+  bool same_frame = false;
 };
 
 struct TopologyComparison {

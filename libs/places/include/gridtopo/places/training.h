@@ -73,6 +73,10 @@ struct TrainingOptions : TableOptions<TrainingOptions, trainingOptionSchema> {
 
 /// NAME_sim_map.png in `dir`: the simulated map of the standard labelled map NAME.
 std::string simulatedMapPath(const std::string& dir, const std::string& name);
+/// NAME_sim_trajectory.txt in `dir`: the robot's poses of that simulated run ("timestamp x y theta", one per scan,
+/// in the plan's frame: pixel (col, row) has its centre at ((col + 0.5) res, (rows - row - 0.5) res)), the true
+/// poses for the exact variant, the SLAM's for the SLAM variant: what `gridtopo-topology -t` reads.
+std::string simulatedTrajectoryPath(const std::string& dir, const std::string& name);
 /// The simulated map of a standard labelled map with the plan's labels, read as TrainingOptions says; nothing when
 /// options.simulated_maps is empty or holds no map for `files.name`. Throws InputError for unreadable files or a
 /// size that differs from the plan's.
