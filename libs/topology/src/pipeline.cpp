@@ -99,6 +99,19 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                "m", "a piece changes its label only where the path entered and left it at points this far apart")
           .add("open_space_min_shared", field(&O::open_spaces, &OpenSpaceOptions::min_shared), R::closed(0, 1), "",
                "a piece changes its label only when this share of its border lies against the space's other pieces")
+          .add("thoroughfares", field(&O::thoroughfares, &ThoroughfareOptions::enabled), R::any(), "",
+               "with the robot's path (-t), after the open spaces: a room region it travelled through (came in at one "
+               "place and went out at another, again and again) becomes corridor")
+          .add("thoroughfare_min_crossings", field(&O::thoroughfares, &ThoroughfareOptions::min_crossings),
+               R::closed(1, 1000), "", "a thoroughfare was crossed at least this often")
+          .add("thoroughfare_min_span", field(&O::thoroughfares, &ThoroughfareOptions::min_span), R::closed(0, 100),
+               "m", "a crossing entered and left the room at points at least this far apart")
+          .add("thoroughfare_min_openings", field(&O::thoroughfares, &ThoroughfareOptions::min_openings),
+               R::closed(1, 1000), "", "the path entered or left a thoroughfare at this many distinct places")
+          .add("thoroughfare_opening_radius", field(&O::thoroughfares, &ThoroughfareOptions::opening_radius),
+               R::leftOpen(0, 100), "m", "entries and exits closer than this are one opening")
+          .add("thoroughfare_min_area", field(&O::thoroughfares, &ThoroughfareOptions::min_area), R::closed(0, 10000),
+               "m^2", "smaller room regions are never thoroughfares")
           .rule("door_passage_max_width",
                 [](const O& o) -> std::optional<std::string> {
                   if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;
@@ -227,6 +240,8 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
   input.release();  // on a large map, a full-map image the later steps do not read
   if (o.open_spaces.enabled && !path.empty())
     r.labels = mergeOpenSpaces(r.labels, path, resolution, o.open_spaces, &r.open_spaces);
+  if (o.thoroughfares.enabled && !path.empty())
+    r.labels = relabelThoroughfares(r.labels, path, resolution, o.thoroughfares, &r.thoroughfares);
   if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
     r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);

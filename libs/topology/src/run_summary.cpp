@@ -28,8 +28,9 @@ std::string runSummary(const MapTopology& run, const std::string& source, double
     << " classified, relaxation " << lab.relaxation.iterations << " iterations; " << counts[0] << " rooms, "
     << counts[1] << " corridors, " << counts[2] << " doorways, " << run.topo.graph.edges.size() << " edges, "
     << segmentCount(run.topo.segmentation) << " segments, " << run.topo.door_passages.size()
-    << " door passages, " << run.topo.room_entries.size() << " room entries and " << run.topo.open_spaces.size()
-    << " open spaces joined of the path; " << seconds << " s (prepare " << run.seconds_prepare
+    << " door passages, " << run.topo.room_entries.size() << " room entries, " << run.topo.open_spaces.size()
+    << " open spaces joined and " << run.topo.thoroughfares.size() << " thoroughfares of the path; " << seconds
+    << " s (prepare " << run.seconds_prepare
     << ", scans " << lab.seconds_scans << ", features " << lab.seconds_features << ", classify "
     << lab.seconds_classify << ", relax " << lab.seconds_relax << ", graph " << run.seconds_graph << ")";
   if (const std::size_t peak = processMemory().peak_kb) o << ", peak RSS " << (peak + 512) / 1024 << " MB";

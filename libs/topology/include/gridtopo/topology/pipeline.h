@@ -20,6 +20,7 @@
 #include "gridtopo/topology/graph_rules.h"
 #include "gridtopo/topology/map_preparation.h"
 #include "gridtopo/topology/open_spaces.h"
+#include "gridtopo/topology/thoroughfares.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/topology/segmentation.h"
 
@@ -51,6 +52,7 @@ struct TopologyOptions : public mrpt::config::CLoadableOptions {
   DoorwayGeometryOptions doorways;       ///< [topology] doorways_from_geometry, doorway_* (before the correction)
   DoorPassageOptions door_passages;      ///< [topology] door_passages, door_passage_* (with the robot's path)
   OpenSpaceOptions open_spaces;          ///< [topology] open_spaces, open_space_* (with the robot's path)
+  ThoroughfareOptions thoroughfares;     ///< [topology] thoroughfares, thoroughfare_* (with the robot's path)
   BlobVoteOptions blob_vote;             ///< [topology] blob_vote, blob_vote_* (step 7b, off by default)
   CorridorSplitOptions corridor_split;   ///< [topology] corridor_split, corridor_min_branch, corridor_min_piece_area
   GraphRuleOptions graph_rules;  ///< [topology] graph_min_node_area (G1), graph_merge_doorways (G2), graph_rooms_by_segment (G3)
@@ -103,6 +105,7 @@ struct TopologyResult {
   std::vector<DoorPassage> door_passages;  ///< the doors the robot's path went through (door_passages.h)
   std::vector<cv::Point> room_entries;     ///< where it stepped from a corridor into a room without a door (cells)
   std::vector<OpenSpace> open_spaces;      ///< the open spaces it crossed whose pieces were joined (open_spaces.h)
+  std::vector<Thoroughfare> thoroughfares;  ///< room regions it travelled through, relabelled corridor (thoroughfares.h)
 };
 
 /// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
@@ -124,7 +127,8 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// `path`: the robot's path in cells (pathInCells of MapImage::path; empty = unknown): the doors it went through
 /// become doorways (door_passages.h, `o.door_passages`) after the doorways from geometry, before the correction;
 /// after it, the room / corridor pieces of one open space it crossed take one label (open_spaces.h,
-/// `o.open_spaces`), then its steps from a corridor straight into a room become doorways (addRoomEntries).
+/// `o.open_spaces`), the room regions it travelled through become corridor (thoroughfares.h, `o.thoroughfares`), then
+/// its steps from a corridor straight into a room become doorways (addRoomEntries).
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
                              const std::vector<cv::Point2d>& path = {});
