@@ -37,7 +37,7 @@ unsigned char labelAt(const cv::Mat& labels, double x, double y) { return labels
 // the classifier reads as room, and an office east of the east corridor (x 19..23 m, y 4..8 m). A strip of 0.3 m
 // without a label (a row of pillars) runs across the hall's south half (x 9.85..10.15 m, y 2..9 m).
 cv::Mat building() {
-  cv::Mat labels(ci(15), ci(24), CV_8U, cv::Scalar(places::kNoLabel));
+  cv::Mat labels(ci(22), ci(24), CV_8U, cv::Scalar(places::kNoLabel));
   box(labels, 1, 1, 3, 14, kCorridor);
   box(labels, 17, 1, 19, 14, kCorridor);
   box(labels, 3, 2, 17, 13, kRoom);
@@ -81,6 +81,16 @@ TEST(Thoroughfares, AHallCrossedAgainAndAgainBecomesCorridor) {
   ThoroughfareOptions four;
   four.min_crossings = 4;
   EXPECT_EQ(cv::countNonZero(relabelThoroughfares(labels, snake(), kRes, four) != labels), 0);
+  // Offices joined to the hall in one room region (x 3..17 m, y 13..21 m, read as room too, the walls between them not
+  // mapped): the path never comes near most of their cells, so the region is not a thoroughfare (coverage).
+  cv::Mat joined = labels.clone();
+  box(joined, 3, 13, 17, 21, kRoom);
+  std::vector<Thoroughfare> none;
+  EXPECT_EQ(cv::countNonZero(relabelThoroughfares(joined, snake(), kRes, ThoroughfareOptions{}, &none) != joined), 0);
+  EXPECT_TRUE(none.empty());
+  // The hall alone: 0.85-0.9 of its cells lie within 2 m of the path.
+  EXPECT_GT(found[0].coverage, 0.85);
+  EXPECT_LT(found[0].coverage, 0.95);
   // Off, or without a path: a copy.
   ThoroughfareOptions off;
   off.enabled = false;

@@ -112,6 +112,10 @@ const OptionSchema<TopologyOptions>& topologyOptionSchema() {
                R::leftOpen(0, 100), "m", "entries and exits closer than this are one opening")
           .add("thoroughfare_min_area", field(&O::thoroughfares, &ThoroughfareOptions::min_area), R::closed(0, 10000),
                "m^2", "smaller room regions are never thoroughfares")
+          .add("thoroughfare_min_coverage", field(&O::thoroughfares, &ThoroughfareOptions::min_coverage),
+               R::closed(0, 1), "", "at least this share of a thoroughfare's cells lies near the path inside it")
+          .add("thoroughfare_cover_radius", field(&O::thoroughfares, &ThoroughfareOptions::cover_radius),
+               R::leftOpen(0, 100), "m", "a cell within this distance of the path (inside the room) is near it")
           .rule("door_passage_max_width",
                 [](const O& o) -> std::optional<std::string> {
                   if (o.door_passages.max_width >= o.door_passages.min_width) return std::nullopt;

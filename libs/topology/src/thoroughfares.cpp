@@ -1,6 +1,7 @@
 #include "gridtopo/topology/thoroughfares.h"
 
 #include <cmath>
+#include <deque>
 #include <map>
 
 #include "gridtopo/places/place_label.h"
@@ -22,6 +23,41 @@ struct Visit {
   bool from_outside = false;  ///< the sample before it is on the path (not a start or a gap) and outside the region
   bool to_outside = false;    ///< the same after it
 };
+
+// The share of region `id`'s cells within `radius` cells (4-neighbour steps inside the region) of the path samples
+// that lie in it (`at[k] == id`).
+double pathCoverage(const RegionMap& rm, int id, const std::vector<cv::Point2d>& samples, const std::vector<int>& at,
+                    double radius) {
+  const Region& r = rm.region(id);
+  const cv::Rect box = r.bbox;
+  cv::Mat dist(box.size(), CV_32S, cv::Scalar(-1));
+  std::deque<cv::Point> queue;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    if (at[k] != id) continue;
+    const cv::Point c(static_cast<int>(std::floor(samples[k].x)) - box.x,
+                      static_cast<int>(std::floor(samples[k].y)) - box.y);
+    if (!cv::Rect(cv::Point(), box.size()).contains(c) || dist.at<int>(c) >= 0) continue;  // a dip sample
+    dist.at<int>(c) = 0;
+    queue.push_back(c);
+  }
+  const int reach = static_cast<int>(std::floor(radius));
+  long covered = 0;
+  while (!queue.empty()) {
+    const cv::Point c = queue.front();
+    queue.pop_front();
+    ++covered;
+    const int d = dist.at<int>(c);
+    if (d >= reach) continue;
+    for (const cv::Point step : {cv::Point(1, 0), cv::Point(-1, 0), cv::Point(0, 1), cv::Point(0, -1)}) {
+      const cv::Point e = c + step;
+      if (e.x < 0 || e.y < 0 || e.x >= box.width || e.y >= box.height || dist.at<int>(e) >= 0) continue;
+      if (rm.ids.at<int>(e + box.tl()) != id) continue;
+      dist.at<int>(e) = d + 1;
+      queue.push_back(e);
+    }
+  }
+  return r.cells > 0 ? static_cast<double>(covered) / r.cells : 0.0;
+}
 }  // namespace
 
 cv::Mat relabelThoroughfares(const cv::Mat& labels, const std::vector<cv::Point2d>& path, double resolution,
@@ -97,12 +133,15 @@ cv::Mat relabelThoroughfares(const cv::Mat& labels, const std::vector<cv::Point2
     if (r.area_m2 < o.min_area || u.crossings < o.min_crossings ||
         static_cast<int>(u.openings.size()) < o.min_openings)
       continue;
+    const double coverage = pathCoverage(rm, id, samples, at, o.cover_radius / resolution);
+    if (coverage < o.min_coverage) continue;
     relabel[static_cast<std::size_t>(id)] = 1;
     any = true;
     Thoroughfare t;
     t.crossings = u.crossings;
     t.openings = static_cast<int>(u.openings.size());
     t.area_m2 = r.area_m2;
+    t.coverage = coverage;
     t.at = cv::Point(static_cast<int>(std::floor(r.centroid.x)), static_cast<int>(std::floor(r.centroid.y)));
     if (!r.bbox.contains(t.at) || rm.ids.at<int>(t.at) != id)
       t.at = cv::Point(static_cast<int>(std::floor(u.entered.x)), static_cast<int>(std::floor(u.entered.y)));

@@ -9,7 +9,9 @@
 //    starts, ends or has a gap) with its entry and exit at least `min_span` apart;
 //  - its openings are the places where visits entered or left it, those within `opening_radius` of each other one.
 // A room region of at least `min_area` with at least `min_crossings` crossings through at least `min_openings`
-// openings becomes corridor. Measured on simulated runs through the nine labelled plans and on the Intel SLAM maps
+// openings, at least `min_coverage` of whose cells lie within `cover_radius` of the path inside it (a space the
+// crossings sweep, not rooms joined to a corridor in one region, whose far parts the path never comes near),
+// becomes corridor. Measured on simulated runs through the nine labelled plans and on the Intel SLAM maps
 // (doc/topology-trajectory.md, "Thoroughfares").
 #include <opencv2/core.hpp>
 
@@ -24,6 +26,8 @@ struct ThoroughfareOptions {
   int min_openings = 3;       ///< [topology] thoroughfare_min_openings
   double opening_radius = 2.0;  ///< [topology] thoroughfare_opening_radius (m): entries / exits this close are one
   double min_area = 4.0;      ///< [topology] thoroughfare_min_area (m^2): smaller room regions are left alone
+  double min_coverage = 0.85;  ///< [topology] thoroughfare_min_coverage: share of its cells near the path at least
+  double cover_radius = 2.0;   ///< [topology] thoroughfare_cover_radius (m): "near" (4-neighbour steps in the region)
 };
 
 /// One room region relabelled corridor.
@@ -31,6 +35,7 @@ struct Thoroughfare {
   int crossings = 0;   ///< visits that went through it
   int openings = 0;    ///< distinct places where the path entered or left it
   double area_m2 = 0;
+  double coverage = 0; ///< share of its cells within cover_radius of the path inside it
   cv::Point at;        ///< a cell of the region (its centroid's cell when that is in the region)
 };
 
