@@ -47,9 +47,11 @@ TEST(SimulateMapsApp, RemakesTheStoredMapByteForByte) {
     if (line.empty() || line[0] == '#') continue;
     double t = 0, x = 0, y = 0, theta = 0;
     ASSERT_TRUE(static_cast<bool>(std::istringstream(line) >> t >> x >> y >> theta)) << line;
-    const int col = static_cast<int>(std::floor(x / 0.05)), row = plan.rows - 1 - static_cast<int>(std::floor(y / 0.05));
+    const int col = static_cast<int>(std::floor(x / 0.05));
+    const int row = plan.rows - 1 - static_cast<int>(std::floor(y / 0.05));
     ++poses;
-    off_free += !(row >= 0 && row < plan.rows && col >= 0 && col < plan.cols && plan.at<unsigned char>(row, col) >= 250);
+    const bool inside = row >= 0 && row < plan.rows && col >= 0 && col < plan.cols;
+    off_free += !(inside && plan.at<unsigned char>(row, col) >= 250);
   }
   EXPECT_EQ(poses, 688);
   EXPECT_EQ(off_free, 0);

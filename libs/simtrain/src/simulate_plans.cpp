@@ -102,7 +102,8 @@ std::vector<SimulatedPlan> simulatePlans(
     const std::vector<TimedPose> poses = slam ? tm.slam_trajectory : tm.log.timedTruth();
     const std::vector<std::string> header = {
         f.name + ": " + (slam ? "the SLAM's pose of every scan" : "the true pose of every scan") +
-            " of the simulated run, in the plan's frame (lower-left corner at 0 0, 0.05 m cells); command: manifest.txt"};
+            " of the simulated run, in the plan's frame (lower-left corner at 0 0, 0.05 m cells); command: "
+            "manifest.txt"};
     outputs.write(places::simulatedTrajectoryPath(out_dir, f.name),
                   [&](const std::string& tmp) { io::writeTrajectory(tmp, poses, header); });
     out.push_back(p);

@@ -36,7 +36,9 @@ double pathCoverage(const RegionMap& rm, int id, const std::vector<cv::Point2d>&
     if (at[k] != id) continue;
     const cv::Point c(static_cast<int>(std::floor(samples[k].x)) - box.x,
                       static_cast<int>(std::floor(samples[k].y)) - box.y);
-    if (!cv::Rect(cv::Point(), box.size()).contains(c) || dist.at<int>(c) >= 0) continue;  // a dip sample
+    // A dip sample (off every region, counted in the visit) seeds nothing.
+    if (!cv::Rect(cv::Point(), box.size()).contains(c) || rm.ids.at<int>(c + box.tl()) != id) continue;
+    if (dist.at<int>(c) >= 0) continue;
     dist.at<int>(c) = 0;
     queue.push_back(c);
   }

@@ -11,7 +11,7 @@
 // A room region of at least `min_area` with at least `min_crossings` crossings through at least `min_openings`
 // openings, at least `min_coverage` of whose cells lie within `cover_radius` of the path inside it (a space the
 // crossings sweep, not rooms joined to a corridor in one region, whose far parts the path never comes near),
-// becomes corridor. Measured on simulated runs through the nine labelled plans and on the Intel SLAM maps
+// becomes corridor. Measured on simulated runs through eight labelled plans and on the SLAM maps of the real logs
 // (doc/topology-trajectory.md, "Thoroughfares").
 #include <opencv2/core.hpp>
 
