@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <array>
+#include <iterator>
+
 #include "gridtopo/slam/grid_map.h"
 
 using namespace gridtopo::slam;
@@ -128,4 +131,46 @@ TEST(GridMap, TileCopiesShareHitMeansUntilHit) {
   b.insertScan({0, 0, 0}, {}, {{1.02, 0.0, true}}, o);
   EXPECT_EQ(b.tileAt(20, 0)->hits.get(), own);
   EXPECT_EQ(b.cell(20, 0)->hits, 3u);
+}
+
+// A tile keeps hit means only for the cells a beam ended in, found by the rank of the cell's bit: the same means as
+// a mean for every cell, in any order of first hits, across all four 64-cell words of the mask.
+TEST(GridMap, HitMeansAreKeptForHitCellsOnly) {
+  GridMap::HitMeans h;
+  EXPECT_EQ(h.size(), 0u);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(GridMap::kTileCells); ++i) EXPECT_EQ(h.find(i), nullptr) << i;
+  // First hits out of cell order, some in every word.
+  const std::size_t cells[] = {200, 3, 255, 64, 0, 130, 63, 128, 191, 65};
+  std::array<HitMean, GridMap::kTileCells> dense{};
+  float v = 1.0f;
+  for (const std::size_t c : cells) {
+    HitMean& m = h.at(c);
+    EXPECT_EQ(m.n, 0u) << c;  // made empty
+    m.x = v, m.y = -v, m.n = static_cast<std::uint32_t>(c + 1);
+    dense[c] = m;
+    v += 1.0f;
+  }
+  EXPECT_EQ(h.size(), std::size(cells));
+  for (std::size_t i = 0; i < static_cast<std::size_t>(GridMap::kTileCells); ++i) {
+    const HitMean* m = h.find(i);
+    if (dense[i].n == 0) {
+      EXPECT_EQ(m, nullptr) << i;
+      continue;
+    }
+    ASSERT_NE(m, nullptr) << i;
+    EXPECT_EQ(m->x, dense[i].x) << i;
+    EXPECT_EQ(m->y, dense[i].y) << i;
+    EXPECT_EQ(m->n, dense[i].n) << i;
+  }
+  // A second hit in a cell updates its mean in place; a copy is independent.
+  h.at(130).n += 10;
+  GridMap::HitMeans copy = h;
+  copy.at(130).n += 1;
+  copy.at(7).n = 1;
+  EXPECT_EQ(h.find(130)->n, 141u);
+  EXPECT_EQ(copy.find(130)->n, 142u);
+  EXPECT_EQ(h.find(7), nullptr);
+  EXPECT_EQ(copy.size(), h.size() + 1);
+  // Much smaller than a mean for every cell (3 KiB).
+  EXPECT_LT(h.bytes(), sizeof(HitMean) * GridMap::kTileCells / 4);
 }

@@ -126,7 +126,7 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
     const auto i = static_cast<std::size_t>(cellOffset(x1, y1));
     if (beams[k].hit) {
       addLogOdds(t->log_odds[i], o.log_odds_hit, o);
-      HitMean& h = t->mutableHits()[i];
+      HitMean& h = t->mutableHits().at(i);
       ++h.n;
       const float inv = 1.0f / static_cast<float>(h.n);
       h.x += (static_cast<float>(ends[k][0]) - h.x) * inv;

@@ -355,7 +355,7 @@ std::size_t RbpfSlam::uniqueTiles(std::size_t* bytes) const {
       for (const auto& t : blk->tiles)
         if (t && seen.insert(t.get()).second) {
           b += sizeof(GridMap::Tile);
-          if (t->hits && seen_hits.insert(t->hits.get()).second) b += sizeof(GridMap::HitMeans);
+          if (t->hits && seen_hits.insert(t->hits.get()).second) b += t->hits->bytes();
         }
     }
   }
