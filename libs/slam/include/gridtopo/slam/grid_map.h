@@ -129,8 +129,9 @@ class GridMap {
       return means_[r];
     }
     std::size_t size() const { return means_.size(); }
-    /// Bytes held (for the memory figures of stats.txt).
-    std::size_t bytes() const { return sizeof(*this) + means_.capacity() * sizeof(HitMean); }
+    /// Bytes of the means kept (for stats.txt's map figure: the size, not the vector's capacity, which depends on
+    /// how the means were copied and grown, so that the figure is the same however the run was driven).
+    std::size_t bytes() const { return sizeof(*this) + means_.size() * sizeof(HitMean); }
 
    private:
     std::size_t rank(std::size_t w, std::uint64_t bit) const {
