@@ -15,7 +15,6 @@
 namespace gridtopo::topology {
 
 namespace {
-constexpr double kMaxJump = 3.0;  // m: a longer step between two poses is a gap in the trajectory
 constexpr unsigned char kDoorway = static_cast<unsigned char>(places::PlaceLabel::Doorway);
 constexpr int kRoomLabel = static_cast<int>(places::PlaceLabel::Room);
 constexpr int kCorridorLabel = static_cast<int>(places::PlaceLabel::Corridor);
@@ -84,11 +83,27 @@ std::vector<cv::Point2d> samplePath(const std::vector<cv::Point2d>& path, double
   return out;
 }
 
+PathOverRegions pathOverRegions(const std::vector<cv::Point2d>& path, const cv::Mat& ids, double resolution) {
+  PathOverRegions r;
+  r.samples = samplePath(path, 1.0, kMaxPathJump / resolution);
+  r.region.assign(r.samples.size(), 0);
+  for (std::size_t i = 0; i < r.samples.size(); ++i) {
+    const cv::Point2d& q = r.samples[i];
+    if (isGap(q)) {
+      r.region[i] = -1;
+      continue;
+    }
+    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
+    if (x >= 0 && y >= 0 && x < ids.cols && y < ids.rows) r.region[i] = ids.at<int>(y, x);
+  }
+  return r;
+}
+
 std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vector<cv::Point2d>& path,
                                           double resolution, const DoorPassageOptions& o) {
   std::vector<DoorPassage> found;
   if (places.empty() || path.size() < 2) return found;
-  const std::vector<cv::Point2d> s = samplePath(path, 1.0, kMaxJump / resolution);
+  const std::vector<cv::Point2d> s = samplePath(path, 1.0, kMaxPathJump / resolution);
   const std::size_t n = s.size();
   const double cap = (o.max_width + o.wider_by) / resolution;
   const int half_dir = std::max(1, static_cast<int>(std::lround(0.25 / resolution)));  // travel direction over ±0.25 m
@@ -236,17 +251,9 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
     return false;
   };
   // The path's room / corridor / doorway region at every sample (0 off the regions, -1 at a gap).
-  const std::vector<cv::Point2d> samples = samplePath(path, 1.0, kMaxJump / resolution);
-  std::vector<int> at(samples.size(), 0);
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const cv::Point2d& q = samples[i];
-    if (isGap(q)) {
-      at[i] = -1;
-      continue;
-    }
-    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    if (x >= 0 && y >= 0 && x < labels.cols && y < labels.rows) at[i] = rm.ids.at<int>(y, x);
-  }
+  const PathOverRegions over = pathOverRegions(path, rm.ids, resolution);
+  const std::vector<cv::Point2d>& samples = over.samples;
+  const std::vector<int>& at = over.region;
   // How far the path goes into the room from a step: the largest distance to the corridor's cells of its samples
   // in the room region, from sample i on in direction dir, until it reaches another room / corridor region.
   cv::Mat to_corridor_cells;

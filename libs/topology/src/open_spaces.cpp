@@ -14,7 +14,6 @@
 namespace gridtopo::topology {
 
 namespace {
-constexpr double kMaxJump = 3.0;  // m: a longer step between two poses is a gap in the trajectory (as door_passages)
 constexpr int kRoomLabel = static_cast<int>(places::PlaceLabel::Room);
 constexpr int kCorridorLabel = static_cast<int>(places::PlaceLabel::Corridor);
 
@@ -54,16 +53,12 @@ cv::Mat mergeOpenSpaces(const cv::Mat& labels, const std::vector<cv::Point2d>& p
   };
 
   // The path's runs through regions; a sample off every region or a gap ends a run without a straight step.
-  const std::vector<cv::Point2d> samples = samplePath(path, 1.0, kMaxJump / resolution);
+  const PathOverRegions over = pathOverRegions(path, rm.ids, resolution);
+  const std::vector<cv::Point2d>& samples = over.samples;
   std::vector<Run> runs;
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    const cv::Point2d& q = samples[i];
-    int id = 0;
-    if (!std::isnan(q.x)) {
-      const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-      if (x >= 0 && y >= 0 && x < labels.cols && y < labels.rows) id = rm.ids.at<int>(y, x);
-    }
-    if (id == 0) continue;
+    const int id = over.region[i];
+    if (id <= 0) continue;
     if (!runs.empty() && runs.back().id == id && runs.back().last + 1 == i)
       runs.back().last = i;
     else

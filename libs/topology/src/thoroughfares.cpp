@@ -11,7 +11,6 @@
 namespace gridtopo::topology {
 
 namespace {
-constexpr double kMaxJump = 3.0;  // m: a longer step between two poses is a gap in the trajectory (as door_passages)
 constexpr double kMaxDip = 0.5;   // m: a stretch this short off every place (a wall's blur) does not end a visit
 constexpr int kRoomLabel = static_cast<int>(places::PlaceLabel::Room);
 constexpr int kCorridorLabel = static_cast<int>(places::PlaceLabel::Corridor);
@@ -71,15 +70,10 @@ cv::Mat relabelThoroughfares(const cv::Mat& labels, const std::vector<cv::Point2
     return out;
   }
   const RegionMap rm = extractRegions(labels, resolution);
-  const std::vector<cv::Point2d> samples = samplePath(path, 1.0, kMaxJump / resolution);
   // Per sample: its region, 0 off every region, -1 at a gap in the trajectory.
-  std::vector<int> at(samples.size(), -1);
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const cv::Point2d& q = samples[i];
-    if (std::isnan(q.x)) continue;
-    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    at[i] = x >= 0 && y >= 0 && x < labels.cols && y < labels.rows ? rm.ids.at<int>(y, x) : 0;
-  }
+  PathOverRegions over = pathOverRegions(path, rm.ids, resolution);
+  const std::vector<cv::Point2d>& samples = over.samples;
+  std::vector<int>& at = over.region;
   // A dip of at most kMaxDip off every region between two samples of one region (a wall's blur, a gap between
   // places) does not end a visit.
   const auto max_dip = static_cast<std::size_t>(std::ceil(kMaxDip / resolution));

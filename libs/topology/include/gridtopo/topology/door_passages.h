@@ -49,6 +49,17 @@ struct DoorPassage {
 /// NaN point.
 std::vector<cv::Point2d> samplePath(const std::vector<cv::Point2d>& path, double step = 1.0, double max_jump = 40.0);
 
+/// A step of more than this between two poses is a gap in the trajectory (m), for every step that reads the path.
+constexpr double kMaxPathJump = 3.0;
+
+/// The path resampled every cell (samplePath, gaps at kMaxPathJump) and the region of `ids` (CV_32S, RegionMap::ids)
+/// at each sample: 0 off every region, -1 at a gap.
+struct PathOverRegions {
+  std::vector<cv::Point2d> samples;
+  std::vector<int> region;
+};
+PathOverRegions pathOverRegions(const std::vector<cv::Point2d>& path, const cv::Mat& ids, double resolution);
+
 /// The doors that `path` (cells of the map, pathInCells) went through in `places` (CV_8U, non-zero = a place,
 /// everything else is wall), in the order the path first passed them.
 std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vector<cv::Point2d>& path,
