@@ -6,7 +6,7 @@
 # (NAME_sim_trajectory.txt), labelled by gridtopo-topology with the fold model that never saw the plan's building, and
 # scored by gridtopo-topology-compare -t against the plan: cells, room segmentation, rooms attached, the plan doors
 # the run crossed found as doorway nodes between the right spaces, spurious node changes along the path.
-# lab_d is left out: its labelled image (992 x 800) and its room ground truth (840 x 581) are two frames.
+# lab_d is left out (scripts/labelled_plans.sh).
 #   usage: scripts/bench_topology_runs.sh [-b build-dir] [-c topology.ini] [-v exact|slam] [-k model-cache]
 #                                         [-o out-dir] [-j threads]
 # -k: the fold models (fold_NAME.yml); missing ones are trained first by gridtopo-topology-eval --model-cache with
@@ -15,6 +15,7 @@
 #   e.g.   scripts/bench_topology_runs.sh -v slam -o out/topology-runs-slam
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/labelled_plans.sh
 BUILD=build INI=config-ini/topology.ini VARIANT=exact CACHE=out/topology-fold-models OUT= THREADS=2
 while getopts "b:c:v:k:o:j:" f; do
   case $f in b) BUILD=$OPTARG ;; c) INI=$OPTARG ;; v) VARIANT=$OPTARG ;; k) CACHE=$OPTARG ;; o) OUT=$OPTARG ;;
@@ -25,7 +26,7 @@ case $VARIANT in exact) SIM=$P/derived ;; slam) SIM=$P/derived/slam ;;
   *) echo "bench_topology_runs.sh: -v must be exact or slam, got '$VARIANT'" >&2; exit 2 ;; esac
 if [ -z "$OUT" ]; then OUT=$(mktemp -d); trap 'rm -rf "$OUT"' EXIT; fi
 mkdir -p "$OUT"
-PLANS="Fr101 Fr52 NLB lab_c lab_intel lab_ipa office_e office_h"
+PLANS=$(labelled_plans | cut -d' ' -f1)
 
 missing=0
 for n in $PLANS; do [ -f "$CACHE/fold_$n.yml" ] || missing=1; done
@@ -49,16 +50,7 @@ while read -r name plan labels gt; do
     --same-frame --reference-map "$P/maps/$plan" --reference-labels "$P/labelled/$labels" \
     --reference-segmentation "$P/groundtruth/$gt" -j "$d/compare.json" > "$d/compare.log" 2>&1 || {
     cat "$d/compare.log" >&2; exit 1; }
-done <<'PLANS'
-Fr101 Fr101_original.png training_Fr101.png Freiburg101_scan_gt_segmentation.png
-Fr52 Fr52_original.png training_Fr52.png Freiburg52_scan_gt_segmentation.png
-NLB NLB_original.png training_NLB_furniture.png NLB_gt_segmentation.png
-lab_c lab_c_furnitures_original.png training_lab_c_furnitures.png lab_c_scan_gt_segmentation.png
-lab_intel lab_intel_original.png training_intel.png lab_intel_gt_segmentation.png
-lab_ipa lab_ipa_original.png training_lab_ipa.png lab_ipa_gt_segmentation.png
-office_e office_e_original.png training_office_e.png office_e_gt_segmentation.png
-office_h office_h_original.png training_office_h.png office_h_gt_segmentation.png
-PLANS
+done < <(labelled_plans)
 
 python3 - "$OUT" "$VARIANT" $PLANS <<'PY'
 import json, sys

@@ -12,6 +12,7 @@
 #   e.g.   scripts/graph_quality.sh out/intel/slam/map.yaml
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/labelled_plans.sh
 BUILD=build INI=config-ini/topology.ini OUT= MODEL=datasets/models/places_model.yml
 while getopts "b:c:m:o:" f; do
   case $f in b) BUILD=$OPTARG ;; c) INI=$OPTARG ;; m) MODEL=$OPTARG ;; o) OUT=$OPTARG ;; *) exit 2 ;; esac
@@ -51,13 +52,4 @@ for m in "$@"; do
 done
 while read -r name map labels gt; do
   row "$name" $P/maps/$map $P/maps/$map $P/labelled/$labels $P/groundtruth/$gt
-done <<'PLANS'
-Fr101 Fr101_original.png training_Fr101.png Freiburg101_scan_gt_segmentation.png
-Fr52 Fr52_original.png training_Fr52.png Freiburg52_scan_gt_segmentation.png
-NLB NLB_original.png training_NLB_furniture.png NLB_gt_segmentation.png
-lab_c lab_c_furnitures_original.png training_lab_c_furnitures.png lab_c_scan_gt_segmentation.png
-lab_intel lab_intel_original.png training_intel.png lab_intel_gt_segmentation.png
-lab_ipa lab_ipa_original.png training_lab_ipa.png lab_ipa_gt_segmentation.png
-office_e office_e_original.png training_office_e.png office_e_gt_segmentation.png
-office_h office_h_original.png training_office_h.png office_h_gt_segmentation.png
-PLANS
+done < <(labelled_plans)

@@ -4,34 +4,18 @@
 
 #include <set>
 
+#include "common/drawn_building.h"
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/open_spaces.h"
 #include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;
 using namespace gridtopo::topology;
+using namespace gridtopo::test::drawn;
 
 namespace {
 
-constexpr double kRes = 0.05;
 constexpr unsigned char kRoom = 0, kCorridor = 1, kDoor = 2;
-
-int ci(double m) { return static_cast<int>(std::lround(m / kRes)); }
-
-void box(cv::Mat& labels, double x0, double y0, double x1, double y1, unsigned char label) {
-  labels(cv::Rect(cv::Point(ci(x0), ci(y0)), cv::Point(ci(x1), ci(y1)))).setTo(label);
-}
-
-// A polyline (metres) as a trajectory in cells: a pose every 0.1 m.
-std::vector<cv::Point2d> poses(const std::vector<cv::Point2d>& corners_m) {
-  std::vector<cv::Point2d> out{corners_m.front() / kRes};
-  for (std::size_t i = 1; i < corners_m.size(); ++i) {
-    const cv::Point2d d = corners_m[i] - corners_m[i - 1];
-    const int n = std::max(1, static_cast<int>(std::ceil(cv::norm(d) / 0.1)));
-    for (int k = 1; k <= n; ++k) out.push_back((corners_m[i - 1] + d * (double(k) / n)) / kRes);
-  }
-  return out;
-}
 
 // The graph's nodes whose anchor lies in the box (metres).
 std::vector<GraphNode> nodesIn(const TopologicalGraph& g, double x0, double y0, double x1, double y1) {
