@@ -9,7 +9,7 @@ include(GNUInstallDirs)
 # session, sim, simtrain) serve our apps and tests only: static, linked into the apps, never installed.
 # Shared because MRPT, OpenCV and Ceres are shared in Debian: a program and our apps then hold one copy of each
 # library (and of MRPT's class registry), and a fix to one of ours reaches every program without relinking.
-set(GRIDTOPO_PUBLIC_LIBRARIES core io places topology slam mapping)
+set(GRIDTOPO_PUBLIC_LIBRARIES core io_core io places topology slam_core slam mapping)
 
 # gridtopo_library(<name> SOURCES ... DEPS ...): libs/<name> -> target gridtopo_<name>, alias gridtopo::<name>
 # (the same name find_package(gridtopo) gives a program outside the tree).

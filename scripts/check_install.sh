@@ -43,9 +43,9 @@ for m in eval experiment session sim simtrain; do
   fi
   ! grep -q "gridtopo::$m\b" "$P/$LIBDIR/cmake/gridtopo/gridtopoTargets.cmake" || fail "internal library $m exported"
 done
-exported=$(grep -o 'add_library(gridtopo::[a-z]*' "$P/$LIBDIR/cmake/gridtopo/gridtopoTargets.cmake" |
+exported=$(grep -o 'add_library(gridtopo::[a-z_]*' "$P/$LIBDIR/cmake/gridtopo/gridtopoTargets.cmake" |
            sed 's/add_library(//' | sort | tr '\n' ' ')
-[ "$exported" = "gridtopo::core gridtopo::io gridtopo::mapping gridtopo::places gridtopo::slam gridtopo::topology " ] ||
+[ "$exported" = "gridtopo::core gridtopo::io gridtopo::io_core gridtopo::mapping gridtopo::places gridtopo::slam gridtopo::slam_core gridtopo::topology " ] ||
   fail "exported targets: $exported"
 # Every gridtopo library an installed app loads comes from the prefix.
 ldd "$P/bin/gridtopo-map" > "$W/ldd.txt"
@@ -123,6 +123,18 @@ grep -qx "model = $P/share/gridtopo/datasets/models/places_model.yml" "$W/elsewh
   fail "gridtopo-topology did not take the prefix's model: $(grep '^model' "$W/elsewhere/topo/options.ini")"
 cmp -s "$W/elsewhere/topo/topology.json" "$W/out/topology.json" ||
   fail "gridtopo-topology's graph differs from the example's"
+# gridtopo-slam starts without MRPT's maps and loads the prefix's libgridtopo_io (a rawlog) and libgridtopo_slam (the
+# outputs) when it needs them (gridtopo/core/lazy_library.h).
+for input in intel1000.clf intel1000.rawlog.gz; do
+  (cd "$W/elsewhere" && LD_DEBUG=files "$P/bin/gridtopo-slam" -q -p 3 -t 1 -i "$W/$input" -o "slam-$input") \
+    > "$W/slam-$input.txt" 2>&1 || { tail -20 "$W/slam-$input.txt"; fail "the installed gridtopo-slam failed on $input"; }
+  [ -s "$W/elsewhere/slam-$input/map.gridmap.gz" ] && [ -s "$W/elsewhere/slam-$input/map.simplemap" ] ||
+    fail "the installed gridtopo-slam wrote no MRPT map for $input"
+  grep -Eq "file=$P/[^ ]*/libgridtopo_slam\.so\.0\.1 .*dynamically loaded" "$W/slam-$input.txt" ||
+    fail "gridtopo-slam did not load the prefix's libgridtopo_slam on $input"
+done
+grep -Eq "file=$P/[^ ]*/libgridtopo_io\.so\.0\.1 .*dynamically loaded" "$W/slam-intel1000.rawlog.gz.txt" ||
+  fail "gridtopo-slam did not load the prefix's libgridtopo_io for a rawlog"
 say "installed gridtopo-topology: default model from the prefix, the example's graph"
 
 # 4. The Debian packages.

@@ -16,6 +16,7 @@
 #include "gridtopo/sim/simulator.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
+#include "gridtopo/slam/slam_outputs.h"
 #include "gridtopo/slam/slam_run.h"
 
 using namespace gridtopo;

@@ -14,8 +14,9 @@
 #include <numeric>
 
 #include "gridtopo/core/error.h"
-#include "gridtopo/io/rawlog_io.h"
-#include "gridtopo/io/scan_conversion.h"
+#include "gridtopo/core/lazy_library.h"
+#include "gridtopo/io/scan_geometry.h"
+#include "rawlog_entry.h"
 
 namespace gridtopo::io {
 namespace {
@@ -127,7 +128,9 @@ std::vector<ScanRecord> readScanLog(const std::string& path, const LogReadOption
     case LogFormat::Empty:
       return {};
     case LogFormat::Rawlog: {
-      RawlogContents raw = readRawlog(path);
+      // MRPT's observations (and the ~170 libraries they bring) only for a rawlog: libgridtopo_io, loaded now.
+      RawlogScans raw;
+      lazyLibraryFunction<ReadRawlogScansFunction>("io", kReadRawlogScansSymbol)(path, raw);
       info.odometry_messages = raw.odometry_observations;
       info.lines_or_entries = raw.entries;
       info.rawlog_has_actions = raw.has_actions;

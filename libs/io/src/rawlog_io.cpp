@@ -22,6 +22,7 @@
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/output_set.h"
 #include "isolated_parse.h"
+#include "rawlog_entry.h"
 
 namespace gridtopo::io {
 namespace {
@@ -281,3 +282,12 @@ RawlogContents readRawlog(const std::string& path) {
 }
 
 }  // namespace gridtopo::io
+
+// The rawlog reader for libgridtopo_io_core's readScanLog, which loads this library only for a rawlog.
+extern "C" void gridtopo_io_read_rawlog_scans(const std::string& path, gridtopo::io::RawlogScans& out) {
+  gridtopo::io::RawlogContents raw = gridtopo::io::readRawlog(path);
+  out.entries = raw.entries;
+  out.odometry_observations = raw.odometry_observations;
+  out.has_actions = raw.has_actions;
+  out.scans = std::move(raw.scans);
+}

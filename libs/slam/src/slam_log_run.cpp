@@ -115,8 +115,13 @@ SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream
   s.scans = run.scansFed();
   s.steps = run.filter().stepsProcessed();
   s.seconds_slam = run.filterSeconds();
-  run.finishAndWrite(spec.output, {"gridtopo-slam " + spec.input, "one pose per laser scan, best particle"},
-                     slamRunIni(spec));
+  {
+    // MRPT's maps and OpenCV's codecs (and the ~170 libraries they bring) are loaded for the outputs only, once the
+    // particles are freed: the run's peak memory is the filter's.
+    SlamResult result = run.finishResult(
+        {"gridtopo-slam " + spec.input, "one pose per laser scan, best particle"}, slamRunIni(spec));
+    writeSlamResultLoadingExport(spec.output, result);
+  }
   s.seconds_total = since(t0);
   return s;
 }

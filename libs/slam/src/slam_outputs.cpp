@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/core/process_memory.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/slam/map_export.h"
@@ -41,12 +43,22 @@ mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices,
   return sm;
 }
 
-std::string statsRow(const StepStats& s) {
-  std::ostringstream o;
-  o << s.step << ' ' << s.scan_index << ' ' << io::formatDouble(s.timestamp) << ' ' << s.time_s << ' ' << s.neff << ' '
-    << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
-    << s.unique_tiles << ' ' << s.map_bytes << ' ' << s.lineages << ' ' << s.coalescence;
-  return o.str();
+SlamOutputs exportSlamResult(SlamResult&& result) {
+  SlamOutputs o;
+  o.grid = toOccupancyGrid(result.map);
+  result.map = GridMap(result.map.resolution());
+  releaseFreedMemory();
+  if (result.scans) o.simplemap = simpleMapAt(result.scan_indices, result.scan_poses, *result.scans);
+  o.trajectory = std::move(result.trajectory);
+  o.closures = std::move(result.closures);
+  o.trajectory_header = std::move(result.trajectory_header);
+  o.stats = std::move(result.stats);
+  o.options_ini = std::move(result.options_ini);
+  return o;
+}
+
+void writeSlamResult(const std::string& dir, SlamResult&& result) {
+  writeSlamOutputs(dir, exportSlamResult(std::move(result)));
 }
 
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
@@ -85,3 +97,8 @@ void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o
 }
 
 }  // namespace gridtopo::slam
+
+// writeSlamResult for libgridtopo_slam_core's writeSlamResultLoadingExport, which loads this library (gridtopo-slam).
+extern "C" void gridtopo_slam_write_result(const std::string& dir, gridtopo::slam::SlamResult& result) {
+  gridtopo::slam::writeSlamResult(dir, std::move(result));
+}

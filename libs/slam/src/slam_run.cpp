@@ -7,7 +7,6 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/core/process_memory.h"
-#include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/options_ini.h"
 #include "gridtopo/slam/prepared_scan.h"
 
@@ -228,67 +227,70 @@ std::vector<ClosureLine> SlamRun::closureLines(const std::vector<Pose2>& poses) 
   return lines;
 }
 
-mrpt::maps::CSimpleMap SlamRun::simpleMap() const {
-  requireFilter("simpleMap");
+void SlamRun::simpleMapScans(std::vector<std::size_t>& scan_indices, std::vector<Pose2>& poses) const {
+  requireFilter("simpleMapScans");
   waitForLoopCloser();
-  if (filter_->particles().empty()) return {};
-  if (!closer_) return simpleMapOf(filter_->bestParticle().node, *scans_);
-  return simpleMapAt(processedScanIndices(), closer_->finalPoses(), *scans_);
+  scan_indices.clear();
+  poses.clear();
+  if (filter_->particles().empty()) return;
+  if (closer_) {
+    scan_indices = processedScanIndices();
+    poses = closer_->finalPoses();
+    return;
+  }
+  for (const TrajectoryNode* n : pathOf(filter_->bestParticle().node)) {
+    scan_indices.push_back(n->scan_index);
+    poses.push_back(n->pose);
+  }
 }
 
-SlamOutputs SlamRun::outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
-  requireFilter("outputs");
+SlamResult SlamRun::result(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
+  requireFilter("result");
   waitForLoopCloser();
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
-  SlamOutputs o;
+  SlamResult r;
   if (closer_) {
     const std::vector<Pose2> poses = closer_->finalPoses();
-    o.grid = toOccupancyGrid(closedLoops() ? mapAt(poses) : filter_->bestParticle().map);
-    o.trajectory = filter_->trajectoryThrough(poses);
-    o.closures = closureLines(poses);
-    o.simplemap = simpleMapAt(processedScanIndices(), poses, *scans_);
+    r.map = closedLoops() ? mapAt(poses) : filter_->bestParticle().map;
+    r.trajectory = filter_->trajectoryThrough(poses);
+    r.closures = closureLines(poses);
   } else {
-    o.grid = toOccupancyGrid(filter_->bestParticle().map);
-    o.trajectory = filter_->trajectory();
-    o.simplemap = simpleMap();
+    r.map = filter_->bestParticle().map;
+    r.trajectory = filter_->trajectory();
   }
-  o.trajectory_header = trajectory_header;
-  o.stats = statsText();
-  o.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
-  return o;
+  r.scans = scans_;
+  simpleMapScans(r.scan_indices, r.scan_poses);
+  r.trajectory_header = trajectory_header;
+  r.stats = statsText();
+  r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
+  return r;
 }
 
-SlamOutputs SlamRun::finish(const std::vector<std::string>& trajectory_header, const std::string& options_ini) {
-  requireFilter("finish");
+SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_header, const std::string& options_ini) {
+  requireFilter("finishResult");
   waitForLoopCloser();
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
-  SlamOutputs o;
+  SlamResult r;
   const std::vector<Pose2> poses = closer_ ? closer_->finalPoses() : std::vector<Pose2>{};
-  o.trajectory = closer_ ? filter_->trajectoryThrough(poses) : filter_->trajectory();
-  o.closures = closureLines(poses);
-  o.stats = statsText();
-  o.simplemap = closer_ ? simpleMapAt(processedScanIndices(), poses, *scans_) : simpleMap();
-  // The export needs only the result's map: the particles' maps are freed before the map (and its pictures,
-  // 3 bytes a cell) is built, so that the peak memory is the filter's, not filter + export.
-  o.grid = [&] {
-    // The best particle's map shares its tiles (cheap to keep); the loop closure's map is built from the scans and
-    // the poses alone, so only after the particles are gone (hospital seed 1: peak RSS 428 -> 349 MB, same outputs).
-    std::optional<GridMap> best;
-    if (!closedLoops()) best = filter_->bestParticle().map;
-    filter_.reset();
-    releaseFreedMemory();
-    const GridMap map = best ? std::move(*best) : mapAt(poses);
-    return toOccupancyGrid(map);
-  }();
+  r.trajectory = closer_ ? filter_->trajectoryThrough(poses) : filter_->trajectory();
+  r.closures = closureLines(poses);
+  r.stats = statsText();
+  r.scans = scans_;
+  simpleMapScans(r.scan_indices, r.scan_poses);
+  // The export needs only the result's map: the particles' maps are freed before the loop closure's map is built
+  // (and before the export makes the MRPT grid and the pictures, 3 bytes a cell), so that the peak memory is the
+  // filter's, not filter + export. The best particle's map shares its tiles (cheap to keep); the loop closure's map is
+  // built from the scans and the poses alone, so only after the particles are gone (hospital seed 1: peak RSS
+  // 428 -> 349 MB, same outputs).
+  std::optional<GridMap> best;
+  if (!closedLoops()) best = filter_->bestParticle().map;
+  filter_.reset();
   releaseFreedMemory();
-  o.trajectory_header = trajectory_header;
-  o.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
-  return o;
-}
-
-void SlamRun::finishAndWrite(const std::string& dir, const std::vector<std::string>& trajectory_header,
-                             const std::string& options_ini) {
-  writeSlamOutputs(dir, finish(trajectory_header, options_ini));
+  r.map = best ? std::move(*best) : mapAt(poses);
+  releaseFreedMemory();
+  r.trajectory_header = trajectory_header;
+  r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
+  return r;
 }
 
 }  // namespace gridtopo::slam

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "gridtopo/core/scan_record.h"
+#include "gridtopo/io/scan_geometry.h"  // toMrptTime, fromMrptTime, useMrptScanGeometry
 
 namespace gridtopo::io {
 
@@ -23,14 +24,6 @@ struct ScanConversionOptions {
   std::string sensor_label = "LASER";  ///< CObservation::sensorLabel of the scans written
   float std_error = 0.01f;             ///< CObservation2DRangeScan::stdError (metres)
 };
-
-/// Seconds (Unix or relative) to MRPT's TTimeStamp, rounded to the nearest 100 ns tick (MRPT's own
-/// Clock::fromDouble truncates). MRPT timestamps have a resolution of 100 ns: a timestamp logged with
-/// microseconds (CARMEN) survives a round trip exactly, finer digits do not. Throws std::invalid_argument on
-/// a non-finite value.
-mrpt::Clock::time_point toMrptTime(double seconds);
-/// MRPT's TTimeStamp to seconds (mrpt::Clock::toDouble).
-double fromMrptTime(mrpt::Clock::time_point t);
 
 /// LaserScan (laser frame + mounting pose) -> CObservation2DRangeScan, timestamp toMrptTime(scan.timestamp).
 /// Every reading is kept in the range vector: no-return readings
@@ -46,15 +39,6 @@ mrpt::obs::CObservation2DRangeScan::Ptr toMrptScan(const LaserScan& scan, const 
 /// 0.25 deg, 360/1024 deg, ...) and otherwise to float precision (~1e-7 rad). Throws std::invalid_argument for
 /// fewer than 2 beams.
 LaserScan fromMrptScan(const mrpt::obs::CObservation2DRangeScan& obs);
-
-/// The scan's geometry in the form an MRPT CObservation2DRangeScan holds it, its readings untouched: the laser's
-/// yaw, the first beam's angle, the increment, the max range and the timestamp become those of
-/// fromMrptScan(toMrptScan(scan)) (the fan's centre folded into the yaw, the beams symmetric about it, the max
-/// range a float, the time in 100 ns ticks). Every beam points where it pointed, to within rounding; but the same
-/// log read from a CARMEN file or fed to the MRPT map builder (gridtopo-map) then gives the filter bit-identical
-/// numbers, which the loop closure's discrete decisions need for gridtopo-map to reproduce gridtopo-slam. A scan
-/// toMrptScan refuses is left as it is.
-void useMrptScanGeometry(LaserScan& scan);
 
 /// End point of beam k in the robot frame (the scan's sensor_pose applied to range k along its beam).
 mrpt::math::TPoint2D beamEndpointInRobotFrame(const LaserScan& scan, std::size_t k);

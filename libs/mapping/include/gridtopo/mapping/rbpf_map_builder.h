@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_outputs.h"
 #include "gridtopo/slam/slam_run.h"
 
 namespace gridtopo::mapping {

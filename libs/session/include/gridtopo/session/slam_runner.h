@@ -20,6 +20,7 @@
 #include "gridtopo/core/scan_record.h"
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_outputs.h"
 #include "gridtopo/slam/slam_run.h"
 
 namespace gridtopo::session {

@@ -10,6 +10,7 @@
 
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/grid_map.h"
+#include "gridtopo/slam/slam_result.h"  // ClosureLine
 
 namespace gridtopo::slam {
 
@@ -18,11 +19,6 @@ mrpt::maps::COccupancyGridMap2D toOccupancyGrid(const GridMap& map);
 
 /// BGR picture of an occupancy grid (free white, occupied black, unknown grey) with `trajectory` drawn in red
 /// (and its start in green). Row 0 is the top of the map (largest y).
-/// A loop closure drawn on the map: the two poses it joins (the matched submap's first scan, the closing scan).
-struct ClosureLine {
-  Pose2 from, to;
-  bool global = false;  ///< found by the global search (drawn orange, as in the GUI)
-};
 /// The map (grey), the trajectory (red, its start a green dot) and the accepted loop closures (windowed ones thin
 /// magenta lines, global ones thick orange lines with a ring at the query's end, on top).
 cv::Mat renderMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::vector<TimedPose>& trajectory = {},

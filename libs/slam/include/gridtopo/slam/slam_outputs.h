@@ -1,7 +1,8 @@
 #pragma once
 // The output set of a SLAM run, written by one function for gridtopo-slam and the GUI: map.png,
 // map_trajectory.png, map.pgm + map.yaml (ROS map_server), map.gridmap.gz (MRPT), map.simplemap, trajectory.txt,
-// stats.txt, options.ini; all or nothing (gridtopo::OutputSet).
+// stats.txt, options.ini; all or nothing (gridtopo::OutputSet). libgridtopo_slam: MRPT's maps and observations,
+// OpenCV's codecs, over libgridtopo_slam_core's SlamResult.
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/maps/CSimpleMap.h>
 
@@ -13,6 +14,7 @@
 #include "gridtopo/io/trajectory_io.h"
 #include "gridtopo/slam/map_export.h"
 #include "gridtopo/slam/rbpf_slam.h"
+#include "gridtopo/slam/slam_result.h"
 #include "gridtopo/slam/trajectory_tree.h"
 
 namespace gridtopo::slam {
@@ -22,13 +24,6 @@ mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vec
 /// The scans `scan_indices` at `poses` (the loop closure's optimised poses): MRPT's simple map.
 mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses,
                                    const std::vector<ScanRecord>& scans);
-
-/// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
-inline constexpr const char* kStatsColumns =
-    "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "
-    "lineages coalescence";
-/// One processed step's row of stats.txt (kStatsColumns, space-separated, no newline).
-std::string statsRow(const StepStats& s);
 
 struct SlamOutputs {
   mrpt::maps::COccupancyGridMap2D grid;   ///< the best particle's map (toOccupancyGrid)
@@ -42,6 +37,12 @@ struct SlamOutputs {
 
 /// Writes the whole set into `dir` (created if needed), or nothing: throws on the first failure.
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& out);
+/// The output set of a run's result: the map as MRPT's occupancy grid (toOccupancyGrid; `result.map` is freed once
+/// converted, and the freed memory given back), then the simple map of its scans (simpleMapAt). `result` is consumed.
+SlamOutputs exportSlamResult(SlamResult&& result);
+/// writeSlamOutputs(dir, exportSlamResult(result)).
+void writeSlamResult(const std::string& dir, SlamResult&& result);
+
 /// Writes the set's files into `dir` as temporary files of `set`, which the caller commits with its other files
 /// (gridtopo-map: the SLAM and the topology output sets land together or not at all).
 /// The set must be a folder transaction (OutputSet(folder)) with `dir` inside or equal to its folder: the ROS

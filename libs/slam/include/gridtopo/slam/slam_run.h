@@ -3,7 +3,10 @@
 // stats.txt (statsRow plus the process RSS), the time spent in the filter, and the run's output set
 // (SlamOutputs, writeSlamOutputs). gridtopo-slam, the GUI's runner thread (with its play / pause / step) and the
 // MRPT map builder (CMetricMapBuilderGridRbpf) all drive one, so the scan loop exists once.
-#include <mrpt/maps/CSimpleMap.h>
+//
+// The class lives in libgridtopo_slam_core (no MRPT maps or observations) except its four members that give MRPT's
+// types (simpleMap, outputs, finish, finishAndWrite): those are defined in libgridtopo_slam (slam_outputs.h), over
+// the MRPT-free result (result, finishResult).
 
 #include <cstddef>
 #include <condition_variable>
@@ -20,9 +23,15 @@
 #include "gridtopo/slam/loop_closure.h"
 #include "gridtopo/slam/rbpf_slam.h"
 #include "gridtopo/slam/slam_options.h"
-#include "gridtopo/slam/slam_outputs.h"
+#include "gridtopo/slam/slam_result.h"
+
+namespace mrpt::maps {
+class CSimpleMap;
+}
 
 namespace gridtopo::slam {
+
+struct SlamOutputs;
 
 class SlamRun {
  public:
@@ -75,17 +84,26 @@ class SlamRun {
   /// The text of stats.txt: "# " kStatsColumns " rss_kb", then one row per processed scan with the process's
   /// resident memory (kB) right after that scan.
   std::string statsText() const;
-  /// The best particle's processed scans at its poses (simpleMapOf).
-  mrpt::maps::CSimpleMap simpleMap() const;
+  /// The processed scans of the simple map and their poses: the loop closure's optimised poses of every processed
+  /// scan, or (without loop closure) the best particle's path. Empty before the first processed scan.
+  void simpleMapScans(std::vector<std::size_t>& scan_indices, std::vector<Pose2>& poses) const;
+  /// The result so far (map, trajectory, closures, simple map's scans, texts); the run can go on.
+  /// `options_ini` empty = slamOptionsIni(options()). std::runtime_error before the first processed scan.
+  SlamResult result(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "") const;
+  /// The result at the end of a run, built so that the peak memory stays the filter's: the trajectory and the best
+  /// particle are taken, every particle's map freed but the best one's (and the memory given back to the system),
+  /// and only then the loop closure's map made. The run is over: it cannot be fed or asked for outputs again.
+  SlamResult finishResult(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "");
 
-  /// The output set of the run so far; the run can go on. `options_ini` empty = slamOptionsIni(options()).
+  // In libgridtopo_slam (MRPT's types; slam_outputs.h):
+  /// The simple map of simpleMapScans (simpleMapAt).
+  mrpt::maps::CSimpleMap simpleMap() const;
+  /// exportSlamResult(result()): the output set of the run so far; the run can go on.
   SlamOutputs outputs(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "") const;
-  /// The output set at the end of a run, built so that the peak memory stays the filter's: the trajectory and
-  /// the best particle are taken, every particle's map freed but the best one's (and the memory given back to the
-  /// system), and only then the map and its pictures (3 bytes a cell) made. The run is over: it cannot be fed or
-  /// asked for outputs again.
+  /// exportSlamResult(finishResult()): the output set at the end of a run (its map and pictures, 3 bytes a cell,
+  /// made after the particles are freed).
   SlamOutputs finish(const std::vector<std::string>& trajectory_header, const std::string& options_ini = "");
-  /// finish(), then writeSlamOutputs(dir): the whole output set or nothing.
+  /// writeSlamResult(dir, finishResult()): the whole output set or nothing.
   void finishAndWrite(const std::string& dir, const std::vector<std::string>& trajectory_header,
                       const std::string& options_ini = "");
   bool finished() const { return !filter_; }
