@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
   libmrpt-slam-dev libmrpt-gui-dev libwxgtk3.2-dev libopencv-dev libeigen3-dev
-  libtclap-dev zlib1g-dev libssl-dev nlohmann-json3-dev
+  libtclap-dev zlib1g-dev libpng-dev libssl-dev nlohmann-json3-dev
   # the loop closure's pose-graph solver (issue 23)
   libceres-dev
   googletest libgtest-dev

@@ -30,6 +30,12 @@ void releaseFreedMemory() {
 #endif
 }
 
+void returnFreedMemoryFromNowOn() {
+#if defined(__GLIBC__)
+  mallopt(M_TRIM_THRESHOLD, 128 * 1024);
+#endif
+}
+
 void keepFreedMemoryForReuse() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_MAX, 0);

@@ -27,6 +27,7 @@
 #include "gridtopo/core/error.h"
 #include "isolated_parse.h"
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/io/image_write.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace fs = std::filesystem;
@@ -562,10 +563,7 @@ cv::Mat gridToImage(const mrpt::maps::COccupancyGridMap2D& grid) {
 }
 
 void writeMapPng(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path) {
-  const cv::Mat img = gridToImage(grid);
-  writeFileAtomically(path, [&](const std::string& tmp) {
-    if (!cv::imwrite(tmp, img)) throw std::runtime_error("cannot write image " + path);
-  });
+  writePng(gridToImage(grid), path);
 }
 
 void writeRosMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& stem) {
@@ -589,8 +587,7 @@ void writeRosMap(const mrpt::maps::COccupancyGridMap2D& grid, const std::string&
     << "free_thresh: 0.196\n";
   OutputSet out;
   out.write(pgm, [&](const std::string& tmp) {
-    // Binary PGM (P5), what map_server's map_saver writes.
-    if (!cv::imwrite(tmp, img, {cv::IMWRITE_PXM_BINARY, 1})) throw std::runtime_error("cannot write " + pgm);
+    writePgm(img, tmp);  // binary PGM (P5), what map_server's map_saver writes
   });
   out.write(yaml, [&](const std::string& tmp) {
     std::ofstream f(tmp);

@@ -90,7 +90,8 @@ SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream
   SlamLogRunSummary s;
   s.seconds_read = since(t0);
 
-  SlamRun run(std::move(records), spec.options);
+  auto owned_run = std::make_unique<SlamRun>(std::move(records), spec.options);
+  SlamRun& run = *owned_run;
   ProgressBar bar(run.scanLimit(), "slam", "scans", quiet ? 0 : -1);
   // A run that outgrows the memory stops with a message, before the allocator fails somewhere inside it.
   const auto out_of_memory = [&](const std::string& how) {
@@ -117,9 +118,13 @@ SlamLogRunSummary runSlamOnLog(const SlamRunSpec& spec, bool quiet, std::ostream
   s.seconds_slam = run.filterSeconds();
   {
     // MRPT's maps and OpenCV's codecs (and the ~170 libraries they bring) are loaded for the outputs only, once the
-    // particles are freed: the run's peak memory is the filter's.
+    // particles, the loop closure and the scans outside the simple map are freed: the run's peak memory is the
+    // filter's, or the outputs' with what they need.
+    returnFreedMemoryFromNowOn();  // the particles' and the loop closure's memory leave the process as they go
     SlamResult result = run.finishResult(
         {"gridtopo-slam " + spec.input, "one pose per laser scan, best particle"}, slamRunIni(spec));
+    owned_run.reset();
+    keepOnlySimpleMapScans(result);
     writeSlamResultLoadingExport(spec.output, result);
   }
   s.seconds_total = since(t0);

@@ -4,13 +4,16 @@
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
+#include <cstdio>
+#define DBG(x) std::fprintf(stderr, "RSS %s %zu kB\n", x, gridtopo::processMemory().rss_kb)
+#include <functional>
 #include <sstream>
 #include <utility>
 #include <stdexcept>
 
 #include "gridtopo/core/output_set.h"
 #include "gridtopo/core/process_memory.h"
+#include "gridtopo/io/image_write.h"
 #include "gridtopo/io/map_io.h"
 #include "gridtopo/io/scan_conversion.h"
 #include "gridtopo/slam/map_export.h"
@@ -43,12 +46,16 @@ mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices,
   return sm;
 }
 
-SlamOutputs exportSlamResult(SlamResult&& result) {
+namespace {
+// The output set of `result` without its simple map: the map as MRPT's occupancy grid (`result.map` freed once
+// converted, the memory given back) and the texts.
+SlamOutputs exportWithoutSimpleMap(SlamResult& result) {
+  DBG("export start");
   SlamOutputs o;
   o.grid = toOccupancyGrid(result.map);
+  DBG("grid");
   result.map = GridMap(result.map.resolution());
   releaseFreedMemory();
-  if (result.scans) o.simplemap = simpleMapAt(result.scan_indices, result.scan_poses, *result.scans);
   o.trajectory = std::move(result.trajectory);
   o.closures = std::move(result.closures);
   o.trajectory_header = std::move(result.trajectory_header);
@@ -57,8 +64,28 @@ SlamOutputs exportSlamResult(SlamResult&& result) {
   return o;
 }
 
+mrpt::maps::CSimpleMap simpleMapOfResult(const SlamResult& result) {
+  return result.scans ? simpleMapAt(result.scan_indices, result.scan_poses, *result.scans) : mrpt::maps::CSimpleMap{};
+}
+
+// addSlamOutputs with the simple map's file written by `write_simplemap` (after the pictures).
+void addOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o,
+                const std::function<void(const std::string&)>& write_simplemap);
+}  // namespace
+
+SlamOutputs exportSlamResult(SlamResult&& result) {
+  SlamOutputs o = exportWithoutSimpleMap(result);
+  o.simplemap = simpleMapOfResult(result);
+  return o;
+}
+
 void writeSlamResult(const std::string& dir, SlamResult&& result) {
-  writeSlamOutputs(dir, exportSlamResult(std::move(result)));
+  // The simple map (a copy of every processed scan as MRPT's observation) is made when its file is written, after
+  // the pictures are written and freed: the two are never in memory together.
+  const SlamOutputs o = exportWithoutSimpleMap(result);
+  OutputSet out(dir);
+  addOutputs(out, dir, o, [&](const std::string& p) { io::writeSimplemap(simpleMapOfResult(result), p); });
+  out.commit();
 }
 
 void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
@@ -68,14 +95,21 @@ void writeSlamOutputs(const std::string& dir, const SlamOutputs& o) {
 }
 
 void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o) {
+  addOutputs(out, dir, o, [&](const std::string& p) { io::writeSimplemap(o.simplemap, p); });
+}
+
+namespace {
+void addOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o,
+                const std::function<void(const std::string&)>& write_simplemap) {
   const fs::path d(dir);
   out.write((d / "trajectory.txt").string(),
             [&](const std::string& p) { io::writeTrajectory(p, o.trajectory, o.trajectory_header); });
   out.write((d / "stats.txt").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.stats); });
   out.write((d / "map.png").string(), [&](const std::string& p) { io::writeMapPng(o.grid, p); });
   out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
-    if (!cv::imwrite(p, renderMap(o.grid, o.trajectory, o.closures))) throw std::runtime_error("cannot write " + p);
+    io::writePng(renderMap(o.grid, o.trajectory, o.closures), p);
   });
+  DBG("pngs");
   out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(o.grid, p); });
   {
     // The ROS pair names its image inside the YAML: both staged under their final names in the set's stage folder.
@@ -92,9 +126,12 @@ void addSlamOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o
       throw std::runtime_error(what);
     }
   }
-  out.write((d / "map.simplemap").string(), [&](const std::string& p) { io::writeSimplemap(o.simplemap, p); });
+  DBG("before simplemap");
+  out.write((d / "map.simplemap").string(), write_simplemap);
+  DBG("after simplemap");
   out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.options_ini); });
 }
+}  // namespace
 
 }  // namespace gridtopo::slam
 

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "gridtopo/core/lazy_library.h"
+#include "gridtopo/core/process_memory.h"
 #include "gridtopo/io/trajectory_io.h"
 
 namespace gridtopo::slam {
@@ -13,6 +14,18 @@ std::string statsRow(const StepStats& s) {
     << (s.resampled ? 1 : 0) << ' ' << s.particles << ' ' << s.failed_matches << ' ' << s.evaluations << ' '
     << s.unique_tiles << ' ' << s.map_bytes << ' ' << s.lineages << ' ' << s.coalescence;
   return o.str();
+}
+
+void keepOnlySimpleMapScans(SlamResult& result) {
+  if (!result.scans || result.scans.use_count() != 1) return;
+  auto kept = std::make_shared<std::vector<ScanRecord>>();
+  kept->reserve(result.scan_indices.size());
+  for (std::size_t& index : result.scan_indices) {
+    kept->push_back((*result.scans)[index]);
+    index = kept->size() - 1;
+  }
+  result.scans = std::move(kept);
+  releaseFreedMemory();
 }
 
 void writeSlamResultLoadingExport(const std::string& dir, SlamResult& result) {

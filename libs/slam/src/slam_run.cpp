@@ -30,7 +30,9 @@ SlamRun::SlamRun(const SlamOptions& options)
   startLoopCloser();
 }
 
-SlamRun::~SlamRun() {
+SlamRun::~SlamRun() { stopLoopCloserThread(); }
+
+void SlamRun::stopLoopCloserThread() {
   if (!closer_thread_.joinable()) return;
   {
     std::lock_guard<std::mutex> lock(closer_mutex_);
@@ -146,12 +148,12 @@ void SlamRun::closeLoops(std::size_t index) {
   ++feedbacks_;
 }
 
-GridMap SlamRun::mapOfGraph() const { return mapAt(closer_->poses()); }
+GridMap SlamRun::mapOfGraph() const { return mapAt(processedScanIndices(), closer_->poses()); }
 
-GridMap SlamRun::mapAt(const std::vector<Pose2>& poses) const {
+GridMap SlamRun::mapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses) const {
   GridMap map(options_.resolution);
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    const PreparedScan ps = prepareScan((*scans_)[closer_->scanIndexOf(k)].scan, options_.beams, options_.resolution);
+    const PreparedScan ps = prepareScan((*scans_)[scan_indices[k]].scan, options_.beams, options_.resolution);
     map.insertScan(poses[k], ps.sensor, ps.map_beams, options_.map);
   }
   return map;
@@ -168,7 +170,7 @@ GridMap SlamRun::resultMap() const {
   requireFilter("resultMap");
   waitForLoopCloser();
   if (filter_->particles().empty()) return GridMap(options_.resolution);
-  return closedLoops() ? mapAt(closer_->finalPoses()) : filter_->bestParticle().map;
+  return closedLoops() ? mapAt(processedScanIndices(), closer_->finalPoses()) : filter_->bestParticle().map;
 }
 
 bool SlamRun::step() {
@@ -251,7 +253,7 @@ SlamResult SlamRun::result(const std::vector<std::string>& trajectory_header, co
   SlamResult r;
   if (closer_) {
     const std::vector<Pose2> poses = closer_->finalPoses();
-    r.map = closedLoops() ? mapAt(poses) : filter_->bestParticle().map;
+    r.map = closedLoops() ? mapAt(processedScanIndices(), poses) : filter_->bestParticle().map;
     r.trajectory = filter_->trajectoryThrough(poses);
     r.closures = closureLines(poses);
   } else {
@@ -277,16 +279,19 @@ SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_head
   r.stats = statsText();
   r.scans = scans_;
   simpleMapScans(r.scan_indices, r.scan_poses);
-  // The export needs only the result's map: the particles' maps are freed before the loop closure's map is built
-  // (and before the export makes the MRPT grid and the pictures, 3 bytes a cell), so that the peak memory is the
-  // filter's, not filter + export. The best particle's map shares its tiles (cheap to keep); the loop closure's map is
-  // built from the scans and the poses alone, so only after the particles are gone (hospital seed 1: peak RSS
+  // The export needs only the result's map: the particles' maps and the loop closure (its submaps, correlation
+  // grids and pose graph) are freed before the loop closure's map is built (and before the export makes the MRPT
+  // grid and the pictures, 3 bytes a cell, and gridtopo-slam loads MRPT's maps for them), so that the peak memory is
+  // the filter's, not filter + export. The best particle's map shares its tiles (cheap to keep); the loop closure's
+  // map is built from the scans and the poses alone, so only after the particles are gone (hospital seed 1: peak RSS
   // 428 -> 349 MB, same outputs).
   std::optional<GridMap> best;
   if (!closedLoops()) best = filter_->bestParticle().map;
+  stopLoopCloserThread();
+  closer_.reset();
   filter_.reset();
   releaseFreedMemory();
-  r.map = best ? std::move(*best) : mapAt(poses);
+  r.map = best ? std::move(*best) : mapAt(r.scan_indices, r.scan_poses);
   releaseFreedMemory();
   r.trajectory_header = trajectory_header;
   r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;

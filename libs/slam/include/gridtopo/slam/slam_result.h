@@ -35,6 +35,11 @@ struct SlamResult {
   std::string options_ini;  ///< the text of options.ini (slamOptionsIni)
 };
 
+/// Keeps of `result.scans` only the scans of the simple map (`scan_indices` renumbered 0, 1, ...), and gives the
+/// memory of the others back: what the outputs need of a finished run's log, a quarter to a tenth of it. A no-op
+/// when the scans are shared with someone else (a run still alive, the GUI).
+void keepOnlySimpleMapScans(SlamResult& result);
+
 /// The columns of a stats.txt row as statsRow writes them (a writer may append its own, e.g. the process RSS).
 inline constexpr const char* kStatsColumns =
     "step scan_index timestamp time_s neff resampled particles failed_matches evaluations unique_tiles map_bytes "

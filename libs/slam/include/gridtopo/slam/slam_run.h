@@ -121,9 +121,12 @@ class SlamRun {
   void waitForLoopCloser() const;
   void closerWorkerLoop();
   static constexpr std::size_t kCloserQueue = 64;
-  /// Every processed scan inserted into a new map at the pose graph's current poses (feedback), or at `poses`.
+  /// Every processed scan inserted into a new map at the pose graph's current poses (feedback), or the scans
+  /// `scan_indices` at `poses`.
   GridMap mapOfGraph() const;
-  GridMap mapAt(const std::vector<Pose2>& poses) const;
+  GridMap mapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses) const;
+  /// Stops the loop closure's thread (its queued steps dropped, the one in flight waited for); idempotent.
+  void stopLoopCloserThread();
   /// The loop closure has accepted a closure: the result is the pose graph's, not the best particle's.
   bool closedLoops() const { return closer_ && !closer_->closures().empty(); }
   /// The scan index of every node of the loop closure.

@@ -1,0 +1,83 @@
+#include "gridtopo/io/image_write.h"
+
+#include <png.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "gridtopo/core/output_set.h"
+
+namespace gridtopo::io {
+namespace {
+
+void checkImage(const cv::Mat& image, bool colour_allowed, const std::string& path) {
+  if (image.empty() || image.depth() != CV_8U || !(image.channels() == 1 || (colour_allowed && image.channels() == 3)))
+    throw std::invalid_argument("cannot write " + path + ": an 8-bit grey" + (colour_allowed ? " or BGR" : "") +
+                                " image is needed");
+}
+
+// libpng reports errors by longjmp: nothing with a destructor lives in this function. Returns null or the reason.
+const char* encodePng(const cv::Mat& image, std::FILE* file) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!png) return "libpng could not start";
+  png_infop info = png_create_info_struct(png);
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    return "libpng could not start";
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return "libpng failed (disk full?)";
+  }
+  png_init_io(png, file);
+  png_set_compression_level(png, 1);
+  png_set_compression_strategy(png, Z_RLE);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.cols), static_cast<png_uint_32>(image.rows), 8,
+               image.channels() == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (image.channels() == 3) png_set_bgr(png);
+  for (int r = 0; r < image.rows; ++r) png_write_row(png, image.ptr<png_byte>(r));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return nullptr;
+}
+
+template <class Encode>
+void writeImageFile(const std::string& path, Encode encode) {
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    const char* why = encode(f);
+    const bool flushed = std::fflush(f) == 0 && !std::ferror(f);
+    const int saved_errno = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (why) throw std::runtime_error("cannot write " + path + ": " + why);
+    if (!flushed || !closed) throw std::runtime_error("cannot write " + path + ": " + std::strerror(saved_errno));
+  });
+}
+
+}  // namespace
+
+void writePng(const cv::Mat& image, const std::string& path) {
+  checkImage(image, true, path);
+  writeImageFile(path, [&](std::FILE* f) { return encodePng(image, f); });
+}
+
+void writePgm(const cv::Mat& image, const std::string& path) {
+  checkImage(image, false, path);
+  writeImageFile(path, [&](std::FILE* f) -> const char* {
+    if (std::fprintf(f, "P5\n%d %d\n255\n", image.cols, image.rows) < 0) return "header not written";
+    for (int r = 0; r < image.rows; ++r)
+      if (std::fwrite(image.ptr<unsigned char>(r), 1, static_cast<std::size_t>(image.cols), f) !=
+          static_cast<std::size_t>(image.cols))
+        return "short write (disk full?)";
+    return nullptr;
+  });
+}
+
+}  // namespace gridtopo::io
