@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/scratch.h"
 
 #include <filesystem>
@@ -34,6 +36,9 @@ TEST(SlamApp, WritesEveryOutputForAShortIntelSlice) {
   const Result r = run("-i " + kIntel + " -o " + out.string() + " -c " + GRIDTOPO_SOURCE_DIR +
                        "/config-ini/slam.ini -p 4 -t 2 -q --max-scans 400");
   ASSERT_EQ(r.status, 0) << r.output;
+  // -q: the summary line alone ("gridtopo-slam: N scans, ..."), nothing else on stdout or stderr.
+  EXPECT_EQ(r.output.rfind("gridtopo-slam: 400 scans, ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   for (const char* f : {"map.png", "map_trajectory.png", "map.pgm", "map.yaml", "map.gridmap.gz", "map.simplemap",
                         "trajectory.txt", "stats.txt", "options.ini"})
     EXPECT_TRUE(fs::exists(out / f)) << f;

@@ -4,8 +4,6 @@
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <filesystem>
-#include <cstdio>
-#define DBG(x) std::fprintf(stderr, "RSS %s %zu kB\n", x, gridtopo::processMemory().rss_kb)
 #include <functional>
 #include <sstream>
 #include <utility>
@@ -50,10 +48,8 @@ namespace {
 // The output set of `result` without its simple map: the map as MRPT's occupancy grid (`result.map` freed once
 // converted, the memory given back) and the texts.
 SlamOutputs exportWithoutSimpleMap(SlamResult& result) {
-  DBG("export start");
   SlamOutputs o;
   o.grid = toOccupancyGrid(result.map);
-  DBG("grid");
   result.map = GridMap(result.map.resolution());
   releaseFreedMemory();
   o.trajectory = std::move(result.trajectory);
@@ -109,7 +105,6 @@ void addOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o,
   out.write((d / "map_trajectory.png").string(), [&](const std::string& p) {
     io::writePng(renderMap(o.grid, o.trajectory, o.closures), p);
   });
-  DBG("pngs");
   out.write((d / "map.gridmap.gz").string(), [&](const std::string& p) { io::writeGridmapGz(o.grid, p); });
   {
     // The ROS pair names its image inside the YAML: both staged under their final names in the set's stage folder.
@@ -126,9 +121,7 @@ void addOutputs(OutputSet& out, const std::string& dir, const SlamOutputs& o,
       throw std::runtime_error(what);
     }
   }
-  DBG("before simplemap");
   out.write((d / "map.simplemap").string(), write_simplemap);
-  DBG("after simplemap");
   out.write((d / "options.ini").string(), [&](const std::string& p) { writeTextFileAtomically(p, o.options_ini); });
 }
 }  // namespace
