@@ -18,8 +18,9 @@ struct SlamLogRunSummary {
 /// The memory a run of `options` needs at least, from its particles (doc/guarantees.md, memory): a base plus
 /// kSlamBytesPerParticle per particle, the peak resident memory per particle of the first 15 filter steps of the
 /// Intel log (it grows with the steps: 495 kB per particle after 63 steps). A lower bound: a run refused by it
-/// could not even get started.
-inline constexpr std::size_t kSlamBaseBytes = 100'000'000;
+/// could not even get started. The base: the least peak of any run (one particle, one processed scan: 68 MB, most
+/// of it the libraries loaded for the outputs), rounded down.
+inline constexpr std::size_t kSlamBaseBytes = 60'000'000;
 inline constexpr std::size_t kSlamBytesPerParticle = 280'000;
 std::size_t slamMemoryEstimateBytes(const SlamOptions& options);
 /// InputError("[slam] particles", "N particles need at least X GB ..., at most M particles here") when the estimate
