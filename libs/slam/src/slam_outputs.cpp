@@ -21,15 +21,10 @@ namespace fs = std::filesystem;
 namespace gridtopo::slam {
 
 mrpt::maps::CSimpleMap simpleMapOf(const TrajectoryNodePtr& leaf, const std::vector<ScanRecord>& scans) {
-  mrpt::maps::CSimpleMap sm;
-  for (const TrajectoryNode* n : pathOf(leaf)) {
-    auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(io::toMrptScan(scans.at(n->scan_index).scan));
-    sm.insert(std::make_shared<mrpt::poses::CPose3DPDFGaussian>(
-                  mrpt::poses::CPose3D(n->pose.x, n->pose.y, 0, n->pose.theta, 0, 0)),
-              sf);
-  }
-  return sm;
+  std::vector<std::size_t> indices;
+  std::vector<Pose2> poses;
+  scansOfPath(leaf, indices, poses);
+  return simpleMapAt(indices, poses, scans);
 }
 
 mrpt::maps::CSimpleMap simpleMapAt(const std::vector<std::size_t>& scan_indices, const std::vector<Pose2>& poses,

@@ -240,36 +240,12 @@ void SlamRun::simpleMapScans(std::vector<std::size_t>& scan_indices, std::vector
     poses = closer_->finalPoses();
     return;
   }
-  for (const TrajectoryNode* n : pathOf(filter_->bestParticle().node)) {
-    scan_indices.push_back(n->scan_index);
-    poses.push_back(n->pose);
-  }
+  scansOfPath(filter_->bestParticle().node, scan_indices, poses);
 }
 
-SlamResult SlamRun::result(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
-  requireFilter("result");
-  waitForLoopCloser();
-  if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
-  SlamResult r;
-  if (closer_) {
-    const std::vector<Pose2> poses = closer_->finalPoses();
-    r.map = closedLoops() ? mapAt(processedScanIndices(), poses) : filter_->bestParticle().map;
-    r.trajectory = filter_->trajectoryThrough(poses);
-    r.closures = closureLines(poses);
-  } else {
-    r.map = filter_->bestParticle().map;
-    r.trajectory = filter_->trajectory();
-  }
-  r.scans = scans_;
-  simpleMapScans(r.scan_indices, r.scan_poses);
-  r.trajectory_header = trajectory_header;
-  r.stats = statsText();
-  r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
-  return r;
-}
-
-SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_header, const std::string& options_ini) {
-  requireFilter("finishResult");
+SlamResult SlamRun::resultWithoutMap(const std::vector<std::string>& trajectory_header, const std::string& options_ini,
+                                     const char* what) const {
+  requireFilter(what);
   waitForLoopCloser();
   if (filter_->stepsProcessed() == 0) throw std::runtime_error("the run has not processed a scan yet");
   SlamResult r;
@@ -279,6 +255,20 @@ SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_head
   r.stats = statsText();
   r.scans = scans_;
   simpleMapScans(r.scan_indices, r.scan_poses);
+  r.trajectory_header = trajectory_header;
+  r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
+  return r;
+}
+
+SlamResult SlamRun::result(const std::vector<std::string>& trajectory_header, const std::string& options_ini) const {
+  SlamResult r = resultWithoutMap(trajectory_header, options_ini, "result");
+  // With the loop closure's poses the simple map's scans are every processed scan at those poses.
+  r.map = closedLoops() ? mapAt(r.scan_indices, r.scan_poses) : filter_->bestParticle().map;
+  return r;
+}
+
+SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_header, const std::string& options_ini) {
+  SlamResult r = resultWithoutMap(trajectory_header, options_ini, "finishResult");
   // The export needs only the result's map: the particles' maps and the loop closure (its submaps, correlation
   // grids and pose graph) are freed before the loop closure's map is built (and before the export makes the MRPT
   // grid and the pictures, 3 bytes a cell, and gridtopo-slam loads MRPT's maps for them), so that the peak memory is
@@ -293,8 +283,6 @@ SlamResult SlamRun::finishResult(const std::vector<std::string>& trajectory_head
   releaseFreedMemory();
   r.map = best ? std::move(*best) : mapAt(r.scan_indices, r.scan_poses);
   releaseFreedMemory();
-  r.trajectory_header = trajectory_header;
-  r.options_ini = options_ini.empty() ? slamOptionsIni(options_) : options_ini;
   return r;
 }
 

@@ -20,4 +20,13 @@ std::vector<const TrajectoryNode*> pathOf(const TrajectoryNodePtr& leaf) {
   return out;
 }
 
+void scansOfPath(const TrajectoryNodePtr& leaf, std::vector<std::size_t>& scan_indices, std::vector<Pose2>& poses) {
+  scan_indices.clear();
+  poses.clear();
+  for (const TrajectoryNode* n : pathOf(leaf)) {
+    scan_indices.push_back(n->scan_index);
+    poses.push_back(n->pose);
+  }
+}
+
 }  // namespace gridtopo::slam

@@ -129,6 +129,10 @@ class SlamRun {
   void stopLoopCloserThread();
   /// The loop closure has accepted a closure: the result is the pose graph's, not the best particle's.
   bool closedLoops() const { return closer_ && !closer_->closures().empty(); }
+  /// result() and finishResult() but the map: trajectory, closures, stats, the simple map's scans, texts.
+  /// `what` names the caller in the error of a finished run.
+  SlamResult resultWithoutMap(const std::vector<std::string>& trajectory_header, const std::string& options_ini,
+                              const char* what) const;
   /// The scan index of every node of the loop closure.
   std::vector<std::size_t> processedScanIndices() const;
   /// The accepted closures between the nodes' `poses`.

@@ -31,5 +31,7 @@ using TrajectoryNodePtr = std::shared_ptr<const TrajectoryNode>;
 
 /// The path from the root to `leaf`, oldest first.
 std::vector<const TrajectoryNode*> pathOf(const TrajectoryNodePtr& leaf);
+/// The processed scans along the path to `leaf`, root first: their scan indices and poses (pathOf's nodes).
+void scansOfPath(const TrajectoryNodePtr& leaf, std::vector<std::size_t>& scan_indices, std::vector<Pose2>& poses);
 
 }  // namespace gridtopo::slam
