@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <unordered_map>
 
 namespace gridtopo::topology {
 
@@ -87,7 +88,10 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
 
 EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchors, double resolution)
     : rm_(rm) {
-  // The box of the cells of every region (from the image: a region's stored box is not trusted here).
+  // The box of the cells of every region, and each region's own box (from the image: a region's stored box is not
+  // trusted here).
+  const int n_ids = static_cast<int>(rm.regions.size());
+  std::vector<cv::Rect> region_box(static_cast<std::size_t>(n_ids) + 1);
   int x0 = rm.ids.cols, y0 = rm.ids.rows, x1 = -1, y1 = -1;
   for (int y = 0; y < rm.ids.rows; ++y) {
     const int* row = rm.ids.ptr<int>(y);
@@ -96,6 +100,10 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
       if (row[x] > 0) {
         if (first < 0) first = x;
         last = x;
+        if (row[x] <= n_ids) {
+          cv::Rect& b = region_box[static_cast<std::size_t>(row[x])];
+          b = b.empty() ? cv::Rect(x, y, 1, 1) : (b | cv::Rect(x, y, 1, 1));
+        }
       }
     if (first < 0) continue;
     x0 = std::min(x0, first), x1 = std::max(x1, last), y0 = std::min(y0, y), y1 = y;
@@ -105,78 +113,110 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   const cv::Mat ids = rm.ids(box_);
   const cv::Point off = box_.tl();
   const double scale = kPathClearanceScale / resolution;  // cells
-  cv::Mat clearance;
-  {
-    // The regions' cells in an image with a one-cell empty frame (written in place: no unframed copy).
-    cv::Mat inside(ids.rows + 2, ids.cols + 2, CV_8U, cv::Scalar(0));
-    cv::Mat framed = inside(cv::Rect(1, 1, ids.cols, ids.rows));
-    cv::compare(ids, 0, framed, cv::CMP_GT);
-    clearance = preciseDistance(inside);
-  }
-  clearance = clearance(cv::Rect(1, 1, ids.cols, ids.rows));
   // Step costs in 1/16 cell units (integers, so a bucket queue, Dial's algorithm, replaces the heap): a step into
   // a cell costs 16 (1 + (scale / clearance)^2), times sqrt(2) for a diagonal step.
-  const auto stepCost = [&](int y, int x, bool diagonal) {
-    const double q = scale / std::max(1.0f, clearance.at<float>(y, x));
+  const auto costAt = [&](float clearance, bool diagonal) {
+    const double q = scale / std::max(1.0f, clearance);
     return static_cast<int>(std::lround(16.0 * (diagonal ? M_SQRT2 : 1.0) * (1.0 + q * q)));
   };
-  int max_step = 1;
-  for (int y = 0; y < ids.rows; ++y)
-    for (int x = 0; x < ids.cols; ++x)
-      if (ids.at<int>(y, x) > 0) max_step = std::max(max_step, stepCost(y, x, true));
-  // A cell is tried from up to eight neighbours: when both of its costs fit in 16 bits (always at 5 cm: at most
-  // 16 sqrt(2) (1 + 14^2) = 4458), they are computed once and written over the cell's clearance (the float's four
-  // bytes; no image of them is added), else they are computed from the clearance at every try.
-  const bool packed = max_step <= 0xffff;
-  if (packed)
-    for (int y = 0; y < ids.rows; ++y)
-      for (int x = 0; x < ids.cols; ++x)
-        if (ids.at<int>(y, x) > 0) {
-          const std::uint32_t both = static_cast<std::uint32_t>(stepCost(y, x, false)) |
-                                     (static_cast<std::uint32_t>(stepCost(y, x, true)) << 16);
-          std::memcpy(clearance.ptr<float>(y) + x, &both, sizeof both);
-        }
-  const auto step = [&](int y, int x, bool diagonal) {
-    if (!packed) return stepCost(y, x, diagonal);
-    std::uint32_t both;
-    std::memcpy(&both, clearance.ptr<float>(y) + x, sizeof both);
-    return static_cast<int>(diagonal ? both >> 16 : both & 0xffff);
-  };
-  cv::Mat cost(ids.size(), CV_32S, cv::Scalar(kUnreached));  // (1/16 cells) from the cell's region anchor
+  // Beyond `far` cells of clearance both costs are those of an infinite clearance (they only fall with it), so a
+  // cell's clearance is only needed up to `far`: each region's is computed in its box widened by `far` cells.
+  int far = 1;
+  while (costAt(static_cast<float>(far), false) != costAt(std::numeric_limits<float>::max(), false) ||
+         costAt(static_cast<float>(far), true) != costAt(std::numeric_limits<float>::max(), true))
+    ++far;
+  // The clearance is the distance to the nearest cell outside every region; outside the box no cell is in a region
+  // (the original frame of empty cells around it). A cell whose nearest such cell is nearer than `far` finds it in
+  // the widened box (or, beyond the box, a frame cell at least as near); one further away gets a clearance of at
+  // least `far` there too, so its costs are the same.
+  const cv::Rect framed(-1, -1, ids.cols + 2, ids.rows + 2);  // box coordinates
   parent_ = cv::Mat(ids.size(), CV_8U, cv::Scalar(kNoParent));
-  // One search for all regions at once (every anchor a source): a cell is only entered from a cell of its own
-  // region. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
-  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(max_step) + 1);
-  std::size_t queued = 0;
+  // Each region's least-cost tree from its anchor (a cell is only entered from a cell of its own region, so the
+  // trees are independent), in its own box; the costs of the cells at a border with another region are kept for
+  // the joins. Buckets by cost modulo max_step + 1; within a bucket, first in first out, so results are fixed.
+  std::unordered_map<long long, int> border_cost;  // box cell index -> cost (1/16 cells) from its region's anchor
+  const auto index = [&](int y, int x) { return static_cast<long long>(y) * ids.cols + x; };
+  std::vector<std::vector<int>> bucket;
   for (const Region& r : rm.regions) {
-    if (r.cells <= 0) continue;
+    if (r.cells <= 0 || r.id > n_ids) continue;
+    const cv::Rect rb = region_box[static_cast<std::size_t>(r.id)] - off;  // box coordinates
+    if (rb.empty()) continue;  // a region listed without cells in the image
     const cv::Point s = anchors[static_cast<std::size_t>(r.id - 1)] - off;
-    if (!cv::Rect(cv::Point(), ids.size()).contains(s)) continue;  // a region listed without cells in the image
-    cost.at<int>(s) = 0;
-    bucket[0].push_back(s.y * ids.cols + s.x);
-    ++queued;
-  }
-  for (long long c = 0; queued > 0; ++c) {
-    auto& b = bucket[static_cast<std::size_t>(c % (max_step + 1))];
-    for (std::size_t h = 0; h < b.size(); ++h) {  // steps cost 16..max_step: nothing is added to b meanwhile
-      const int i = b[h];
-      const int y = i / ids.cols, x = i % ids.cols;
-      if (cost.at<int>(y, x) != c) continue;  // stale entry
-      const int id = ids.at<int>(y, x);
-      for (int k = 0; k < 8; ++k) {
-        const int yy = y + kDy[k], xx = x + kDx[k];
-        if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols || ids.at<int>(yy, xx) != id) continue;
-        const long long nc = c + step(yy, xx, k % 2 != 0);
-        if (nc < cost.at<int>(yy, xx)) {
-          cost.at<int>(yy, xx) = static_cast<int>(nc);
-          parent_.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
-          bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * ids.cols + xx);
-          ++queued;
+    if (!rb.contains(s)) continue;
+    const cv::Rect wide = cv::Rect(rb.x - far, rb.y - far, rb.width + 2 * far, rb.height + 2 * far) & framed;
+    cv::Mat clearance;
+    {
+      cv::Mat inside(wide.size(), CV_8U, cv::Scalar(0));
+      const cv::Rect in_box = wide & cv::Rect(0, 0, ids.cols, ids.rows);
+      cv::compare(ids(in_box), 0, inside(in_box - wide.tl()), cv::CMP_GT);
+      clearance = preciseDistance(inside);
+    }
+    clearance = clearance(rb - wide.tl());  // the region's box
+    const cv::Mat own = ids(rb);
+    int max_step = 1;
+    for (int y = 0; y < rb.height; ++y)
+      for (int x = 0; x < rb.width; ++x)
+        if (own.at<int>(y, x) == r.id) max_step = std::max(max_step, costAt(clearance.at<float>(y, x), true));
+    // A cell is tried from up to eight neighbours: when both of its costs fit in 16 bits (always at 5 cm: at most
+    // 16 sqrt(2) (1 + 14^2) = 4458), they are computed once and written over the cell's clearance.
+    const bool packed = max_step <= 0xffff;
+    if (packed)
+      for (int y = 0; y < rb.height; ++y)
+        for (int x = 0; x < rb.width; ++x)
+          if (own.at<int>(y, x) == r.id) {
+            const float c = clearance.at<float>(y, x);
+            const std::uint32_t both = static_cast<std::uint32_t>(costAt(c, false)) |
+                                       (static_cast<std::uint32_t>(costAt(c, true)) << 16);
+            std::memcpy(clearance.ptr<float>(y) + x, &both, sizeof both);
+          }
+    const auto step = [&](int y, int x, bool diagonal) {
+      if (!packed) return costAt(clearance.at<float>(y, x), diagonal);
+      std::uint32_t both;
+      std::memcpy(&both, clearance.ptr<float>(y) + x, sizeof both);
+      return static_cast<int>(diagonal ? both >> 16 : both & 0xffff);
+    };
+    cv::Mat cost(rb.size(), CV_32S, cv::Scalar(kUnreached));  // region box coordinates
+    cv::Mat parent = parent_(rb);
+    bucket.assign(static_cast<std::size_t>(max_step) + 1, {});
+    const cv::Point s_local = s - rb.tl();
+    cost.at<int>(s_local) = 0;
+    bucket[0].push_back(s_local.y * rb.width + s_local.x);
+    std::size_t queued = 1;
+    for (long long c = 0; queued > 0; ++c) {
+      auto& b = bucket[static_cast<std::size_t>(c % (max_step + 1))];
+      for (std::size_t h = 0; h < b.size(); ++h) {  // steps cost 16..max_step: nothing is added to b meanwhile
+        const int i = b[h];
+        const int y = i / rb.width, x = i % rb.width;
+        if (cost.at<int>(y, x) != c) continue;  // stale entry
+        for (int k = 0; k < 8; ++k) {
+          const int yy = y + kDy[k], xx = x + kDx[k];
+          if (yy < 0 || xx < 0 || yy >= rb.height || xx >= rb.width || own.at<int>(yy, xx) != r.id) continue;
+          const long long nc = c + step(yy, xx, k % 2 != 0);
+          if (nc < cost.at<int>(yy, xx)) {
+            cost.at<int>(yy, xx) = static_cast<int>(nc);
+            parent.at<unsigned char>(yy, xx) = static_cast<unsigned char>((k + 4) % 8);  // the step back to (y, x)
+            bucket[static_cast<std::size_t>(nc % (max_step + 1))].push_back(yy * rb.width + xx);
+            ++queued;
+          }
         }
       }
+      queued -= b.size();
+      b.clear();
     }
-    queued -= b.size();
-    b.clear();
+    // The reached cells of the region next to a cell of another region.
+    for (int y = 0; y < rb.height; ++y)
+      for (int x = 0; x < rb.width; ++x) {
+        if (own.at<int>(y, x) != r.id || cost.at<int>(y, x) == kUnreached) continue;
+        const int by = y + rb.y, bx = x + rb.x;
+        bool border = false;
+        for (int k = 0; k < 8 && !border; ++k) {
+          const int yy = by + kDy[k], xx = bx + kDx[k];
+          if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
+          const int v = ids.at<int>(yy, xx);
+          border = v > 0 && v != r.id;
+        }
+        if (border) border_cost.emplace(index(by, bx), cost.at<int>(y, x));
+      }
   }
   // For every pair of touching regions, the border cell pair with the least total cost (one pass over the image,
   // half of the 8-neighbourhood; the first such pair in row-major order wins ties).
@@ -184,13 +224,21 @@ EdgeRouter::EdgeRouter(const RegionMap& rm, const std::vector<cv::Point>& anchor
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x) {
       const int a = ids.at<int>(y, x);
-      if (a <= 0 || cost.at<int>(y, x) == kUnreached) continue;
+      if (a <= 0) continue;
+      const int* cost_a = nullptr;
       for (const auto& o : half) {
         const int yy = y + o[0], xx = x + o[1];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
         const int b = ids.at<int>(yy, xx);
-        if (b <= 0 || b == a || cost.at<int>(yy, xx) == kUnreached) continue;
-        const double c = static_cast<double>(cost.at<int>(y, x)) + cost.at<int>(yy, xx);
+        if (b <= 0 || b == a) continue;
+        if (!cost_a) {
+          const auto found = border_cost.find(index(y, x));
+          if (found == border_cost.end()) break;  // a unreached
+          cost_a = &found->second;
+        }
+        const auto found_b = border_cost.find(index(yy, xx));
+        if (found_b == border_cost.end()) continue;  // b unreached
+        const double c = static_cast<double>(*cost_a) + found_b->second;
         const cv::Point p = cv::Point(x, y) + off, q = cv::Point(xx, yy) + off;
         const auto key = std::make_pair(std::min(a, b), std::max(a, b));
         auto it = joins_.find(key);

@@ -50,26 +50,29 @@ RegionMap relabel(const RegionMap& rm, const std::vector<int>& remap, const std:
 }
 }  // namespace
 
-RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation, double resolution) {
+namespace {
+// G3 over `rm`'s own id image when `in_place` (the pieces are written over it: a full-map id image less on a large
+// map), else over a copy. While the pieces are found, a cell already in a piece holds minus the piece's number.
+RegionMap splitRoomsBySegmentsIn(const RegionMap& rm, const cv::Mat& segmentation, double resolution, bool in_place) {
   CV_Assert(segmentation.type() == CV_32S && segmentation.size() == rm.ids.size());
   constexpr int kRoom = static_cast<int>(places::PlaceLabel::Room);
+  cv::Mat ids = in_place ? rm.ids : rm.ids.clone();
   // A cell's key: its region, and for room cells also its segment. Pieces are the 8-connected sets of equal keys,
   // found by flood fill row by row (so each region's pieces come in the order of their first cell).
   const auto key = [&](int y, int x) {
-    const int id = rm.ids.at<int>(y, x);
+    const int id = ids.at<int>(y, x);
     const int seg = id > 0 && rm.region(id).label == kRoom ? segmentation.at<int>(y, x) : 0;
     return std::make_pair(id, seg);
   };
-  cv::Mat piece(rm.ids.size(), CV_32S, cv::Scalar(0));
   std::vector<int> region_of{0};  // piece -> input region
   std::vector<cv::Point> stack;
-  for (int y = 0; y < rm.ids.rows; ++y)
-    for (int x = 0; x < rm.ids.cols; ++x) {
-      if (rm.ids.at<int>(y, x) <= 0 || piece.at<int>(y, x)) continue;
+  for (int y = 0; y < ids.rows; ++y)
+    for (int x = 0; x < ids.cols; ++x) {
+      if (ids.at<int>(y, x) <= 0) continue;  // no region, or already in a piece
       const int p = static_cast<int>(region_of.size());
       const auto k = key(y, x);
       region_of.push_back(k.first);
-      piece.at<int>(y, x) = p;
+      ids.at<int>(y, x) = -p;
       stack.assign(1, cv::Point(x, y));
       while (!stack.empty()) {
         const cv::Point c = stack.back();
@@ -77,9 +80,9 @@ RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation,
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
             const int ny = c.y + dy, nx = c.x + dx;
-            if (ny < 0 || nx < 0 || ny >= rm.ids.rows || nx >= rm.ids.cols || piece.at<int>(ny, nx)) continue;
-            if (rm.ids.at<int>(ny, nx) <= 0 || key(ny, nx) != k) continue;
-            piece.at<int>(ny, nx) = p;
+            if (ny < 0 || nx < 0 || ny >= ids.rows || nx >= ids.cols || ids.at<int>(ny, nx) <= 0) continue;
+            if (key(ny, nx) != k) continue;
+            ids.at<int>(ny, nx) = -p;
             stack.emplace_back(nx, ny);
           }
       }
@@ -96,9 +99,18 @@ RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation,
     remap[static_cast<std::size_t>(p)] = static_cast<int>(label.size());
     label.push_back(rm.region(region_of[static_cast<std::size_t>(p)]).label);
   }
+  for (int y = 0; y < ids.rows; ++y) {  // piece numbers (0 stays 0), in place
+    int* row = ids.ptr<int>(y);
+    for (int x = 0; x < ids.cols; ++x) row[x] = -row[x];
+  }
   RegionMap pieces;
-  pieces.ids = piece;
+  pieces.ids = ids;
   return relabel(pieces, remap, label, resolution, true);
+}
+}  // namespace
+
+RegionMap splitRoomsBySegments(const RegionMap& rm, const cv::Mat& segmentation, double resolution) {
+  return splitRoomsBySegmentsIn(rm, segmentation, resolution, false);
 }
 
 namespace {
@@ -164,7 +176,11 @@ RegionMap applyGraphRulesTo(const RegionMap& rm, double resolution, const GraphR
 RegionMap graphRegions(RegionMap&& regions, const cv::Mat& segmentation, double resolution,
                        const CorridorSplitOptions& split, const GraphRuleOptions& rules) {
   // Each step's input is let go once the next image exists (on a large map each is a full-map id image).
-  if (rules.rooms_by_segment) regions = splitRoomsBySegments(regions, segmentation, resolution);
+  if (rules.rooms_by_segment) {
+    // Over the caller's id image unless another RegionMap shares it.
+    const bool ours = !(regions.ids.u && regions.ids.u->refcount > 1);
+    regions = splitRoomsBySegmentsIn(regions, segmentation, resolution, ours);
+  }
   RegionMap pieces = splitCorridors(std::move(regions), resolution, split);  // over the input's id image
   return applyGraphRulesTo(pieces, resolution, rules, true);  // `pieces` is ours: its id image becomes the result's
 }
