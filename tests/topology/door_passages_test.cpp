@@ -16,6 +16,7 @@
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/topology/door_passages.h"
 #include "gridtopo/topology/doorway_geometry.h"
+#include "gridtopo/topology/export.h"
 #include "gridtopo/topology/pipeline.h"
 
 using namespace gridtopo;
@@ -221,4 +222,76 @@ TEST(DoorPassages, ARoomEnteredWhereTheMapShowsNoWallGetsItsDoorway) {
   const TopologyResult no_entries = buildTopology(labels, kRes, off, nullptr, {0, 0}, into);
   EXPECT_TRUE(no_entries.room_entries.empty());
   EXPECT_EQ(cv::countNonZero(no_entries.labels == kDoor), 0);
+}
+
+// Scale (issue 35, item 3): buildTopology's `crop` (gridtopo-topology works on the box of the labelled cells) gives
+// the whole map's topology: the same graph, door passages, room entries, labels, segmentation and overlay as without
+// it, on a building placed at an odd offset in a larger empty map (the box then starts off the 2 x 2 blocks of
+// the region numbering unless it is aligned, and the routes' simplification sees other absolute coordinates).
+TEST(DoorPassages, CropToTheLabelledBoxGivesTheWholeMapsTopology) {
+  const Building b = makeBuilding();
+  const cv::Point at(37, 23);
+  cv::Mat labels(b.labels.rows + 91, b.labels.cols + 140, CV_8U, cv::Scalar(places::kNoLabel));
+  b.labels.copyTo(labels(cv::Rect(at, b.labels.size())));
+  std::vector<cv::Point2d> path;
+  for (const cv::Point2d& p : drive()) path.push_back(p + cv::Point2d(at));
+  const TopologyOptions o;
+  const cv::Point2d origin(-3.5, 12.25);
+  const TopologyResult whole = buildTopology(labels, kRes, o, nullptr, origin, path, false);
+  const TopologyResult part = buildTopology(labels, kRes, o, nullptr, origin, path, true);
+  EXPECT_EQ(whole.frame, cv::Rect(cv::Point(), labels.size()));
+  EXPECT_LT(part.frame.area(), labels.size().area() / 2);  // the box, not the map
+  EXPECT_EQ(part.frame.x % 2, 0);
+  EXPECT_EQ(part.frame.y % 2, 0);
+  EXPECT_EQ(part.labels.size(), part.frame.size());
+  EXPECT_EQ(part.map_size, labels.size());
+  ASSERT_EQ(whole.door_passages.size(), 3u);
+  ASSERT_EQ(part.door_passages.size(), whole.door_passages.size());
+  for (std::size_t i = 0; i < whole.door_passages.size(); ++i) {
+    // The chord's ends come from the path's samples (doubles in the part's frame): equal up to rounding.
+    EXPECT_LT(cv::norm(part.door_passages[i].a - whole.door_passages[i].a), 1e-9);
+    EXPECT_LT(cv::norm(part.door_passages[i].b - whole.door_passages[i].b), 1e-9);
+    EXPECT_EQ(part.door_passages[i].centre, whole.door_passages[i].centre);
+  }
+  EXPECT_EQ(part.room_entries, whole.room_entries);
+  const auto same = [](const cv::Mat& a, const cv::Mat& b) {
+    return a.size() == b.size() && a.type() == b.type() && cv::countNonZero(a.reshape(1) != b.reshape(1)) == 0;
+  };
+  EXPECT_TRUE(same(part.inMap(part.labels, places::kNoLabel), whole.labels));
+  EXPECT_TRUE(same(part.inMap(part.segmentation, 0), whole.segmentation));
+  EXPECT_TRUE(same(part.inMap(part.regions.ids, 0), whole.regions.ids));
+  ASSERT_EQ(part.graph.nodes.size(), whole.graph.nodes.size());
+  EXPECT_EQ(part.graph.rows, whole.graph.rows);
+  EXPECT_EQ(part.graph.cols, whole.graph.cols);
+  for (std::size_t i = 0; i < whole.graph.nodes.size(); ++i) {
+    const GraphNode &p = part.graph.nodes[i], &w = whole.graph.nodes[i];
+    EXPECT_EQ(p.id, w.id);
+    EXPECT_EQ(p.label, w.label);
+    EXPECT_EQ(p.cells, w.cells);
+    EXPECT_EQ(p.centroid_px, w.centroid_px);  // bit for bit
+    EXPECT_EQ(p.centroid_m, w.centroid_m);
+    EXPECT_EQ(p.bbox_px, w.bbox_px);
+    EXPECT_EQ(p.anchor_px, w.anchor_px);
+    EXPECT_EQ(p.anchor_m, w.anchor_m);
+    EXPECT_EQ(p.centroid_inside, w.centroid_inside);
+  }
+  ASSERT_EQ(part.graph.edges.size(), whole.graph.edges.size());
+  for (std::size_t i = 0; i < whole.graph.edges.size(); ++i) {
+    const GraphEdge &p = part.graph.edges[i], &w = whole.graph.edges[i];
+    EXPECT_EQ(std::make_pair(p.a, p.b), std::make_pair(w.a, w.b));
+    EXPECT_EQ(p.border_cells, w.border_cells);
+    EXPECT_EQ(p.contact_px, w.contact_px);
+    EXPECT_EQ(p.path_px, w.path_px);
+  }
+  // The outputs draw the whole map either way.
+  places::OccupancyImage occ;
+  occ.resolution = kRes;
+  occ.cells = cv::Mat(labels.size(), CV_8U, cv::Scalar(places::kOccupied));
+  occ.cells.setTo(places::kFree, labels != places::kNoLabel);
+  EXPECT_TRUE(same(renderOverlay(occ, part.labels, part.regions, part.graph, 2, &part.door_passages, part.frame.tl()),
+                   renderOverlay(occ, whole.labels, whole.regions, whole.graph, 2, &whole.door_passages)));
+  EXPECT_TRUE(same(segmentationImage16(part.segmentation, part.frame.tl(), part.map_size),
+                   segmentationImage16(whole.segmentation)));
+  EXPECT_TRUE(same(colourSegmentation(part.segmentation, part.frame.tl(), part.map_size),
+                   colourSegmentation(whole.segmentation)));
 }

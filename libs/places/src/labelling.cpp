@@ -61,20 +61,23 @@ cv::Mat labelsFromCodes(const cv::Mat& codes) {
 namespace {
 // Classifier output p (samples x 1, CV_32FC3) -> the lattice grids, relaxation and the cell labels.
 LabellingResult labelFromProbabilities(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& p,
-                                       const PlacesModel& model, const RelaxationOptions& relax, int threads) {
+                                       const PlacesModel& model, const RelaxationOptions& relax, int threads,
+                                       bool keep_initial = true) {
   LabellingResult res;
   res.lattice = lattice;
-  res.probs_initial = cv::Mat(lattice.block_sample.size(), CV_32FC3, cv::Scalar(0, 0, 0));
+  res.probs = cv::Mat(lattice.block_sample.size(), CV_32FC3, cv::Scalar(0, 0, 0));
   res.valid = cv::Mat(lattice.block_sample.size(), CV_8U, cv::Scalar(0));
   for (std::size_t i = 0; i < lattice.samples.size(); ++i) {
-    res.probs_initial.at<cv::Vec3f>(lattice.blocks[i]) = p.at<cv::Vec3f>(static_cast<int>(i));
+    res.probs.at<cv::Vec3f>(lattice.blocks[i]) = p.at<cv::Vec3f>(static_cast<int>(i));
     res.valid.at<unsigned char>(lattice.blocks[i]) = 1;
   }
+  if (keep_initial) {
+    res.probs_initial = res.probs.clone();
+    res.labels_initial = cellLabels(occ, lattice, res.probs_initial);
+  }
   const auto t0 = std::chrono::steady_clock::now();
-  res.probs = res.probs_initial.clone();
   res.relaxation = relaxLabels(res.probs, res.valid, model.compatibility, relax, threads);
   res.seconds_relax = since(t0);
-  res.labels_initial = cellLabels(occ, lattice, res.probs_initial);
   res.labels = cellLabels(occ, lattice, res.probs);
   return res;
 }
@@ -141,7 +144,7 @@ cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads, const std::string& source,
                             const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
-                            bool keep_scans_and_features) {
+                            bool keep_scans_and_features, bool keep_initial) {
   if (countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
   const Lattice lattice = buildLattice(occ, model.scan.lattice_spacing);
   if (!keep_scans_and_features && model.features.context_radius <= 0) {
@@ -154,7 +157,7 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
         },
         &t);
     if (progress) progress("features", 1, 1);
-    LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads);
+    LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads, keep_initial);
     res.seconds_scans = t.scans, res.seconds_features = t.features, res.seconds_classify = t.classify;
     res.cpu_seconds_scans = t.cpu_scans, res.cpu_seconds_features = t.cpu_features;
     return res;

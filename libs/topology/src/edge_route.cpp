@@ -30,12 +30,12 @@ bool lineInside(const cv::Mat& ids, cv::Point p, cv::Point q, int a, int b) {
   return true;
 }
 
-double distanceToSegment(cv::Point2d p, cv::Point2d a, cv::Point2d b) {
-  const cv::Point2d d = b - a;
+// Relative to a (differences of cells are exact): the same value wherever the cells lie in the image.
+double distanceToSegment(cv::Point p, cv::Point a, cv::Point b) {
+  const cv::Point2d d(b - a), q(p - a);
   const double l2 = d.dot(d);
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  const cv::Point2d c = a + t * d;
-  return std::hypot(p.x - c.x, p.y - c.y);
+  const double t = l2 > 0 ? std::clamp(q.dot(d) / l2, 0.0, 1.0) : 0.0;
+  return std::hypot(q.x - t * d.x, q.y - t * d.y);
 }
 
 void simplify(const std::vector<cv::Point>& pts, std::size_t i, std::size_t j, const cv::Mat& ids, int a, int b,
@@ -61,10 +61,12 @@ void simplify(const std::vector<cv::Point>& pts, std::size_t i, std::size_t j, c
 }
 }  // namespace
 
-std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
+std::vector<cv::Point> regionAnchors(const RegionMap& rm, cv::Point offset, const std::vector<cv::Point2d>* centroids) {
   std::vector<cv::Point> anchors(rm.regions.size());
   for (const Region& r : rm.regions) {
     if (r.cells <= 0) continue;
+    // Distances to the centroid in the map's frame (cell + offset), as on the whole map.
+    const cv::Point2d centroid = centroids ? (*centroids)[static_cast<std::size_t>(r.id - 1)] : r.centroid;
     const cv::Rect roi = r.bbox;
     cv::Mat mask(roi.height + 2, roi.width + 2, CV_8U, cv::Scalar(0));
     cv::Mat(mask, cv::Rect(1, 1, roi.width, roi.height)).setTo(255, rm.ids(roi) == r.id);
@@ -77,7 +79,7 @@ std::vector<cv::Point> regionAnchors(const RegionMap& rm) {
     for (int y = 1; y <= roi.height; ++y)
       for (int x = 1; x <= roi.width; ++x) {
         if (!mask.at<unsigned char>(y, x) || dist.at<float>(y, x) < 0.5 * deepest) continue;
-        const double dx = roi.x + x - 1 - r.centroid.x, dy = roi.y + y - 1 - r.centroid.y;
+        const double dx = roi.x + x - 1 + offset.x - centroid.x, dy = roi.y + y - 1 + offset.y - centroid.y;
         const double d = dx * dx + dy * dy;
         if (d < best) best = d, at = cv::Point(roi.x + x - 1, roi.y + y - 1);
       }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gridtopo/core/error.h"
+#include "gridtopo/places/labelling.h"
 #include "gridtopo/places/place_label.h"
 
 namespace gridtopo::topology {
@@ -169,7 +170,8 @@ int overlayScaleFor(cv::Size map, int requested) {
 }
 
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& rm,
-                      const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages) {
+                      const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages,
+                      cv::Point frame) {
   scale = overlayScaleFor(occ.cells.size(), scale);
   static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
   // The map's cells drawn straight at the overlay's scale: each output pixel takes the cell
@@ -192,9 +194,20 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
       }
       row_y = y;
       const unsigned char* cells = occ.cells.ptr<unsigned char>(y);
-      const unsigned char* lab = labels.ptr<unsigned char>(y);
-      const int* ids = rm.ids.ptr<int>(y);
-      const int* ids_below = y + 1 < rows ? rm.ids.ptr<int>(y + 1) : nullptr;
+      // The labels and regions cover the map's cells from `frame` on (the whole map, or the box of the places).
+      const int fy = y - frame.y, fw = labels.cols;
+      const bool in_rows = fy >= 0 && fy < labels.rows;
+      const unsigned char* lab = in_rows ? labels.ptr<unsigned char>(fy) : nullptr;
+      const int* ids = in_rows ? rm.ids.ptr<int>(fy) : nullptr;
+      const int* ids_below = in_rows && fy + 1 < labels.rows ? rm.ids.ptr<int>(fy + 1) : nullptr;
+      const auto labelAt = [&](int x) {
+        const int fx = x - frame.x;
+        return lab && fx >= 0 && fx < fw ? lab[fx] : static_cast<unsigned char>(places::kNoLabel);
+      };
+      const auto idAt = [&](const int* r, int x) {
+        const int fx = x - frame.x;
+        return r && fx >= 0 && fx < fw ? r[fx] : 0;
+      };
       for (int x = 0; x < cols; ++x) {
         const unsigned char s = cells[x];
         // Free cells that are no place (map preparation): light grey crossed by a fine diagonal hatch.
@@ -202,13 +215,12 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
                       : s == places::kOccupied ? cv::Vec3b(0, 0, 0)
                       : s == places::kSeen     ? seenNotPlaceColour(x, y)
                                                : cv::Vec3b(180, 180, 180);
-        const unsigned char l = lab[x];
+        const unsigned char l = labelAt(x);
         if (l < places::kNumLabels) c = tint[l];
         // Region borders in dark grey.
-        const int id = ids[x];
-        if (id > 0 && ((x + 1 < cols && ids[x + 1] > 0 && ids[x + 1] != id) ||
-                       (ids_below && ids_below[x] > 0 && ids_below[x] != id)))
-          c = cv::Vec3b(60, 60, 60);
+        const int id = idAt(ids, x);
+        const int right = x + 1 < cols ? idAt(ids, x + 1) : 0, below = idAt(ids_below, x);
+        if (id > 0 && ((right > 0 && right != id) || (below > 0 && below != id))) c = cv::Vec3b(60, 60, 60);
         row[static_cast<std::size_t>(x)] = c;
       }
       cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);
@@ -253,25 +265,25 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   return big;
 }
 
-cv::Mat segmentationImage16(const cv::Mat& seg) {
+cv::Mat segmentationImage16(const cv::Mat& seg, cv::Point frame, cv::Size map_size) {
   double mx = 0;
   cv::minMaxLoc(seg, nullptr, &mx);
   if (mx > 65535) throw std::runtime_error("segmentation has more than 65535 segments");
-  cv::Mat out;
-  seg.convertTo(out, CV_16U);
+  cv::Mat out(map_size.empty() ? seg.size() : map_size, CV_16U, cv::Scalar(0));
+  seg.convertTo(out(cv::Rect(frame, seg.size())), CV_16U);
   return out;
 }
 
-cv::Mat colourSegmentation(const cv::Mat& seg) {
-  cv::Mat out(seg.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+cv::Mat colourSegmentation(const cv::Mat& seg, cv::Point frame, cv::Size map_size) {
+  cv::Mat out(map_size.empty() ? seg.size() : map_size, CV_8UC3, cv::Scalar(0, 0, 0));
   for (int y = 0; y < seg.rows; ++y)
     for (int x = 0; x < seg.cols; ++x) {
       const unsigned id = static_cast<unsigned>(seg.at<int>(y, x));
       if (!id) continue;
       const unsigned h = id * 2654435761u;
-      out.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<unsigned char>(64 + (h & 0x7f)),
-                                          static_cast<unsigned char>(64 + ((h >> 8) & 0xbf)),
-                                          static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
+      out.at<cv::Vec3b>(y + frame.y, x + frame.x) = cv::Vec3b(static_cast<unsigned char>(64 + (h & 0x7f)),
+                                                              static_cast<unsigned char>(64 + ((h >> 8) & 0xbf)),
+                                                              static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
     }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -226,10 +227,43 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
   return occ;
 }
 
+namespace {
+// The box of the cells with a place label, widened by one cell (within the image); the whole image when none.
+cv::Rect labelledBox(const cv::Mat& labels) {
+  int x0 = labels.cols, y0 = labels.rows, x1 = -1, y1 = -1;
+  for (int y = 0; y < labels.rows; ++y) {
+    const unsigned char* row = labels.ptr<unsigned char>(y);
+    int first = -1, last = -1;
+    for (int x = 0; x < labels.cols; ++x)
+      if (row[x] < places::kNumLabels) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    if (first < 0) continue;
+    x0 = std::min(x0, first), x1 = std::max(x1, last), y0 = std::min(y0, y), y1 = y;
+  }
+  const cv::Rect all(0, 0, labels.cols, labels.rows);
+  if (x1 < 0) return all;
+  // The box starts at even coordinates: the regions are numbered in the order of their first 2 x 2 block
+  // (extractRegions), the same blocks as on the whole map.
+  const int bx = std::max(0, x0 - 1) & ~1, by = std::max(0, y0 - 1) & ~1;
+  return cv::Rect(bx, by, x1 + 2 - bx, y1 + 2 - by) & all;
+}
+}  // namespace
+
+cv::Mat TopologyResult::inMap(const cv::Mat& image, double fill) const {
+  if (image.empty() || map_size.empty() || (frame.tl() == cv::Point() && image.size() == map_size)) return image;
+  cv::Mat out(map_size, image.type(), cv::Scalar::all(fill));
+  image.copyTo(out(frame));
+  return out;
+}
+
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling, cv::Point2d origin,
-                             const std::vector<cv::Point2d>& path) {
+                             const std::vector<cv::Point2d>& map_path, bool crop) {
   TopologyResult r;
+  r.map_size = labels.size();
+  r.frame = cv::Rect(cv::Point(), labels.size());
   cv::Mat input = labels;
   if (o.blob_vote.enabled) {
     if (!labelling || labelling->probs.empty())
@@ -237,6 +271,21 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels_blob_vote = voteInGeometricBlobs(labels, resolution, o.blob_vote, labelling->lattice, labelling->probs);
     input = r.labels_blob_vote;
   }
+  // From here on the steps see the box of the labelled cells (a cell outside it has no label: every step's result
+  // is the same, TopologyCrop tests), the path in its frame.
+  if (crop) r.frame = labelledBox(input);
+  const cv::Point off = r.frame.tl();
+  const bool part = r.frame.size() != labels.size();
+  if (part) {
+    input = input(r.frame).clone();
+    if (!r.labels_blob_vote.empty()) r.labels_blob_vote = input;
+  }
+  std::vector<cv::Point2d> shifted;
+  if (part) {
+    shifted.reserve(map_path.size());
+    for (const cv::Point2d& p : map_path) shifted.push_back(p - cv::Point2d(off));
+  }
+  const std::vector<cv::Point2d>& path = part ? shifted : map_path;
   if (o.doorways.enabled) input = addGeometricDoorways(input, resolution, o.doorways);
   if (o.door_passages.enabled && !path.empty())
     input = addDoorPassages(input, path, resolution, o.door_passages, &r.door_passages);
@@ -256,7 +305,15 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.regions = extractRegions(r.labels, resolution);
   }
   r.regions = graphRegions(std::move(r.regions), r.segmentation, resolution, o.corridor_split, o.graph_rules);
-  r.graph = buildGraph(r.regions, resolution, origin);
+  r.graph = buildGraph(r.regions, resolution, origin, off, labels.size());
+  // The path's findings in the map's frame.
+  if (part) {
+    const cv::Point2d offd(off);
+    for (DoorPassage& d : r.door_passages) d.a += offd, d.b += offd, d.centre += off;
+    for (cv::Point& p : r.room_entries) p += off;
+    for (OpenSpace& s : r.open_spaces) s.at += off;
+    for (Thoroughfare& t : r.thoroughfares) t.at += off;
+  }
   return r;
 }
 
@@ -289,12 +346,13 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
   };
   if (outputs_only) t.prepared.places.release(), t.prepared.seen_not_place.release();
   t.labelling =
-      places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features);
+      places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features,
+                          /*keep_initial=*/!outputs_only);
   if (outputs_only && !o.blob_vote.enabled) releaseLabellingGrids();  // else the blob vote reads them
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();
   t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin,
-                         pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()));
+                         pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()), /*crop=*/outputs_only);
   t.seconds_graph = since(t0);
   if (outputs_only) {
     releaseLabellingGrids();

@@ -31,13 +31,18 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
       if (!cv::imwrite(p, img)) throw std::runtime_error("cannot write " + p);
     });
   };
-  png("overlay.png", renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages));
-  png("labels.png", places::labelsToCodes(topo.labels));
+  // The result's images may cover the box of the places only (TopologyResult::frame): every image written is the
+  // whole map's.
+  const cv::Point frame = topo.frame.tl();
+  const cv::Size map_size = topo.map_size.empty() ? topo.labels.size() : topo.map_size;
+  png("overlay.png",
+      renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages, frame));
+  png("labels.png", places::labelsToCodes(topo.inMap(topo.labels, places::kNoLabel)));
   if (!labels_before_correction.empty())
     png("labels_before_correction.png", places::labelsToCodes(labels_before_correction));
   if (!topo.segmentation.empty()) {
-    png("segmentation.png", segmentationImage16(topo.segmentation));
-    png("segmentation_colour.png", colourSegmentation(topo.segmentation));
+    png("segmentation.png", segmentationImage16(topo.segmentation, frame, map_size));
+    png("segmentation_colour.png", colourSegmentation(topo.segmentation, frame, map_size));
   }
   outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, options_ini); });
 }

@@ -34,11 +34,13 @@ struct LabellingResult {
 
 /// Steps 1-5 of the method, the one call every app and the GUI make: lattice, simulated scans, features, the
 /// decision list, relaxation. `keep_scans_and_features`: also return the scans and features (for inspection).
+/// `keep_initial` false: probs_initial and labels_initial stay empty (the relaxation then works on the classifier's
+/// grid itself: a lattice grid of 12 bytes per block less at once on a large map; every other result the same).
 /// Throws gridtopo::InputError (naming `source`) if the map has no free cell.
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads = 2, const std::string& source = "<map>",
                             const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
-                            bool keep_scans_and_features = false);
+                            bool keep_scans_and_features = false, bool keep_initial = true);
 
 /// Samples per stripe of labelPlaces: the simulated scans (2 bytes per beam) and features of this many samples
 /// are held at a time (about 260 MB with 360 beams and 74 features).

@@ -24,8 +24,11 @@ namespace gridtopo::topology {
 /// in metres to the nearest cell without a place.
 inline constexpr double kPathClearanceScale = 0.7;
 
-/// The anchor cell of every region (index id - 1).
-std::vector<cv::Point> regionAnchors(const RegionMap& regions);
+/// The anchor cell of every region (index id - 1), in the frame of `regions`. When `regions` covers a part of a map
+/// whose cell (0, 0) is the map's cell `offset`, `centroids` (index id - 1) are the regions' centroids in the map's
+/// frame: the anchors are then those of the same regions on the whole map (minus `offset`).
+std::vector<cv::Point> regionAnchors(const RegionMap& regions, cv::Point offset = {},
+                                     const std::vector<cv::Point2d>* centroids = nullptr);
 
 struct EdgeRouter {
   /// Least-cost trees from every region's anchor inside its region.

@@ -37,18 +37,22 @@ int overlayScaleFor(cv::Size map, int requested);
 /// borders, region ids at the centroids and the graph drawn on top. `scale` >= 1 enlarges the image (as far as
 /// overlayScaleFor allows).
 /// `door_passages`, when given: the chords of the doors the robot's path went through (door_passages.h), in magenta.
+/// `labels` and `regions` may cover a part of the map (TopologyResult::frame): their cell (0, 0) is the map's cell
+/// `frame`; the graph and the door passages are in the map's frame.
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
                       const TopologicalGraph& g, int scale = 2,
-                      const std::vector<DoorPassage>* door_passages = nullptr);
+                      const std::vector<DoorPassage>* door_passages = nullptr, cv::Point frame = {});
 
-/// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells.
-cv::Mat segmentationImage16(const cv::Mat& segmentation);
+/// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells. A segmentation of a
+/// part of a map (its cell (0, 0) the map's cell `frame`) gives the image of the whole map of `map_size` cells.
+cv::Mat segmentationImage16(const cv::Mat& segmentation, cv::Point frame = {}, cv::Size map_size = {});
 
 /// Saturated label colours (BGR) of the evaluation views: room blue, corridor green, doorway red.
 inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
 
-/// A colour rendering of a segmentation (random but fixed colour per id) for viewing.
-cv::Mat colourSegmentation(const cv::Mat& segmentation);
+/// A colour rendering of a segmentation (random but fixed colour per id) for viewing; `frame`, `map_size` as for
+/// segmentationImage16.
+cv::Mat colourSegmentation(const cv::Mat& segmentation, cv::Point frame = {}, cv::Size map_size = {});
 
 }  // namespace gridtopo::topology

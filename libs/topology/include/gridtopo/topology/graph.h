@@ -43,7 +43,10 @@ struct TopologicalGraph {
   int connectedComponents() const;
 };
 
-/// `origin`: world coordinates (m) of the lower-left corner of the image (the map's x_min, y_min).
-TopologicalGraph buildGraph(const RegionMap& regions, double resolution, cv::Point2d origin = {0, 0});
+/// `origin`: world coordinates (m) of the lower-left corner of the map (the map's x_min, y_min). `regions` may cover
+/// only a part of the map: its cell (0, 0) is the map's cell `offset`, the map is `map_size` cells (empty: the size
+/// of `regions`); the graph is then in the map's frame, the same graph as that of the same regions on the whole map.
+TopologicalGraph buildGraph(const RegionMap& regions, double resolution, cv::Point2d origin = {0, 0},
+                            cv::Point offset = {}, cv::Size map_size = {});
 
 }  // namespace gridtopo::topology

@@ -106,6 +106,14 @@ struct TopologyResult {
   std::vector<cv::Point> room_entries;     ///< where it stepped from a corridor into a room without a door (cells)
   std::vector<OpenSpace> open_spaces;      ///< the open spaces it crossed whose pieces were joined (open_spaces.h)
   std::vector<Thoroughfare> thoroughfares;  ///< room regions it travelled through, relabelled corridor (thoroughfares.h)
+  /// The part of the map that the images above and `regions` cover: their cell (0, 0) is the map's cell frame.tl(),
+  /// the map is `map_size` cells. The whole map unless buildTopology worked on the box of the labelled cells
+  /// (`crop`). The graph and the positions of the door passages, room entries, open spaces and thoroughfares are in
+  /// the map's frame either way.
+  cv::Rect frame;
+  cv::Size map_size;
+  /// `image` (one of the images above) as an image of the whole map, `fill` outside the frame.
+  cv::Mat inMap(const cv::Mat& image, double fill) const;
 };
 
 /// The occupancy image that labelling sees: places::occupancyFromMap with the free threshold for the map's kind
@@ -129,9 +137,12 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// after it, the room / corridor pieces of one open space it crossed take one label (open_spaces.h,
 /// `o.open_spaces`), the room regions it travelled through become corridor (thoroughfares.h, `o.thoroughfares`), then
 /// its steps from a corridor straight into a room become doorways (addRoomEntries).
+/// `crop`: every step after the blob vote works on the box of the labelled cells with a frame of one cell (the
+/// result's images and regions cover that box, TopologyResult::frame): on a large map whose places fill a part of
+/// it, each full-map image of the steps is that much smaller. The graph and every output are those of the whole map.
 TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
-                             const std::vector<cv::Point2d>& path = {});
+                             const std::vector<cv::Point2d>& path = {}, bool crop = false);
 
 /// The room segmentation of the 8-connected `regions` with the run's rules (`o.segmentation`, `o.seg_rules`: S0, S1).
 cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o);
