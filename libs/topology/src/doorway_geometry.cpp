@@ -164,6 +164,7 @@ cv::Mat addGeometricDoorways(const cv::Mat& labels, double resolution, const Doo
     for (int y = 0; y < comp.rows; ++y)
       for (int x = 0; x < comp.cols; ++x)
         if (const int c = comp.at<int>(y, x); c > 0 && !supported[c]) refuse.at<unsigned char>(y, x) = 255;
+    comp.release();  // before the seed image: two box-sized int images less at once on a large map
     cv::Mat ids = cv::Mat::zeros(labels.size(), CV_32S);
     ids.setTo(1 + kRoom, out == kRoom);
     ids.setTo(1 + kCorridor, out == kCorridor);

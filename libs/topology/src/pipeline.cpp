@@ -329,7 +329,7 @@ RegionMap graphRegionsOfLabels(const cv::Mat& labels, double resolution, const T
   return graphRegions(regions, segmentRooms(regions, resolution, o), resolution, o.corridor_split, o.graph_rules);
 }
 
-MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
+MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
                           bool keep_scans_and_features, bool outputs_only) {
   MapTopology t;
@@ -338,6 +338,7 @@ MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model,
   };
   auto t0 = std::chrono::steady_clock::now();
   t.occ = occupancyForTopology(map, o, &t.prepared);
+  map.grey.release();  // the later steps read the occupancy (freed here only when the caller moved its map in)
   t.seconds_prepare = since(t0);
   const auto releaseLabellingGrids = [&] {
     for (cv::Mat* m : {&t.labelling.probs_initial, &t.labelling.probs, &t.labelling.valid,

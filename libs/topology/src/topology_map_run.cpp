@@ -29,14 +29,13 @@ void runTopologyOnMapFile(const TopologyRunSpec& spec, bool quiet, std::ostream&
   log << resolutionWarning(map.resolution, model);
 
   ProgressBar bar(100, "topology", "%", quiet ? 0 : -1);
-  auto run = topologyOfMap(map, model, opt, [&](const std::string& stage, std::size_t d, std::size_t n) {
+  auto run = topologyOfMap(std::move(map), model, opt, [&](const std::string& stage, std::size_t d, std::size_t n) {
     if (stage == "scans") bar.update(d * 80 / std::max<std::size_t>(n, 1), stage);
     else bar.update(stage == "regions" ? 90 : 85, stage);
   }, false, true);
   bar.update(100, "exports");
   bar.finish();
 
-  map.grey.release();  // the outputs draw the occupancy, not the map's grey image
   // The heap's free blocks go back to the system (apps/topology keeps them for reuse while the stages run): the
   // overlay, a large image at its scale, then takes pages afresh instead of adding to the stages' high-water mark.
   releaseFreedMemory();

@@ -166,8 +166,11 @@ struct MapTopology {
 /// `outputs_only`: each full-map image that the outputs (writeTopologyOutputs) and the run summary do not read is
 /// let go as soon as the run no longer needs it (the preparation's masks; the lattice grids of probabilities, the
 /// classifier's labels before relaxation, the lattice's block grid; the labels before the segment vote and the blob
-/// vote's): less memory at once on a large map. gridtopo-topology runs so; the GUI, which shows them, does not.
-MapTopology topologyOfMap(const MapImage& map, const places::PlacesModel& model, const TopologyOptions& o,
+/// vote's; the initial probabilities and labels), and the steps after labelling work on the box of the labelled
+/// cells (buildTopology's `crop`): less memory at once on a large map. gridtopo-topology runs so; the GUI, which
+/// shows them, does not. `map` is taken by value: a caller that moves its map in lets its grey image go once the
+/// occupancy exists.
+MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
                           bool keep_scans_and_features = false, bool outputs_only = false);
 
