@@ -113,3 +113,33 @@ TEST(DistanceTransform, ExactOnMapsWiderAndTallerThan4096Cells) {
     EXPECT_EQ(c.at<float>(p), static_cast<float>(e)) << p;
   }
 }
+
+// withinDistance is the threshold of preciseDistance, cell for cell, at reaches around the robot radius (including
+// the exact roots of integers and the half-cell steps the map preparation uses) and on masks with long gaps.
+TEST(DistanceTransform, WithinDistanceIsTheThresholdOfThePreciseDistance) {
+  cv::RNG rng(11);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int rows = 1 + rng.uniform(0, 160), cols = 1 + rng.uniform(0, 220);
+    cv::Mat mask(rows, cols, CV_8U);
+    const double density = trial % 4 == 0 ? 0.001 : trial % 4 == 1 ? 0.01 : trial % 4 == 2 ? 0.1 : 0.5;
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    const cv::Mat d = gridtopo::preciseDistance(mask);
+    // 0.3 / 0.05 is 5.999999999999999 in doubles, 6 as cv::compare's float threshold.
+    for (double r : {0.0, 1.0, 1.5, std::sqrt(2.0), 2.0, 5.0, 0.3 / 0.05, 0.3 / 0.05 + 0.5, 6.5, std::sqrt(50.0), 7.0,
+                     std::nextafter(7.0, 0.0), 12.3, 30.0}) {
+      const cv::Mat expected = d <= r;  // as the map preparation wrote it
+      const cv::Mat got = gridtopo::withinDistance(mask, r);
+      ASSERT_EQ(cv::countNonZero(got != expected), 0) << "trial " << trial << " r " << r;
+    }
+  }
+  // No zero cell: nothing is within any distance; all zero: everything within 0.
+  EXPECT_EQ(cv::countNonZero(gridtopo::withinDistance(cv::Mat(30, 40, CV_8U, cv::Scalar(255)), 10.0)), 0);
+  EXPECT_EQ(cv::countNonZero(gridtopo::withinDistance(cv::Mat(30, 40, CV_8U, cv::Scalar(0)), 0.0)), 1200);
+  // A reach beyond the byte columns falls back to the float image, with the same cells.
+  cv::Mat big(300, 700, CV_8U, cv::Scalar(255));
+  big.at<unsigned char>(10, 20) = 0;
+  cv::Mat expected;
+  cv::compare(gridtopo::preciseDistance(big), 400.0, expected, cv::CMP_LE);
+  EXPECT_EQ(cv::countNonZero(gridtopo::withinDistance(big, 400.0) != expected), 0);
+}

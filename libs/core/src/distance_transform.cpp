@@ -85,4 +85,78 @@ cv::Mat preciseDistance(const cv::Mat& mask) {
   return dst;
 }
 
+cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
+  CV_Assert(mask.type() == CV_8U);
+  const int m = mask.rows, n = mask.cols;
+  cv::Mat out(m, n, CV_8U, cv::Scalar(0));
+  if (m == 0 || n == 0 || max_distance < 0) return out;
+  // The largest integer squared distance whose float root (as preciseDistance gives it) is within max_distance,
+  // compared as cv::compare(preciseDistance(mask), max_distance, CMP_LE) does: the threshold rounded to a float
+  // (0.3 / 0.05 = 5.999999999999999 is 6).
+  const float limit = static_cast<float>(max_distance);
+  const auto within = [&](long long d2) { return static_cast<float>(std::sqrt(static_cast<double>(d2))) <= limit; };
+  long long max_sq = static_cast<long long>(std::floor(static_cast<double>(limit) * limit));
+  while (max_sq > 0 && !within(max_sq)) --max_sq;
+  while (within(max_sq + 1)) ++max_sq;
+  int reach = 0;  // the largest vertical (or horizontal) distance that can be within: floor(sqrt(max_sq))
+  while (static_cast<long long>(reach + 1) * (reach + 1) <= max_sq) ++reach;
+  if (reach >= 255) {
+    cv::Mat d = preciseDistance(mask);
+    cv::compare(d, max_distance, out, cv::CMP_LE);
+    return out;
+  }
+  const int cap = reach + 1;  // "further than reach"
+  // Column pass: per cell, the vertical distance to the nearest zero cell of its column, capped at `cap`.
+  cv::Mat vert(m, n, CV_8U);
+  {
+    std::vector<unsigned char> run(static_cast<std::size_t>(n), static_cast<unsigned char>(cap));
+    for (int y = 0; y < m; ++y) {
+      const unsigned char* s = mask.ptr<unsigned char>(y);
+      unsigned char* v = vert.ptr<unsigned char>(y);
+      for (int x = 0; x < n; ++x) {
+        const int up = std::min(run[static_cast<std::size_t>(x)] + 1, cap);
+        run[static_cast<std::size_t>(x)] = v[x] = static_cast<unsigned char>(s[x] == 0 ? 0 : up);
+      }
+    }
+    std::fill(run.begin(), run.end(), static_cast<unsigned char>(cap));
+    for (int y = m - 1; y >= 0; --y) {
+      const unsigned char* s = mask.ptr<unsigned char>(y);
+      unsigned char* v = vert.ptr<unsigned char>(y);
+      for (int x = 0; x < n; ++x) {
+        const int down = std::min(run[static_cast<std::size_t>(x)] + 1, cap);
+        run[static_cast<std::size_t>(x)] = static_cast<unsigned char>(s[x] == 0 ? 0 : down);
+        v[x] = std::min(v[x], run[static_cast<std::size_t>(x)]);
+      }
+    }
+  }
+  // Row pass: a cell at vertical distance h from a zero cell reaches the cells of its row within
+  // half[h] = floor(sqrt(max_sq - h^2)) columns; the union of those intervals, by a difference array.
+  std::vector<int> half(static_cast<std::size_t>(cap) + 1, -1);
+  for (int h = 0; h <= reach; ++h) {
+    int w = 0;
+    while (static_cast<long long>(w + 1) * (w + 1) + static_cast<long long>(h) * h <= max_sq) ++w;
+    half[static_cast<std::size_t>(h)] = w;
+  }
+  cv::parallel_for_(cv::Range(0, m), [&](const cv::Range& rows) {
+    std::vector<int> diff(static_cast<std::size_t>(n) + 1);
+    for (int y = rows.start; y < rows.end; ++y) {
+      std::fill(diff.begin(), diff.end(), 0);
+      const unsigned char* v = vert.ptr<unsigned char>(y);
+      for (int x = 0; x < n; ++x) {
+        const int w = half[v[x]];
+        if (w < 0) continue;
+        ++diff[static_cast<std::size_t>(std::max(0, x - w))];
+        --diff[static_cast<std::size_t>(std::min(n, x + w + 1))];
+      }
+      unsigned char* o = out.ptr<unsigned char>(y);
+      int on = 0;
+      for (int x = 0; x < n; ++x) {
+        on += diff[static_cast<std::size_t>(x)];
+        o[x] = on > 0 ? 255 : 0;
+      }
+    }
+  }, m / 64.0);
+  return out;
+}
+
 }  // namespace gridtopo

@@ -155,9 +155,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
         std::nth_element(widths.begin(), widths.begin() + static_cast<long>(widths.size() / 2), widths.end());
         const float w = widths[widths.size() / 2];
         if (w * resolution > o.junction_max_half_width) continue;
-        cv::Mat to_path;
-        to_path = preciseDistance(on_path);
-        strip(box).setTo(1, inside & (to_path <= w));
+        strip(box).setTo(1, inside & withinDistance(on_path, w));
         ++st.junctions;
       }
   }

@@ -20,22 +20,12 @@ using places::kUnknown;
 cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
   if (radius_cells < 0.5) return free.clone();
   // A cell's centre is clearance away from the nearest non-free cell's centre: the disc stays inside the free
-  // space when the clearance exceeds the radius by half a cell. Each float image is let go as soon as its mask
-  // exists (on a large map each is 4 bytes per cell).
-  cv::Mat not_centre;
-  {
-    cv::Mat clearance;
-    clearance = preciseDistance(free);
-    not_centre = clearance <= radius_cells + 0.5;
-  }
+  // space when the clearance exceeds the radius by half a cell. Both tests are thresholds of exact distances
+  // (withinDistance: no float image of the map).
+  cv::Mat not_centre = withinDistance(free, radius_cells + 0.5);
   if (cv::countNonZero(not_centre) == static_cast<int>(not_centre.total())) return cv::Mat::zeros(free.size(), CV_8U);
-  cv::Mat covered;
-  {
-    cv::Mat to_centre;
-    to_centre = preciseDistance(not_centre);
-    not_centre.release();
-    covered = to_centre <= radius_cells;
-  }
+  cv::Mat covered = withinDistance(not_centre, radius_cells);
+  not_centre.release();
   covered &= free;
   return covered;
 }

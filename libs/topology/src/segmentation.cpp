@@ -136,7 +136,7 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     // crop-sized images are let go as soon as they are used: the distance once the core is marked, and the core's
     // components become the seed image in place.
     cv::Mat core, cc, stats, cent;
-    cv::compare(preciseDistance(area), half_px, core, cv::CMP_GT);
+    cv::bitwise_not(withinDistance(area, half_px), core);  // preciseDistance(area) > half_px, without its floats
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
     core.release();
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);

@@ -18,4 +18,11 @@ namespace gridtopo {
 /// number. No zero cell in a column or row gives large values, as OpenCV's (1e15 squared cells before the root).
 cv::Mat preciseDistance(const cv::Mat& mask);
 
+/// The cells whose preciseDistance is at most `max_distance` (cells): CV_8U, 255 there and 0 elsewhere, the very
+/// cells of `preciseDistance(mask) <= max_distance` (cv::compare's: the same float of the root of the same integer
+/// squared distance against max_distance rounded to a float) without a float image: a column pass of distances capped just beyond the reach (one byte
+/// a cell) and, per row, each cell's reach marked as an interval. For small reaches (up to 254 cells); larger ones
+/// fall back to preciseDistance.
+cv::Mat withinDistance(const cv::Mat& mask, double max_distance);
+
 }  // namespace gridtopo
