@@ -197,3 +197,42 @@ TEST(Labelling, StripesOfTheLatticeGiveTheWholeLatticesProbabilities) {
   const cv::Vec3f corridor = whole.at<cv::Vec3f>(lat.block_sample.at<int>(10, 60));
   EXPECT_GT(corridor[1], corridor[0]);
 }
+
+TEST(Relaxation, ALatticeInALargeEmptyGridRelaxesAsAlone) {
+  // relaxLabels works on the box of the valid blocks (widened by the neighbourhood): a lattice placed in a large
+  // grid of invalid blocks relaxes bit for bit as the lattice alone (whole integral image), after an odd and an even
+  // number of iterations (the last grid written is one or the other buffer), and the blocks outside stay as they are.
+  cv::Mat p(90, 61, CV_32FC3);
+  cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
+  cv::RNG rng(21);
+  for (int y = 0; y < p.rows; ++y)
+    for (int x = 0; x < p.cols; ++x) {
+      cv::Vec3f v(rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f));
+      p.at<cv::Vec3f>(y, x) = v / (v[0] + v[1] + v[2]);
+      if (rng.uniform(0.0, 1.0) < 0.2) valid.at<unsigned char>(y, x) = 0, p.at<cv::Vec3f>(y, x) = cv::Vec3f(0, 0, 0);
+    }
+  const Compatibility r{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+  const cv::Rect at(53, 301, p.cols, p.rows);
+  for (const int R : {1, 3})
+    for (const int iterations : {5, 6}) {
+      RelaxationOptions o;
+      o.max_iterations = iterations;
+      o.tolerance = 1e-12;
+      o.neighbourhood_radius = R;
+      cv::Mat big(at.y + p.rows + 170, at.x + p.cols + 90, CV_32FC3, cv::Scalar(0.25f, 0.5f, 0.25f));
+      cv::Mat big_valid(big.size(), CV_8U, cv::Scalar(0));
+      p.copyTo(big(at));
+      valid.copyTo(big_valid(at));
+      const cv::Mat before = big.clone();
+      const auto res = relaxLabels(big, big_valid, r, o, 2);
+      EXPECT_EQ(res.iterations, iterations);
+      cv::Mat alone = p.clone();
+      relaxWithWholeIntegral(alone, valid, r, R, iterations);
+      EXPECT_EQ(cv::norm(big(at), alone, cv::NORM_INF), 0.0) << "R = " << R << ", " << iterations << " iterations";
+      big(at).setTo(cv::Scalar::all(0));
+      cv::Mat outside = before.clone();
+      outside(at).setTo(cv::Scalar::all(0));
+      EXPECT_EQ(cv::norm(big, outside, cv::NORM_INF), 0.0);
+      EXPECT_GT(cv::norm(alone, p, cv::NORM_INF), 0.05);
+    }
+}

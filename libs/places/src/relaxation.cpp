@@ -72,10 +72,9 @@ Compatibility compatibilityFromCounts(const std::array<std::array<double, kNumLa
   return r;
 }
 
-RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
-                             const RelaxationOptions& options, int threads) {
-  options.validate();
-  CV_Assert(probs.type() == CV_32FC3 && valid.type() == CV_8U && valid.size() == probs.size());
+namespace {
+RelaxationResult relaxGrid(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
+                           const RelaxationOptions& options, int threads) {
   RelaxationResult res;
   cv::Mat next = probs.clone();
   const int rows = probs.rows, cols = probs.cols;
@@ -156,6 +155,31 @@ RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compati
     if (res.last_change < options.tolerance) { res.converged = true; break; }
   }
   if (options.max_iterations == 0) res.converged = true;
+  return res;
+}
+}  // namespace
+
+RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
+                             const RelaxationOptions& options, int threads) {
+  options.validate();
+  CV_Assert(probs.type() == CV_32FC3 && valid.type() == CV_8U && valid.size() == probs.size());
+  // Only the box of the valid blocks, widened by the neighbourhood and one block more, is relaxed: outside it no
+  // block is valid, so the integral sums before it are exact zeros and those the widened box reads are the very
+  // values of the whole grid's (on a large map whose places fill a part of it, less time and one grid less).
+  int y0 = valid.rows, y1 = -1, x0 = valid.cols, x1 = -1;
+  for (int y = 0; y < valid.rows; ++y) {
+    const unsigned char* v = valid.ptr<unsigned char>(y);
+    for (int x = 0; x < valid.cols; ++x)
+      if (v[x]) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = y;
+  }
+  const int m = options.neighbourhood_radius + 1;
+  const cv::Rect all(0, 0, probs.cols, probs.rows);
+  const cv::Rect box =
+      y1 < 0 ? all : cv::Rect(x0 - m, y0 - m, x1 - x0 + 1 + 2 * m, y1 - y0 + 1 + 2 * m) & all;
+  if (box == all) return relaxGrid(probs, valid, r, options, threads);
+  cv::Mat part = probs(box);
+  RelaxationResult res = relaxGrid(part, valid(box), r, options, threads);
+  if (part.data != probs(box).data) part.copyTo(probs(box));  // the last iteration's grid is the other buffer
   return res;
 }
 
