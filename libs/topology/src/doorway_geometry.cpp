@@ -24,30 +24,48 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
   // images of it: the distances, the nearest obstacles and OpenCV's own buffer).
   const cv::Rect box = cv::boundingRect(places);
   if (box.empty()) return lines;
-  cv::Mat free;
-  cv::copyMakeBorder(places(box) != 0, free, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::Mat free(box.height + 2, box.width + 2, CV_8U, cv::Scalar(0));  // written in place: no unframed copy
+  cv::compare(places(box), 0, free(cv::Rect(1, 1, box.width, box.height)), cv::CMP_NE);
   cv::Mat dist, labels;
   cv::distanceTransform(free, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  // `labels` becomes the nearest obstacle cell of every cell (row-major index). DIST_LABEL_PIXEL numbers the
-  // obstacle cells 1, 2, ... in row-major order; a table of their indices (4 bytes per obstacle cell) carries
-  // every free cell's label over, and is let go before the diagram.
+  // `labels` becomes, for every free cell, its nearest obstacle cell (row-major index). DIST_LABEL_PIXEL numbers
+  // the obstacle cells 1, 2, ... in row-major order; the rows' runs of obstacle cells (where each starts, how many
+  // came before it) turn a label into its cell by two binary searches, without a table of every obstacle cell (on
+  // a large map most of the box is obstacle: 4 bytes each).
   {
-    std::vector<int> obstacle(1, -1);
-    obstacle.reserve(static_cast<std::size_t>(free.total()) + 1 - static_cast<std::size_t>(cv::countNonZero(free)));
-    for (int y = 0; y < free.rows; ++y)
-      for (int x = 0; x < free.cols; ++x)
-        if (!free.at<unsigned char>(y, x)) {
-          CV_Assert(labels.at<int>(y, x) == static_cast<int>(obstacle.size()));
-          obstacle.push_back(y * free.cols + x);
-        }
-    for (int y = 0; y < free.rows; ++y)
+    struct Run {
+      int first_label, x;
+    };
+    std::vector<std::vector<Run>> runs(static_cast<std::size_t>(free.rows));
+    std::vector<int> row_first(static_cast<std::size_t>(free.rows));  // the label of each row's first obstacle
+    int next = 1;
+    for (int y = 0; y < free.rows; ++y) {
+      row_first[static_cast<std::size_t>(y)] = next;
+      const unsigned char* f = free.ptr<unsigned char>(y);
+      const int* l = labels.ptr<int>(y);
       for (int x = 0; x < free.cols; ++x) {
-        int& l = labels.at<int>(y, x);
-        l = obstacle[static_cast<std::size_t>(l)];
+        if (f[x]) continue;
+        CV_Assert(l[x] == next);
+        if (x == 0 || f[x - 1]) runs[static_cast<std::size_t>(y)].push_back({next, x});
+        ++next;
       }
+    }
+    const auto cellOf = [&](int label) {
+      const int y = static_cast<int>(std::upper_bound(row_first.begin(), row_first.end(), label) - row_first.begin()) - 1;
+      const auto& row = runs[static_cast<std::size_t>(y)];
+      const auto run = std::upper_bound(row.begin(), row.end(), label,
+                                        [](int v, const Run& r) { return v < r.first_label; }) - 1;
+      return y * free.cols + run->x + (label - run->first_label);
+    };
+    for (int y = 0; y < free.rows; ++y) {
+      const unsigned char* f = free.ptr<unsigned char>(y);
+      int* l = labels.ptr<int>(y);
+      for (int x = 0; x < free.cols; ++x)
+        if (f[x]) l[x] = cellOf(l[x]);
+    }
   }
   const int cols = free.cols;
-  const auto nearest = [&](int x, int y) {
+  const auto nearest = [&](int x, int y) {  // of a free cell
     const int i = labels.at<int>(y, x);
     return cv::Point(i % cols, i / cols);
   };
@@ -136,10 +154,10 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
 
 cv::Mat addGeometricDoorways(const cv::Mat& labels, double resolution, const DoorwayGeometryOptions& o,
                              std::vector<CriticalLine>* found) {
-  cv::Mat out = labels.clone();
-  if (!o.enabled) return out;
+  if (!o.enabled) return labels.clone();
   const cv::Mat places = labels < places::kNumLabels;
   const std::vector<CriticalLine> lines = findDoorways(places, resolution, o);
+  cv::Mat out = labels.clone();  // after the lines: one image less while their distance images exist
   cv::Mat drawn = cv::Mat::zeros(labels.size(), CV_8U);
   const int thickness = std::max(1, static_cast<int>(std::lround(o.depth / resolution)));
   for (const CriticalLine& l : lines)
