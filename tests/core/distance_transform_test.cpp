@@ -143,3 +143,37 @@ TEST(DistanceTransform, WithinDistanceIsTheThresholdOfThePreciseDistance) {
   cv::compare(gridtopo::preciseDistance(big), 400.0, expected, cv::CMP_LE);
   EXPECT_EQ(cv::countNonZero(gridtopo::withinDistance(big, 400.0) != expected), 0);
 }
+
+// nearestZero: every cell's nearest zero cell is a zero cell at exactly preciseDistance's distance (the float of
+// the root of the same squared distance), on random masks from sparse to dense and on a map wider than 4 096
+// cells; none when the mask has no zero cell.
+TEST(DistanceTransform, NearestZeroIsAtThePreciseDistance) {
+  cv::RNG rng(5);
+  const auto check = [](const cv::Mat& mask) {
+    const cv::Mat near = gridtopo::nearestZero(mask);
+    const cv::Mat d = gridtopo::preciseDistance(mask);
+    for (int y = 0; y < mask.rows; ++y)
+      for (int x = 0; x < mask.cols; ++x) {
+        const int i = near.at<int>(y, x);
+        ASSERT_GE(i, 0);
+        const int nx = i % mask.cols, ny = i / mask.cols;
+        ASSERT_EQ(mask.at<unsigned char>(ny, nx), 0) << "(" << x << ", " << y << ")";
+        const long long dx = nx - x, dy = ny - y;
+        ASSERT_EQ(static_cast<float>(std::sqrt(static_cast<double>(dx * dx + dy * dy))), d.at<float>(y, x))
+            << "(" << x << ", " << y << ")";
+      }
+  };
+  for (int trial = 0; trial < 30; ++trial) {
+    const int rows = 1 + rng.uniform(0, 120), cols = 1 + rng.uniform(0, 150);
+    cv::Mat mask(rows, cols, CV_8U);
+    const double density = trial % 3 == 0 ? 0.002 : trial % 3 == 1 ? 0.05 : 0.5;
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    mask.at<unsigned char>(rng.uniform(0, rows), rng.uniform(0, cols)) = 0;  // at least one
+    check(mask);
+  }
+  cv::Mat wide(3, 5000, CV_8U, cv::Scalar(255));
+  wide.at<unsigned char>(0, 4900) = 0, wide.at<unsigned char>(2, 7) = 0;
+  check(wide);
+  EXPECT_EQ(cv::countNonZero(gridtopo::nearestZero(cv::Mat(20, 30, CV_8U, cv::Scalar(255))) != -1), 0);
+}

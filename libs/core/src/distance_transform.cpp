@@ -159,4 +159,76 @@ cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
   return out;
 }
 
+cv::Mat nearestZero(const cv::Mat& mask) {
+  CV_Assert(mask.type() == CV_8U);
+  const int m = mask.rows, n = mask.cols;
+  cv::Mat out(m, n, CV_32S, cv::Scalar(-1));
+  if (m == 0 || n == 0) return out;
+  // Column pass: the nearest zero row of each cell's column (-1: none), row by row over whole rows.
+  {
+    std::vector<int> last(static_cast<std::size_t>(n), -1);
+    for (int y = 0; y < m; ++y) {
+      const unsigned char* s = mask.ptr<unsigned char>(y);
+      int* o = out.ptr<int>(y);
+      for (int x = 0; x < n; ++x) {
+        if (s[x] == 0) last[static_cast<std::size_t>(x)] = y;
+        o[x] = last[static_cast<std::size_t>(x)];  // the nearest at or above
+      }
+    }
+    std::fill(last.begin(), last.end(), -1);
+    for (int y = m - 1; y >= 0; --y) {
+      const unsigned char* s = mask.ptr<unsigned char>(y);
+      int* o = out.ptr<int>(y);
+      for (int x = 0; x < n; ++x) {
+        if (s[x] == 0) last[static_cast<std::size_t>(x)] = y;
+        const int below = last[static_cast<std::size_t>(x)];
+        if (below >= 0 && (o[x] < 0 || below - y < y - o[x])) o[x] = below;  // a tie keeps the upper one
+      }
+    }
+  }
+  // Row pass: per row, the lower envelope of the parabolas (q - p)^2 + (y - r(p))^2 over the columns p that have a
+  // zero cell; each cell takes the envelope's parabola at it.
+  cv::parallel_for_(cv::Range(0, m), [&](const cv::Range& range) {
+    std::vector<int> r(static_cast<std::size_t>(n)), v(static_cast<std::size_t>(n));
+    std::vector<double> f(static_cast<std::size_t>(n)), z(static_cast<std::size_t>(n) + 1);
+    for (int y = range.start; y < range.end; ++y) {
+      int* o = out.ptr<int>(y);
+      std::copy(o, o + n, r.begin());
+      const auto sq = [](long long a) { return static_cast<double>(a * a); };
+      int k = -1;
+      for (int q = 0; q < n; ++q) {
+        if (r[static_cast<std::size_t>(q)] < 0) continue;
+        f[static_cast<std::size_t>(q)] = sq(y - r[static_cast<std::size_t>(q)]);
+        const double fq = f[static_cast<std::size_t>(q)] + sq(q);
+        for (;;) {
+          if (k < 0) {
+            k = 0;
+            v[0] = q;
+            z[0] = -1e300;
+            z[1] = 1e300;
+            break;
+          }
+          const int p = v[static_cast<std::size_t>(k)];
+          const double s = (fq - f[static_cast<std::size_t>(p)] - sq(p)) / (2.0 * (q - p));
+          if (s > z[static_cast<std::size_t>(k)]) {
+            ++k;
+            v[static_cast<std::size_t>(k)] = q;
+            z[static_cast<std::size_t>(k)] = s;
+            z[static_cast<std::size_t>(k) + 1] = 1e300;
+            break;
+          }
+          --k;
+        }
+      }
+      if (k < 0) continue;  // no zero cell in any column: the row stays -1
+      for (int q = 0, j = 0; q < n; ++q) {
+        while (z[static_cast<std::size_t>(j) + 1] < q) ++j;
+        const int p = v[static_cast<std::size_t>(j)];
+        o[q] = r[static_cast<std::size_t>(p)] * n + p;
+      }
+    }
+  });
+  return out;
+}
+
 }  // namespace gridtopo

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "gridtopo/places/place_label.h"
+#include "gridtopo/core/distance_transform.h"
 #include "mask_ops.h"
 
 namespace gridtopo::topology {
@@ -26,48 +27,18 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
   if (box.empty()) return lines;
   cv::Mat free(box.height + 2, box.width + 2, CV_8U, cv::Scalar(0));  // written in place: no unframed copy
   cv::compare(places(box), 0, free(cv::Rect(1, 1, box.width, box.height)), cv::CMP_NE);
-  cv::Mat dist, labels;
-  cv::distanceTransform(free, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  // `labels` becomes, for every free cell, its nearest obstacle cell (row-major index). DIST_LABEL_PIXEL numbers
-  // the obstacle cells 1, 2, ... in row-major order; the rows' runs of obstacle cells (where each starts, how many
-  // came before it) turn a label into its cell by two binary searches, without a table of every obstacle cell (on
-  // a large map most of the box is obstacle: 4 bytes each).
-  {
-    struct Run {
-      int first_label, x;
-    };
-    std::vector<std::vector<Run>> runs(static_cast<std::size_t>(free.rows));
-    std::vector<int> row_first(static_cast<std::size_t>(free.rows));  // the label of each row's first obstacle
-    int next = 1;
-    for (int y = 0; y < free.rows; ++y) {
-      row_first[static_cast<std::size_t>(y)] = next;
-      const unsigned char* f = free.ptr<unsigned char>(y);
-      const int* l = labels.ptr<int>(y);
-      for (int x = 0; x < free.cols; ++x) {
-        if (f[x]) continue;
-        CV_Assert(l[x] == next);
-        if (x == 0 || f[x - 1]) runs[static_cast<std::size_t>(y)].push_back({next, x});
-        ++next;
-      }
-    }
-    const auto cellOf = [&](int label) {
-      const int y = static_cast<int>(std::upper_bound(row_first.begin(), row_first.end(), label) - row_first.begin()) - 1;
-      const auto& row = runs[static_cast<std::size_t>(y)];
-      const auto run = std::upper_bound(row.begin(), row.end(), label,
-                                        [](int v, const Run& r) { return v < r.first_label; }) - 1;
-      return y * free.cols + run->x + (label - run->first_label);
-    };
-    for (int y = 0; y < free.rows; ++y) {
-      const unsigned char* f = free.ptr<unsigned char>(y);
-      int* l = labels.ptr<int>(y);
-      for (int x = 0; x < free.cols; ++x)
-        if (f[x]) l[x] = cellOf(l[x]);
-    }
-  }
+  // Every cell's nearest obstacle cell by exact Euclidean distance (nearestZero: one 4-byte image; its distance is
+  // the norm of the offset). The chamfer distance of a 5 x 5 mask with OpenCV's pixel labels, used before, took a
+  // float distance, a label image and OpenCV's own buffer of the box, and a table of every obstacle cell.
+  const cv::Mat near_obstacle = nearestZero(free);
   const int cols = free.cols;
-  const auto nearest = [&](int x, int y) {  // of a free cell
-    const int i = labels.at<int>(y, x);
+  const auto nearest = [&](int x, int y) {
+    const int i = near_obstacle.at<int>(y, x);
     return cv::Point(i % cols, i / cols);
+  };
+  const auto distAt = [&](int x, int y) {  // the cell's clearance (0 at an obstacle)
+    const cv::Point o = nearest(x, y);
+    return static_cast<float>(std::hypot(double(o.x - x), double(o.y - y)));
   };
   const auto far = [](cv::Point p, cv::Point q) { return std::hypot(double(p.x - q.x), double(p.y - q.y)); };
   // The generalized Voronoi diagram: free cells whose nearest obstacle is far from a 4-neighbour's nearest
@@ -77,7 +48,7 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
   for (int y = 1; y + 1 < free.rows; ++y)
     for (int x = 1; x + 1 < free.cols; ++x) {
       if (!free.at<unsigned char>(y, x)) continue;
-      const double d = dist.at<float>(y, x);
+      const double d = distAt(x, y);
       const cv::Point op = nearest(x, y);
       for (int k = 0; k < 4; ++k) {
         const int qx = x + dx4[k], qy = y + dy4[k];
@@ -99,7 +70,7 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
   for (int y = 1; y + 1 < free.rows; ++y)
     for (int x = 1; x + 1 < free.cols; ++x) {
       if (!gvd.at<unsigned char>(y, x)) continue;
-      const float d = dist.at<float>(y, x);
+      const float d = distAt(x, y);
       // The critical line: the nearest obstacle and the farthest-apart nearest obstacle of the 8 neighbours.
       const cv::Point a = nearest(x, y);
       cv::Point b = a;
@@ -112,7 +83,7 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
       bool minimum = true;
       for (int yy = std::max(0, y - k); yy <= std::min(free.rows - 1, y + k) && minimum; ++yy)
         for (int xx = std::max(0, x - k); xx <= std::min(free.cols - 1, x + k); ++xx)
-          if (gvd.at<unsigned char>(yy, xx) && dist.at<float>(yy, xx) < d - 1e-3f) {
+          if (gvd.at<unsigned char>(yy, xx) && distAt(xx, yy) < d - 1e-3f) {
             minimum = false;
             break;
           }
@@ -137,7 +108,7 @@ std::vector<CriticalLine> findDoorways(const cv::Mat& places, double resolution,
       for (int t = 1; t <= reach; ++t) {
         const int px = static_cast<int>(std::lround(c.x + s * t * nx)), py = static_cast<int>(std::lround(c.y + s * t * ny));
         if (px < 0 || py < 0 || px >= free.cols || py >= free.rows || !free.at<unsigned char>(py, px)) break;
-        best = std::max(best, static_cast<double>(dist.at<float>(py, px)));
+        best = std::max(best, static_cast<double>(distAt(px, py)));
       }
       if (best < c.d + wider) wide_both = false;
     }

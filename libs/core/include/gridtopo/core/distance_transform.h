@@ -25,4 +25,11 @@ cv::Mat preciseDistance(const cv::Mat& mask);
 /// fall back to preciseDistance.
 cv::Mat withinDistance(const cv::Mat& mask, double max_distance);
 
+/// The nearest zero cell of every cell of `mask` (CV_8U) by exact Euclidean distance: CV_32S, its row-major index
+/// (y * cols + x; a zero cell's own), -1 when the mask has no zero cell. The same two passes as preciseDistance (a
+/// column pass of the nearest zero row, a row pass over the lower envelope of parabolas) keeping where the minimum
+/// lies; among cells at the same distance, the one of the leftmost envelope parabola, and within a column the upper
+/// one. The distance is the norm of the offset: one 4-byte image instead of a distance and a label image.
+cv::Mat nearestZero(const cv::Mat& mask);
+
 }  // namespace gridtopo
