@@ -177,3 +177,21 @@ TEST(DistanceTransform, NearestZeroIsAtThePreciseDistance) {
   check(wide);
   EXPECT_EQ(cv::countNonZero(gridtopo::nearestZero(cv::Mat(20, 30, CV_8U, cv::Scalar(255))) != -1), 0);
 }
+
+// preciseDistanceAt is preciseDistance at one cell, the same float, near the borders, at zero cells and on a mask
+// without any zero cell.
+TEST(DistanceTransform, PreciseDistanceAtOneCellIsTheImagesValue) {
+  cv::RNG rng(17);
+  for (int trial = 0; trial < 30; ++trial) {
+    const int rows = 1 + rng.uniform(0, 90), cols = 1 + rng.uniform(0, 120);
+    cv::Mat mask(rows, cols, CV_8U);
+    const double density = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.3;
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    const cv::Mat d = gridtopo::preciseDistance(mask);
+    for (int k = 0; k < 200; ++k) {
+      const cv::Point p(rng.uniform(0, cols), rng.uniform(0, rows));
+      ASSERT_EQ(gridtopo::preciseDistanceAt(mask, p), d.at<float>(p)) << "trial " << trial << " at " << p;
+    }
+  }
+}

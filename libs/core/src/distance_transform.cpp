@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 namespace gridtopo {
@@ -229,6 +230,30 @@ cv::Mat nearestZero(const cv::Mat& mask) {
     }
   });
   return out;
+}
+
+float preciseDistanceAt(const cv::Mat& mask, cv::Point p) {
+  CV_Assert(mask.type() == CV_8U && p.inside(cv::Rect(0, 0, mask.cols, mask.rows)));
+  long long best = mask.at<unsigned char>(p) == 0 ? 0 : std::numeric_limits<long long>::max();
+  const int far = std::max({p.x, p.y, mask.cols - 1 - p.x, mask.rows - 1 - p.y});
+  for (int r = 1; r <= far && static_cast<long long>(r) * r < best; ++r) {
+    const int y0 = std::max(0, p.y - r), y1 = std::min(mask.rows - 1, p.y + r);
+    const int x0 = std::max(0, p.x - r), x1 = std::min(mask.cols - 1, p.x + r);
+    const auto look = [&](int x, int y) {
+      if (mask.at<unsigned char>(y, x)) return;
+      const long long dx = x - p.x, dy = y - p.y;
+      best = std::min(best, dx * dx + dy * dy);
+    };
+    if (p.y - r >= 0) for (int x = x0; x <= x1; ++x) look(x, p.y - r);
+    if (p.y + r < mask.rows) for (int x = x0; x <= x1; ++x) look(x, p.y + r);
+    // The sides without the corners (the rows above did them when they lie inside the image).
+    const int ys = std::max(0, p.y - r + 1), ye = std::min(mask.rows - 1, p.y + r - 1);
+    if (p.x - r >= 0) for (int y = ys; y <= ye; ++y) look(p.x - r, y);
+    if (p.x + r < mask.cols) for (int y = ys; y <= ye; ++y) look(p.x + r, y);
+  }
+  // No zero cell at all: preciseDistance's value for that (its "infinite" square, 1e15, before the root).
+  if (best == std::numeric_limits<long long>::max()) return static_cast<float>(std::sqrt(1e15));
+  return static_cast<float>(std::sqrt(static_cast<double>(best)));
 }
 
 }  // namespace gridtopo

@@ -29,8 +29,9 @@ int crossings(const cv::Mat& sk, int y, int x) {
 
 // Splits one corridor region (mask with a one-cell zero border) into pieces: CV_32S, 1..K inside the mask, 0 outside.
 // Returns K (1 when the region has no junction).
+// `pieces` stays empty when the region is one piece (no image of it).
 int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions& o, cv::Mat& pieces) {
-  pieces = cv::Mat(mask.size(), CV_32S, cv::Scalar(0));
+  pieces.release();
   // The skeleton is traced on a lattice of about 0.1 m (thinning costs grow with area and width), then carried
   // back to the map's cells.
   const int f = std::max(1, static_cast<int>(std::lround(0.1 / resolution)));
@@ -48,9 +49,9 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   auto toFull = [&](int x, int y) { return cv::Point((x - pad) * f + f / 2, (y - pad) * f + f / 2); };
   cv::Mat sk;
   sk = thinZhangSuen(small_mask);
-  cv::Mat dist;
-  dist = preciseDistance(filled);
-  filled.release();  // on a corridor spanning a large map each of these ROI images is tens of MB: let go early
+  // The distance to the wall is read at the skeleton's points only (preciseDistanceAt: no float image of the
+  // region's box, which for a corridor spanning a large map is hundreds of MB).
+  const auto dist = [&](cv::Point p) { return preciseDistanceAt(filled, p); };
   // Prune: remove dead-end pixels (min_branch + the corridor's half-width) times, the half-width being the median
   // distance to the wall along the skeleton: a side branch must reach min_branch beyond the corridor's wall to
   // survive (a recess or a bump of the wall makes a skeleton spur as long as the half-width plus its depth). Longer
@@ -61,7 +62,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
     for (int x = 1; x < sk.cols - 1; ++x)
       if (sk.at<unsigned char>(y, x)) {
         const cv::Point p = toFull(x, y);
-        if (p.x < mask.cols && p.y < mask.rows) half_widths.push_back(dist.at<float>(p));
+        if (p.x < mask.cols && p.y < mask.rows) half_widths.push_back(dist(p));
       }
   float half_width = 0;
   if (!half_widths.empty()) {
@@ -94,29 +95,21 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
       if (sk.at<unsigned char>(y, x) && crossings(sk, y, x) >= 3) {
         cv::Point p = toFull(x, y);
         p.x = std::min(p.x, mask.cols - 1), p.y = std::min(p.y, mask.rows - 1);
-        const double r = dist.at<float>(p) + f;
+        const double r = dist(p) + f;
         cv::circle(zone, p, static_cast<int>(std::ceil(r)), cv::Scalar(255), cv::FILLED);
         cv::circle(small_zone, {x, y}, static_cast<int>(std::ceil(r / f)), cv::Scalar(255), cv::FILLED);
         ++junctions;
       }
-  dist.release();
-  if (!junctions) {
-    pieces.setTo(1, mask);
-    return 1;
-  }
+  filled.release();  // on a corridor spanning a large map each of these ROI images is tens of MB: let go early
+  if (!junctions) return 1;
   zone &= mask;
-  // Seeds: junction zones (8-connected components) and the skeleton's branches outside them.
-  cv::Mat zid, bid;
-  // Zones are at most as many as junction points: 16-bit labels when they fit (half the memory of the ROI's ids).
-  const bool narrow = junctions < 0xffff;
-  const int nz = cv::connectedComponents(zone, zid, 8, narrow ? CV_16U : CV_32S) - 1;
+  // Seeds: junction zones (8-connected components, numbered straight into the pieces' image) and the skeleton's
+  // branches outside them.
+  const int nz = cv::connectedComponents(zone, pieces, 8, CV_32S) - 1;
   zone.release();
+  cv::Mat bid;
   const cv::Mat branches = sk & ~small_zone;
   const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
-  for (int y = 0; y < mask.rows; ++y)
-    for (int x = 0; x < mask.cols; ++x)
-      if (const int z = narrow ? zid.at<unsigned short>(y, x) : zid.at<int>(y, x)) pieces.at<int>(y, x) = z;
-  zid.release();
   for (int y = 0; y < bid.rows; ++y)
     for (int x = 0; x < bid.cols; ++x)
       if (const int b = bid.at<int>(y, x)) {
@@ -248,16 +241,14 @@ RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitO
     cv::Mat mask(r.bbox.height + 2, r.bbox.width + 2, CV_8U, cv::Scalar(0));
     const cv::Point off = r.bbox.tl() - cv::Point(1, 1);  // mask (0, 0) in image coordinates
     cv::Mat(mask, cv::Rect(roi.tl() - off, roi.size())).setTo(255, ids(roi) == r.id);
-    cv::Mat pieces;
-    const int k = r.label == static_cast<int>(places::PlaceLabel::Corridor) ? splitOne(mask, resolution, o, pieces)
-                                                                             : (pieces = mask / 255, 1);
-    if (pieces.type() != CV_32S) pieces.convertTo(pieces, CV_32S);
+    cv::Mat pieces;  // empty: the region is one piece, its mask's cells
+    const int k = r.label == static_cast<int>(places::PlaceLabel::Corridor) ? splitOne(mask, resolution, o, pieces) : 1;
     const int base = static_cast<int>(out.regions.size());
     std::vector<long long> n(static_cast<std::size_t>(k), 0), sx(n), sy(n);
     std::vector<cv::Rect> box(static_cast<std::size_t>(k));
-    for (int y = 0; y < pieces.rows; ++y)
-      for (int x = 0; x < pieces.cols; ++x) {
-        const int p = pieces.at<int>(y, x);
+    for (int y = 0; y < mask.rows; ++y)
+      for (int x = 0; x < mask.cols; ++x) {
+        const int p = pieces.empty() ? (mask.at<unsigned char>(y, x) ? 1 : 0) : pieces.at<int>(y, x);
         if (!p) continue;
         const int gx = x + off.x, gy = y + off.y;
         ids.at<int>(gy, gx) = -(base + p);  // pieces lie inside the mask: only this region's cells are written

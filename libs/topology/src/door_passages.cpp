@@ -120,31 +120,8 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
   // The clearance of every place (the distance transform): where it is at least half the longest chord that
   // matters, every chord through the point is that long (each side reaches at least the clearance), and the
   // point's width is taken as twice its clearance without casting rays.
-  // Only the path's cells need it: each by a search of square rings around the cell for the nearest cell that is
-  // no place (the exact squared distance, so the very float preciseDistance(places != 0) gives), which stops once a
-  // ring lies further than the nearest found; no float image of the map. A map without such a cell (small test
-  // images) takes preciseDistance.
-  const bool has_wall = cv::countNonZero(places) < static_cast<int>(places.total());
-  const cv::Mat whole = has_wall ? cv::Mat() : preciseDistance(places != 0);
-  const auto clearanceAt = [&](int cx, int cy) {
-    if (!has_wall) return whole.at<float>(cy, cx);
-    long long best = std::numeric_limits<long long>::max();
-    const int far = std::max(places.rows, places.cols);
-    for (int r = 1; r <= far && static_cast<long long>(r) * r < best; ++r) {
-      const int y0 = std::max(0, cy - r), y1 = std::min(places.rows - 1, cy + r);
-      const int x0 = std::max(0, cx - r), x1 = std::min(places.cols - 1, cx + r);
-      const auto look = [&](int x, int y) {
-        if (places.at<unsigned char>(y, x)) return;
-        const long long dx = x - cx, dy = y - cy;
-        best = std::min(best, dx * dx + dy * dy);
-      };
-      if (cy - r >= 0) for (int x = x0; x <= x1; ++x) look(x, cy - r);
-      if (cy + r < places.rows) for (int x = x0; x <= x1; ++x) look(x, cy + r);
-      if (cx - r >= 0) for (int y = y0; y <= y1; ++y) look(cx - r, y);
-      if (cx + r < places.cols) for (int y = y0; y <= y1; ++y) look(cx + r, y);
-    }
-    return static_cast<float>(std::sqrt(static_cast<double>(best)));
-  };
+  // Only the path's cells need it (preciseDistanceAt: no float image of the map).
+  const auto clearanceAt = [&](int cx, int cy) { return preciseDistanceAt(places, cv::Point(cx, cy)); };
   std::vector<Chord> chord(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (isGap(s[i])) continue;

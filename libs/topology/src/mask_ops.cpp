@@ -6,23 +6,74 @@
 
 namespace gridtopo::topology {
 
+RunComponents::RunComponents(const cv::Mat& mask, bool nonzero, int connectivity) {
+  CV_Assert(mask.type() == CV_8U && (connectivity == 4 || connectivity == 8));
+  const int reach = connectivity == 8 ? 1 : 0;  // a run touches those of the row above that overlap it widened so
+  struct Run {
+    int x0, x1, id;
+  };
+  const auto find = [&](int a) {
+    while (root[static_cast<std::size_t>(a)] != a) {
+      root[static_cast<std::size_t>(a)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(a)])];
+      a = root[static_cast<std::size_t>(a)];
+    }
+    return a;
+  };
+  std::vector<Run> above, here;  // the runs of the row above and of this row
+  int row = -1;
+  std::size_t k = 0;  // the first run above that can still touch this row's next run
+  forEachRun(mask, nonzero, [&](int y, int x0, int x1) {
+    if (y != row) {  // a new row: its row above is the last one's only when they are adjacent
+      if (y == row + 1) std::swap(above, here);
+      else above.clear();
+      here.clear();
+      k = 0;
+      row = y;
+    }
+    const int id = static_cast<int>(root.size());
+    root.push_back(id);
+    area.push_back(x1 - x0 + 1);
+    here.push_back({x0, x1, id});
+    while (k < above.size() && above[k].x1 < x0 - reach) ++k;
+    for (std::size_t j = k; j < above.size() && above[j].x0 <= x1 + reach; ++j) {
+      const int a = find(above[j].id), c = find(id);
+      if (a == c) continue;
+      const int lo = std::min(a, c), hi = std::max(a, c);
+      root[static_cast<std::size_t>(hi)] = lo;
+      area[static_cast<std::size_t>(lo)] += area[static_cast<std::size_t>(hi)];
+    }
+  });
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = find(static_cast<int>(i));
+}
+
+std::size_t RunComponents::componentsOfAtLeast(double min_cells) const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < root.size(); ++i)
+    if (root[i] == static_cast<int>(i) && area[i] >= min_cells) ++n;
+  return n;
+}
+
 cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& veto) {
   CV_Assert(mask.type() == CV_8U && (veto.empty() || (veto.type() == CV_8U && veto.size() == mask.size())));
-  cv::Mat cc, stats, cent;
-  const int n = cv::connectedComponentsWithStats(mask == 0, cc, stats, cent, 4, CV_32S);
-  std::vector<unsigned char> fill(static_cast<std::size_t>(n), 0);
-  for (int c = 1; c < n; ++c) fill[static_cast<std::size_t>(c)] = stats.at<int>(c, cv::CC_STAT_AREA) <= max_cells;
-  for (int y = 0; y < cc.rows; ++y)
-    for (int x = 0; x < cc.cols; ++x) {
-      const int c = cc.at<int>(y, x);
-      if (!c) continue;
-      const bool border = y == 0 || x == 0 || y == cc.rows - 1 || x == cc.cols - 1;
-      if (border || (!veto.empty() && veto.at<unsigned char>(y, x))) fill[static_cast<std::size_t>(c)] = 0;
-    }
+  // The 4-connected components of zero cells from their runs (RunComponents: no image of component numbers, which
+  // would take 4 bytes a cell of a segment or corridor region spanning most of a large map); a component touching
+  // the border or a veto cell is no hole.
+  const RunComponents zero(mask, false, 4);
+  std::vector<char> blocked(zero.root.size(), 0);
+  std::size_t i = 0;
+  forEachRun(mask, false, [&](int y, int x0, int x1) {
+    char& b = blocked[static_cast<std::size_t>(zero.root[i++])];
+    if (b) return;
+    b = y == 0 || y == mask.rows - 1 || x0 == 0 || x1 == mask.cols - 1;
+    if (!veto.empty())
+      for (const unsigned char* v = veto.ptr<unsigned char>(y); !b && x0 <= x1; ++x0) b = v[x0] != 0;
+  });
   cv::Mat out = mask.clone();
-  for (int y = 0; y < cc.rows; ++y)
-    for (int x = 0; x < cc.cols; ++x)
-      if (fill[static_cast<std::size_t>(cc.at<int>(y, x))]) out.at<unsigned char>(y, x) = 255;
+  i = 0;
+  forEachRun(mask, false, [&](int y, int x0, int x1) {
+    const auto r = static_cast<std::size_t>(zero.root[i++]);
+    if (!blocked[r] && zero.area[r] <= max_cells) std::fill(out.ptr<unsigned char>(y) + x0, out.ptr<unsigned char>(y) + x1 + 1, 255);
+  });
   return out;
 }
 

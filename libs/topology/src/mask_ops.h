@@ -2,7 +2,38 @@
 // Mask operations shared by the segmentation rule S1, the blob vote and the corridor pieces (library-internal).
 #include <opencv2/core.hpp>
 
+#include <vector>
+
 namespace gridtopo::topology {
+
+/// The 4- or 8-connected components of the cells of `mask` (CV_8U) that are non-zero (`nonzero`) or zero, found
+/// from their runs row by row (union-find over the runs): no image of component numbers, only a few numbers per
+/// run. Runs are numbered in row-major order (forEachRun gives them in that order).
+struct RunComponents {
+  std::vector<int> root;        ///< per run: the run that stands for its component
+  std::vector<long long> area;  ///< per run that is a root: the component's cells
+  RunComponents(const cv::Mat& mask, bool nonzero, int connectivity);
+  /// The roots of the components of at least `min_cells` cells.
+  std::size_t componentsOfAtLeast(double min_cells) const;
+};
+
+/// Calls f(y, x0, x1) for each run [x0, x1] of row y of the non-zero (`nonzero`) or zero cells of `mask`, in
+/// row-major order (RunComponents' numbering).
+template <class F>
+void forEachRun(const cv::Mat& mask, bool nonzero, F&& f) {
+  for (int y = 0; y < mask.rows; ++y) {
+    const unsigned char* m = mask.ptr<unsigned char>(y);
+    for (int x = 0; x < mask.cols;) {
+      if ((m[x] != 0) != nonzero) {
+        ++x;
+        continue;
+      }
+      const int x0 = x;
+      while (x < mask.cols && (m[x] != 0) == nonzero) ++x;
+      f(y, x0, x - 1);
+    }
+  }
+}
 
 /// Copy of `mask` (CV_8U, 0 / 255) with its small holes set to 255: the 4-connected components of zero cells that
 /// touch no image border, have at most `max_cells` cells and, when `veto` (CV_8U, same size) is given, hold no

@@ -136,7 +136,11 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     // crop-sized images are let go as soon as they are used: the distance once the core is marked, and the core's
     // components become the seed image in place.
     cv::Mat core, cc, stats, cent;
-    cv::bitwise_not(withinDistance(area, half_px), core);  // preciseDistance(area) > half_px, without its floats
+    core = withinDistance(area, half_px);  // preciseDistance(area) > half_px, without its floats:
+    cv::bitwise_not(core, core);
+    // Fewer than two large parts (most segments): nothing to split, known from the parts' runs without an image
+    // of component numbers; else the components in OpenCV's numbering, which orders the new segments.
+    if (RunComponents(core, true, 8).componentsOfAtLeast(min_part_px) < 2) continue;
     const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
     core.release();
     std::vector<int> part_id(static_cast<std::size_t>(n), 0);

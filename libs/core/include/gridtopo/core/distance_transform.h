@@ -25,6 +25,11 @@ cv::Mat preciseDistance(const cv::Mat& mask);
 /// fall back to preciseDistance.
 cv::Mat withinDistance(const cv::Mat& mask, double max_distance);
 
+/// preciseDistance(mask) at one cell, without the image: square rings around `p` are searched for zero cells until
+/// a ring lies further than the nearest found (the exact squared distance, the same float); work grows with the
+/// square of the distance. For the few cells a step reads (a skeleton's points, a path's cells).
+float preciseDistanceAt(const cv::Mat& mask, cv::Point p);
+
 /// The nearest zero cell of every cell of `mask` (CV_8U) by exact Euclidean distance: CV_32S, its row-major index
 /// (y * cols + x; a zero cell's own), -1 when the mask has no zero cell. The same two passes as preciseDistance (a
 /// column pass of the nearest zero row, a row pass over the lower envelope of parabolas) keeping where the minimum
