@@ -1,5 +1,6 @@
 #include "gridtopo/topology/map_preparation.h"
 #include "gridtopo/core/distance_transform.h"
+#include "mask_ops.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -87,22 +88,34 @@ cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& sample
 /// Step 3: the 8-connected groups of `places` of at least `min_cells` that, when the path is known, the path enters
 /// (a path position within `near_cells` of one of the group's cells).
 cv::Mat reachable(const cv::Mat& places, int min_cells, const std::vector<cv::Point2d>& path, int near_cells) {
-  cv::Mat ids, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(places, ids, stats, centroids, 8, CV_32S);
-  std::vector<char> keep(static_cast<std::size_t>(n), 0);
-  std::vector<char> entered(static_cast<std::size_t>(n), path.empty() ? 1 : 0);
+  // The groups from their runs (RunComponents: no image of group numbers, 4 bytes a cell of the whole map).
+  const RunComponents groups(places, true, 8);
+  std::vector<int> row_first(static_cast<std::size_t>(places.rows) + 1, 0);  // the first run of each row
+  std::vector<std::pair<int, int>> extent;                                    // each run's [x0, x1]
+  extent.reserve(groups.root.size());
+  forEachRun(places, true, [&](int y, int x0, int x1) {
+    extent.emplace_back(x0, x1);
+    row_first[static_cast<std::size_t>(y) + 1] = static_cast<int>(extent.size());
+  });
+  for (std::size_t y = 1; y < row_first.size(); ++y) row_first[y] = std::max(row_first[y], row_first[y - 1]);
+  std::vector<char> entered(groups.root.size(), path.empty() ? 1 : 0);
   for (const cv::Point2d& p : path) {
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+    const int x0 = std::max(0, px - near_cells), x1 = std::min(places.cols - 1, px + near_cells);
+    if (x0 > x1) continue;
     for (int y = std::max(0, py - near_cells); y <= std::min(places.rows - 1, py + near_cells); ++y)
-      for (int x = std::max(0, px - near_cells); x <= std::min(places.cols - 1, px + near_cells); ++x)
-        entered[static_cast<std::size_t>(ids.at<int>(y, x))] = 1;
+      for (int i = row_first[static_cast<std::size_t>(y)]; i < row_first[static_cast<std::size_t>(y) + 1]; ++i) {
+        const auto& [a, b] = extent[static_cast<std::size_t>(i)];
+        if (b >= x0 && a <= x1) entered[static_cast<std::size_t>(groups.root[static_cast<std::size_t>(i)])] = 1;
+      }
   }
-  for (int i = 1; i < n; ++i)
-    keep[static_cast<std::size_t>(i)] = entered[static_cast<std::size_t>(i)] && stats.at<int>(i, cv::CC_STAT_AREA) >= min_cells;
   cv::Mat out = cv::Mat::zeros(places.size(), CV_8U);
-  for (int y = 0; y < out.rows; ++y)
-    for (int x = 0; x < out.cols; ++x)
-      if (keep[static_cast<std::size_t>(ids.at<int>(y, x))]) out.at<unsigned char>(y, x) = 255;
+  std::size_t i = 0;
+  forEachRun(places, true, [&](int y, int x0, int x1) {
+    const auto r = static_cast<std::size_t>(groups.root[i++]);
+    if (entered[r] && groups.area[r] >= min_cells)
+      std::fill(out.ptr<unsigned char>(y) + x0, out.ptr<unsigned char>(y) + x1 + 1, static_cast<unsigned char>(255));
+  });
   return out;
 }
 
