@@ -14,6 +14,7 @@
 #include "gridtopo/topology/edge_route.h"
 #include "gridtopo/topology/regions.h"
 #include "gridtopo/core/distance_transform.h"
+#include "mask_ops.h"
 
 namespace gridtopo::topology {
 
@@ -81,8 +82,23 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
       if (rm.region(u).label == room && rm.region(v).label == corridor)
         corridor_nbs[static_cast<std::size_t>(u - 1)].insert(v);
   }
-  cv::Mat half_width;  // cells to the nearest cell without a place
-  half_width = preciseDistance(labels < places::kNumLabels);
+  // The clearance (cells to the nearest cell without a place, preciseDistance of the places) of the cells of a room's
+  // box, for the few rooms between two corridors: over the box widened by `margin`, exact wherever the value found
+  // is within the margin (a cell outside the widened box is further); when some cell's value exceeds it, once more
+  // over the box widened by the largest value found (which bounds every true value).
+  const auto halfWidthOfBox = [&](const cv::Rect& box) {
+    int margin = 64;
+    for (;;) {
+      const cv::Rect wide = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
+                            cv::Rect(0, 0, labels.cols, labels.rows);
+      const cv::Mat d = preciseDistance(labels(wide) < places::kNumLabels);
+      cv::Mat own = d(box - wide.tl()).clone();
+      double largest = 0;
+      cv::minMaxLoc(own, nullptr, &largest);
+      if (largest <= margin || wide == cv::Rect(0, 0, labels.cols, labels.rows)) return own;
+      margin = static_cast<int>(std::ceil(largest)) + 1;
+    }
+  };
   const int dx[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const double scale = kPathClearanceScale / resolution;  // cells
   cv::Mat strip = cv::Mat::zeros(labels.size(), CV_8U);
@@ -93,6 +109,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
     // borders (0: none), box-local indices y * box.width + x.
     const cv::Rect box = r.bbox;
     const cv::Mat inside = rm.ids(box) == r.id;
+    const cv::Mat half_width = halfWidthOfBox(box);  // box coordinates
     cv::Mat touch(box.size(), CV_32S, cv::Scalar(0));
     for (int y = 0; y < box.height; ++y)
       for (int x = 0; x < box.width; ++x) {
@@ -133,7 +150,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
           for (int d = 0; d < 8; ++d) {
             const int nx = p.x + dx[d], ny = p.y + dy[d];
             if (nx < 0 || ny < 0 || nx >= box.width || ny >= box.height || !inside.at<unsigned char>(ny, nx)) continue;
-            const double q = scale / std::max(1.0f, half_width.at<float>(box.y + ny, box.x + nx));
+            const double q = scale / std::max(1.0f, half_width.at<float>(ny, nx));
             const double nc = c0 + (d < 4 ? 1.0 : M_SQRT2) * (1.0 + q * q);
             if (nc < cost.at<double>(ny, nx)) {
               cost.at<double>(ny, nx) = nc;
@@ -149,7 +166,7 @@ void junctionStrips(cv::Mat& labels, double resolution, const CorrectionOptions&
         for (int c = goal;; c = parent.at<int>(c / box.width, c % box.width)) {
           const cv::Point p(c % box.width, c / box.width);
           on_path.at<unsigned char>(p) = 0;
-          widths.push_back(half_width.at<float>(p + box.tl()));
+          widths.push_back(half_width.at<float>(p));
           if (parent.at<int>(p) == c) break;
         }
         std::nth_element(widths.begin(), widths.begin() + static_cast<long>(widths.size() / 2), widths.end());
@@ -174,16 +191,18 @@ cv::Mat correctRegions(const cv::Mat& labels_in, double resolution, const Correc
   }
   // R0
   {
-    cv::Mat cc, stats, cents;
-    const int n = cv::connectedComponentsWithStats(labels < places::kNumLabels, cc, stats, cents, 8, CV_32S);
+    // The groups of places from their runs (RunComponents: no image of group numbers).
+    const cv::Mat placed = labels < places::kNumLabels;
+    const RunComponents groups(placed, true, 8);
     const double cell = resolution * resolution;
-    for (int k = 1; k < n; ++k)
-      if (stats.at<int>(k, cv::CC_STAT_AREA) * cell < o.min_place_area) ++st.patches_removed;
-    for (int y = 0; y < labels.rows; ++y)
-      for (int x = 0; x < labels.cols; ++x) {
-        const int k = cc.at<int>(y, x);
-        if (k > 0 && stats.at<int>(k, cv::CC_STAT_AREA) * cell < o.min_place_area) labels.at<unsigned char>(y, x) = 255;
-      }
+    const auto small = [&](std::size_t root) { return static_cast<double>(groups.area[root]) * cell < o.min_place_area; };
+    for (std::size_t i = 0; i < groups.root.size(); ++i)
+      if (groups.root[i] == static_cast<int>(i) && small(i)) ++st.patches_removed;
+    std::size_t i = 0;
+    forEachRun(placed, true, [&](int y, int x0, int x1) {
+      if (small(static_cast<std::size_t>(groups.root[i++])))
+        std::fill(labels.ptr<unsigned char>(y) + x0, labels.ptr<unsigned char>(y) + x1 + 1, static_cast<unsigned char>(255));
+    });
   }
   const double min_area[3] = {o.min_room_area, o.min_corridor_area, o.min_doorway_area};
   for (int pass = 0; pass < o.max_passes; ++pass) {
