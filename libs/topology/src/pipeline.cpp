@@ -5,7 +5,6 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -272,7 +271,7 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     input = r.labels_blob_vote;
   }
   // From here on the steps see the box of the labelled cells (a cell outside it has no label: every step's result
-  // is the same, TopologyCrop tests), the path in its frame.
+  // is the same, DoorPassages.CropToTheLabelledBoxGivesTheWholeMapsTopology), the path in its frame.
   if (crop) r.frame = labelledBox(input);
   const cv::Point off = r.frame.tl();
   const bool part = r.frame.size() != labels.size();
