@@ -27,7 +27,8 @@ int crossings(const cv::Mat& sk, int y, int x) {
   return c;
 }
 
-// Splits one corridor region (mask with a one-cell zero border) into pieces: CV_32S, 1..K inside the mask, 0 outside.
+// Splits one corridor region (mask with a one-cell zero border) into pieces: CV_16U or CV_32S, 1..K inside the mask,
+// 0 outside.
 // Returns K (1 when the region has no junction).
 // `pieces` stays empty when the region is one piece (no image of it).
 int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions& o, cv::Mat& pieces) {
@@ -103,19 +104,23 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   filled.release();  // on a corridor spanning a large map each of these ROI images is tens of MB: let go early
   if (!junctions) return 1;
   zone &= mask;
-  // Seeds: junction zones (8-connected components, numbered straight into the pieces' image) and the skeleton's
-  // branches outside them.
-  const int nz = cv::connectedComponents(zone, pieces, 8, CV_32S) - 1;
-  zone.release();
+  // Seeds: the skeleton's branches outside the junction zones (on the coarse lattice), and the junction zones
+  // (8-connected components) numbered straight into the pieces' image: 16-bit labels when every piece fits (half
+  // the memory of a region's box; zones are at most as many as junction points), else 32-bit.
   cv::Mat bid;
   const cv::Mat branches = sk & ~small_zone;
   const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
+  const bool narrow = static_cast<long long>(junctions) + nb < 0xffff;
+  const int nz = cv::connectedComponents(zone, pieces, 8, narrow ? CV_16U : CV_32S) - 1;
+  zone.release();
+  const auto pieceAt = [&](cv::Point p) { return narrow ? int(pieces.at<unsigned short>(p)) : pieces.at<int>(p); };
   for (int y = 0; y < bid.rows; ++y)
     for (int x = 0; x < bid.cols; ++x)
       if (const int b = bid.at<int>(y, x)) {
         const cv::Point p = toFull(x, y);
-        if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieces.at<int>(p)) continue;
-        pieces.at<int>(p) = nz + b;
+        if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieceAt(p)) continue;
+        if (narrow) pieces.at<unsigned short>(p) = static_cast<unsigned short>(nz + b);
+        else pieces.at<int>(p) = nz + b;
       }
   // Geodesic growth inside the region (breadth-first, 8-connected).
   growSeeds(pieces, mask);
@@ -124,7 +129,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   const int n = nz + nb;
   std::vector<long long> sizes(static_cast<std::size_t>(n) + 1, 0);
   for (int y = 0; y < pieces.rows; ++y)
-    for (int x = 0; x < pieces.cols; ++x) sizes[static_cast<std::size_t>(pieces.at<int>(y, x))]++;
+    for (int x = 0; x < pieces.cols; ++x) sizes[static_cast<std::size_t>(pieceAt({x, y}))]++;
   RegionMerger merge(pieces, std::move(sizes));
   const std::vector<int>& parent = merge.parent;
   const std::vector<long long>& size = merge.size;
@@ -144,8 +149,13 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   // Renumber 1..K.
   std::map<int, int> renum;
   for (int y = 0; y < pieces.rows; ++y)
-    for (int x = 0; x < pieces.cols; ++x)
-      if (int& v = pieces.at<int>(y, x)) v = renum.emplace(merge.root(v), static_cast<int>(renum.size()) + 1).first->second;
+    for (int x = 0; x < pieces.cols; ++x) {
+      const int v = pieceAt({x, y});
+      if (!v) continue;
+      const int k = renum.emplace(merge.root(v), static_cast<int>(renum.size()) + 1).first->second;
+      if (narrow) pieces.at<unsigned short>(y, x) = static_cast<unsigned short>(k);  // k <= v: fits
+      else pieces.at<int>(y, x) = k;
+    }
   return static_cast<int>(renum.size());
 }
 }  // namespace
@@ -248,7 +258,9 @@ RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitO
     std::vector<cv::Rect> box(static_cast<std::size_t>(k));
     for (int y = 0; y < mask.rows; ++y)
       for (int x = 0; x < mask.cols; ++x) {
-        const int p = pieces.empty() ? (mask.at<unsigned char>(y, x) ? 1 : 0) : pieces.at<int>(y, x);
+        const int p = pieces.empty()                ? (mask.at<unsigned char>(y, x) ? 1 : 0)
+                      : pieces.type() == CV_16U ? pieces.at<unsigned short>(y, x)
+                                                : pieces.at<int>(y, x);
         if (!p) continue;
         const int gx = x + off.x, gy = y + off.y;
         ids.at<int>(gy, gx) = -(base + p);  // pieces lie inside the mask: only this region's cells are written

@@ -77,8 +77,9 @@ cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& vet
   return out;
 }
 
-void growSeeds(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
-  CV_Assert(ids.type() == CV_32S && allowed.type() == CV_8U && ids.size() == allowed.size());
+namespace {
+template <class T>
+void growSeedsOf(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
   cv::Mat steps;
   if (max_steps >= 0) steps = cv::Mat(ids.size(), CV_32S, cv::Scalar(0));
   // Only seeds with a cell to take next to them are queued: cells are only ever taken, never given back, so a
@@ -88,14 +89,14 @@ void growSeeds(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
       for (int dx = -1; dx <= 1; ++dx) {
         const int yy = y + dy, xx = x + dx;
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
-        if (allowed.at<unsigned char>(yy, xx) && !ids.at<int>(yy, xx)) return true;
+        if (allowed.at<unsigned char>(yy, xx) && !ids.at<T>(yy, xx)) return true;
       }
     return false;
   };
   std::deque<cv::Point> q;
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x)
-      if (ids.at<int>(y, x) > 0 && open(y, x)) q.emplace_back(x, y);
+      if (ids.at<T>(y, x) > 0 && open(y, x)) q.emplace_back(x, y);
   while (!q.empty()) {
     const cv::Point p = q.front();
     q.pop_front();
@@ -105,12 +106,19 @@ void growSeeds(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
       for (int dx = -1; dx <= 1; ++dx) {
         const int yy = p.y + dy, xx = p.x + dx;
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
-        if (!allowed.at<unsigned char>(yy, xx) || ids.at<int>(yy, xx)) continue;
-        ids.at<int>(yy, xx) = ids.at<int>(p);
+        if (!allowed.at<unsigned char>(yy, xx) || ids.at<T>(yy, xx)) continue;
+        ids.at<T>(yy, xx) = ids.at<T>(p);
         if (max_steps >= 0) steps.at<int>(yy, xx) = st;
         q.emplace_back(xx, yy);
       }
   }
+}
+}  // namespace
+
+void growSeeds(cv::Mat& ids, const cv::Mat& allowed, int max_steps) {
+  CV_Assert((ids.type() == CV_32S || ids.type() == CV_16U) && allowed.type() == CV_8U && ids.size() == allowed.size());
+  if (ids.type() == CV_16U) growSeedsOf<unsigned short>(ids, allowed, max_steps);
+  else growSeedsOf<int>(ids, allowed, max_steps);
 }
 
 }  // namespace gridtopo::topology

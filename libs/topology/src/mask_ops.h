@@ -40,7 +40,7 @@ void forEachRun(const cv::Mat& mask, bool nonzero, F&& f) {
 /// cell where veto != 0.
 cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& veto = cv::Mat());
 
-/// Multi-source breadth-first growth, 8-connected: the cells of `ids` (CV_32S) > 0 are the seeds (queued in
+/// Multi-source breadth-first growth, 8-connected: the cells of `ids` (CV_32S, or CV_16U) > 0 are the seeds (queued in
 /// row-major order); each cell reached takes the id of the cell it was reached from. Only cells with
 /// allowed != 0 (CV_8U, same size) and ids == 0 are entered; with `max_steps` >= 0, no cell farther than that many
 /// steps from its seed.

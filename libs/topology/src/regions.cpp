@@ -116,22 +116,30 @@ RegionMap extractRegions(const cv::Mat& labels, double resolution) {
   return rm;
 }
 
-std::map<std::pair<int, int>, int> regionAdjacency(const cv::Mat& ids) {
+namespace {
+template <class T>
+std::map<std::pair<int, int>, int> adjacencyOf(const cv::Mat& ids) {
   std::map<std::pair<int, int>, int> adj;
   static const int d[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};  // half of the 8-neighbourhood
   for (int y = 0; y < ids.rows; ++y)
     for (int x = 0; x < ids.cols; ++x) {
-      const int a = ids.at<int>(y, x);
+      const int a = ids.at<T>(y, x);
       if (a <= 0) continue;
       for (const auto& o : d) {
         const int yy = y + o[0], xx = x + o[1];
         if (yy < 0 || xx < 0 || yy >= ids.rows || xx >= ids.cols) continue;
-        const int b = ids.at<int>(yy, xx);
+        const int b = ids.at<T>(yy, xx);
         if (b <= 0 || b == a) continue;
         adj[{std::min(a, b), std::max(a, b)}]++;
       }
     }
   return adj;
+}
+}  // namespace
+
+std::map<std::pair<int, int>, int> regionAdjacency(const cv::Mat& ids) {
+  CV_Assert(ids.type() == CV_32S || ids.type() == CV_16U);
+  return ids.type() == CV_16U ? adjacencyOf<unsigned short>(ids) : adjacencyOf<int>(ids);
 }
 
 }  // namespace gridtopo::topology

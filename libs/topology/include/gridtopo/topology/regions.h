@@ -26,7 +26,7 @@ struct RegionMap {
 RegionMap extractRegions(const cv::Mat& labels, double resolution);
 
 /// Border length between regions: number of 8-neighbour cell pairs (each unordered pair once) whose cells belong
-/// to regions a < b. Keys (a, b) with a < b.
+/// to regions a < b. Keys (a, b) with a < b. `ids` CV_32S (or CV_16U).
 std::map<std::pair<int, int>, int> regionAdjacency(const cv::Mat& ids);
 
 }  // namespace gridtopo::topology
