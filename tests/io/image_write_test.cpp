@@ -92,3 +92,31 @@ TEST(ImageWrite, BadImagesAndUnwritableFilesAreNamedErrors) {
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
   EXPECT_EQ(entries, 2u);  // file, taken.png
 }
+
+TEST(ImageWrite, PngRowsHoldThePixelsOfEachRowGreyBgrAnd16Bit) {
+  // writePngRows: the picture made row by row from a callback (the topology's label and segmentation pictures of
+  // a whole map from the box of its places); 16-bit values above 255 keep their byte order.
+  const fs::path dir = test::scratch("image_write_png_rows");
+  int k = 0;
+  for (const int type : {CV_8UC1, CV_8UC3, CV_16UC1}) {
+    cv::Mat img(37, 53, type);
+    cv::RNG(static_cast<std::uint64_t>(++k)).fill(img, cv::RNG::UNIFORM, 0, type == CV_16UC1 ? 65536 : 256);
+    const fs::path p = dir / ("rows" + std::to_string(k) + ".png");
+    io::writePngRows(p.string(), img.size(), type, [&](int y, unsigned char* out) {
+      std::copy(img.ptr<unsigned char>(y), img.ptr<unsigned char>(y) + img.cols * img.elemSize(), out);
+    });
+    EXPECT_EQ(differingValues(cv::imread(p.string(), cv::IMREAD_UNCHANGED), img), 0) << p;
+  }
+  EXPECT_THROW(io::writePngRows((dir / "f.png").string(), {4, 4}, CV_32FC1, [](int, unsigned char*) {}),
+               std::invalid_argument);
+  EXPECT_THROW(io::writePngRows((dir / "e.png").string(), {0, 4}, CV_8UC1, [](int, unsigned char*) {}),
+               std::invalid_argument);
+  // A folder where the picture must go: the error names the picture.
+  fs::create_directories(dir / "taken.png" / "x");
+  try {
+    io::writePngRows((dir / "taken.png").string(), {4, 4}, CV_8UC1, [](int, unsigned char*) {});
+    ADD_FAILURE() << "an unwritable file must throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "taken.png").string()), std::string::npos) << e.what();
+  }
+}

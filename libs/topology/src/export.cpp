@@ -274,17 +274,18 @@ cv::Mat segmentationImage16(const cv::Mat& seg, cv::Point frame, cv::Size map_si
   return out;
 }
 
+cv::Vec3b segmentColour(int id) {
+  if (!id) return cv::Vec3b(0, 0, 0);
+  const unsigned h = static_cast<unsigned>(id) * 2654435761u;
+  return cv::Vec3b(static_cast<unsigned char>(64 + (h & 0x7f)), static_cast<unsigned char>(64 + ((h >> 8) & 0xbf)),
+                   static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
+}
+
 cv::Mat colourSegmentation(const cv::Mat& seg, cv::Point frame, cv::Size map_size) {
   cv::Mat out(map_size.empty() ? seg.size() : map_size, CV_8UC3, cv::Scalar(0, 0, 0));
   for (int y = 0; y < seg.rows; ++y)
-    for (int x = 0; x < seg.cols; ++x) {
-      const unsigned id = static_cast<unsigned>(seg.at<int>(y, x));
-      if (!id) continue;
-      const unsigned h = id * 2654435761u;
-      out.at<cv::Vec3b>(y + frame.y, x + frame.x) = cv::Vec3b(static_cast<unsigned char>(64 + (h & 0x7f)),
-                                                              static_cast<unsigned char>(64 + ((h >> 8) & 0xbf)),
-                                                              static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
-    }
+    for (int x = 0; x < seg.cols; ++x)
+      if (const int id = seg.at<int>(y, x)) out.at<cv::Vec3b>(y + frame.y, x + frame.x) = segmentColour(id);
   return out;
 }
 

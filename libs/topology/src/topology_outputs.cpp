@@ -1,9 +1,14 @@
 #include "gridtopo/topology/topology_outputs.h"
 
 #include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <functional>
 #include <stdexcept>
 
 #include "gridtopo/core/output_set.h"
+#include "gridtopo/io/image_write.h"
+#include "gridtopo/places/place_label.h"
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/mrpt_graph.h"
@@ -37,12 +42,46 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
   const cv::Size map_size = topo.map_size.empty() ? topo.labels.size() : topo.map_size;
   png("overlay.png",
       renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages, frame));
-  png("labels.png", places::labelsToCodes(topo.inMap(topo.labels, places::kNoLabel)));
+  // The label and segmentation pictures row by row from the frame's images (io::writePngRows): no picture of the
+  // whole map is made for them (on the hospital's map each is 56-168 MB).
+  const cv::Rect inner(frame, topo.labels.size());
+  const auto rows = [&](const std::string& name, int type, const std::function<void(int, unsigned char*)>& row) {
+    outs.write(dir + "/" + name, [&](const std::string& p) { io::writePngRows(p, map_size, type, row); });
+  };
+  const auto codesRow = [&](const cv::Mat& labels, cv::Rect where) {
+    return [&labels, where, &map_size](int y, unsigned char* out) {
+      std::fill(out, out + map_size.width, places::kNoLabelCode);
+      if (y < where.y || y >= where.y + where.height) return;
+      const unsigned char* l = labels.ptr<unsigned char>(y - where.y);
+      for (int x = 0; x < where.width; ++x)
+        if (l[x] < places::kNumLabels) out[where.x + x] = places::labelCode(l[x]);
+    };
+  };
+  rows("labels.png", CV_8UC1, codesRow(topo.labels, inner));
   if (!labels_before_correction.empty())
-    png("labels_before_correction.png", places::labelsToCodes(labels_before_correction));
+    rows("labels_before_correction.png", CV_8UC1,
+         codesRow(labels_before_correction, cv::Rect(cv::Point(), labels_before_correction.size())));
   if (!topo.segmentation.empty()) {
-    png("segmentation.png", segmentationImage16(topo.segmentation, frame, map_size));
-    png("segmentation_colour.png", colourSegmentation(topo.segmentation, frame, map_size));
+    const cv::Rect seg(frame, topo.segmentation.size());
+    double most = 0;
+    cv::minMaxLoc(topo.segmentation, nullptr, &most);
+    if (most > 65535) throw std::runtime_error("segmentation has more than 65535 segments");
+    rows("segmentation.png", CV_16UC1, [&](int y, unsigned char* out) {
+      auto* o = reinterpret_cast<unsigned short*>(out);
+      std::fill(o, o + map_size.width, static_cast<unsigned short>(0));
+      if (y < seg.y || y >= seg.y + seg.height) return;
+      const int* s = topo.segmentation.ptr<int>(y - seg.y);
+      for (int x = 0; x < seg.width; ++x) o[seg.x + x] = static_cast<unsigned short>(std::max(0, s[x]));
+    });
+    rows("segmentation_colour.png", CV_8UC3, [&](int y, unsigned char* out) {
+      std::fill(out, out + 3 * map_size.width, static_cast<unsigned char>(0));
+      if (y < seg.y || y >= seg.y + seg.height) return;
+      const int* s = topo.segmentation.ptr<int>(y - seg.y);
+      for (int x = 0; x < seg.width; ++x) {
+        const cv::Vec3b c = segmentColour(s[x]);
+        std::copy(c.val, c.val + 3, out + 3 * (seg.x + x));
+      }
+    });
   }
   outs.write(dir + "/options.ini", [&](const std::string& p) { writeTextFileAtomically(p, options_ini); });
 }

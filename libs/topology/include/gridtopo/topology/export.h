@@ -51,6 +51,9 @@ cv::Mat segmentationImage16(const cv::Mat& segmentation, cv::Point frame = {}, c
 inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
 
 
+/// The colour of segment `id` in colourSegmentation (black for 0).
+cv::Vec3b segmentColour(int id);
+
 /// A colour rendering of a segmentation (random but fixed colour per id) for viewing; `frame`, `map_size` as for
 /// segmentationImage16.
 cv::Mat colourSegmentation(const cv::Mat& segmentation, cv::Point frame = {}, cv::Size map_size = {});
