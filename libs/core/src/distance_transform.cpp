@@ -9,6 +9,41 @@
 
 namespace gridtopo {
 
+namespace {
+// The lower envelope of the parabolas (x - p)^2 + f[p] over the columns p < n with used(p) (Felzenszwalb &
+// Huttenlocher), in exact integers and doubles: v[0..k) the envelope's columns, z[j] where parabola j begins
+// (z[0] = -inf, z[k] = inf). Returns k, 0 when no column is used.
+template <class Used>
+int lowerEnvelope(const std::vector<double>& f, int n, Used used, std::vector<int>& v, std::vector<double>& z,
+                  double inf) {
+  const auto sq = [](int x) { return static_cast<double>(x) * x; };
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    if (!used(q)) continue;
+    if (k < 0) {
+      k = 0;
+      v[0] = q;
+      z[0] = -inf;
+      z[1] = inf;
+      continue;
+    }
+    const double fq = f[static_cast<std::size_t>(q)] + sq(q);
+    for (;; --k) {
+      const int p = v[static_cast<std::size_t>(k)];
+      const double s = (fq - f[static_cast<std::size_t>(p)] - sq(p)) / (2.0 * (q - p));
+      if (s > z[static_cast<std::size_t>(k)]) {
+        ++k;
+        v[static_cast<std::size_t>(k)] = q;
+        z[static_cast<std::size_t>(k)] = s;
+        z[static_cast<std::size_t>(k) + 1] = inf;
+        break;
+      }
+    }
+  }
+  return k + 1;
+}
+}  // namespace
+
 cv::Mat preciseDistance(const cv::Mat& mask) {
   CV_Assert(mask.type() == CV_8U);
   const int m = mask.rows, n = mask.cols;
@@ -58,24 +93,7 @@ cv::Mat preciseDistance(const cv::Mat& mask) {
         f[static_cast<std::size_t>(q)] = c >= m ? kInf : static_cast<double>(c) * c;
       }
       const auto sq = [](int x) { return static_cast<double>(x) * x; };
-      int k = 0;
-      v[0] = 0;
-      z[0] = -kInf;
-      z[1] = kInf;
-      for (int q = 1; q < n; ++q) {
-        const double fq = f[static_cast<std::size_t>(q)] + sq(q);
-        for (;; --k) {
-          const int p = v[static_cast<std::size_t>(k)];
-          const double s = (fq - f[static_cast<std::size_t>(p)] - sq(p)) / (2.0 * (q - p));
-          if (s > z[static_cast<std::size_t>(k)]) {
-            ++k;
-            v[static_cast<std::size_t>(k)] = q;
-            z[static_cast<std::size_t>(k)] = s;
-            z[static_cast<std::size_t>(k) + 1] = kInf;
-            break;
-          }
-        }
-      }
+      lowerEnvelope(f, n, [](int) { return true; }, v, z, kInf);
       for (int q = 0, k2 = 0; q < n; ++q) {
         while (z[static_cast<std::size_t>(k2) + 1] < q) ++k2;
         const int p = v[static_cast<std::size_t>(k2)];
@@ -195,33 +213,12 @@ cv::Mat nearestZero(const cv::Mat& mask) {
     for (int y = range.start; y < range.end; ++y) {
       int* o = out.ptr<int>(y);
       std::copy(o, o + n, r.begin());
-      const auto sq = [](long long a) { return static_cast<double>(a * a); };
-      int k = -1;
       for (int q = 0; q < n; ++q) {
-        if (r[static_cast<std::size_t>(q)] < 0) continue;
-        f[static_cast<std::size_t>(q)] = sq(y - r[static_cast<std::size_t>(q)]);
-        const double fq = f[static_cast<std::size_t>(q)] + sq(q);
-        for (;;) {
-          if (k < 0) {
-            k = 0;
-            v[0] = q;
-            z[0] = -1e300;
-            z[1] = 1e300;
-            break;
-          }
-          const int p = v[static_cast<std::size_t>(k)];
-          const double s = (fq - f[static_cast<std::size_t>(p)] - sq(p)) / (2.0 * (q - p));
-          if (s > z[static_cast<std::size_t>(k)]) {
-            ++k;
-            v[static_cast<std::size_t>(k)] = q;
-            z[static_cast<std::size_t>(k)] = s;
-            z[static_cast<std::size_t>(k) + 1] = 1e300;
-            break;
-          }
-          --k;
-        }
+        const long long dy = y - r[static_cast<std::size_t>(q)];
+        if (r[static_cast<std::size_t>(q)] >= 0) f[static_cast<std::size_t>(q)] = static_cast<double>(dy * dy);
       }
-      if (k < 0) continue;  // no zero cell in any column: the row stays -1
+      const auto has_zero = [&](int q) { return r[static_cast<std::size_t>(q)] >= 0; };
+      if (lowerEnvelope(f, n, has_zero, v, z, 1e300) == 0) continue;  // no zero cell in any column: the row stays -1
       for (int q = 0, j = 0; q < n; ++q) {
         while (z[static_cast<std::size_t>(j) + 1] < q) ++j;
         const int p = v[static_cast<std::size_t>(j)];
@@ -237,7 +234,6 @@ float preciseDistanceAt(const cv::Mat& mask, cv::Point p) {
   long long best = mask.at<unsigned char>(p) == 0 ? 0 : std::numeric_limits<long long>::max();
   const int far = std::max({p.x, p.y, mask.cols - 1 - p.x, mask.rows - 1 - p.y});
   for (int r = 1; r <= far && static_cast<long long>(r) * r < best; ++r) {
-    const int y0 = std::max(0, p.y - r), y1 = std::min(mask.rows - 1, p.y + r);
     const int x0 = std::max(0, p.x - r), x1 = std::min(mask.cols - 1, p.x + r);
     const auto look = [&](int x, int y) {
       if (mask.at<unsigned char>(y, x)) return;

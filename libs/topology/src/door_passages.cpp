@@ -120,8 +120,14 @@ std::vector<DoorPassage> findDoorPassages(const cv::Mat& places, const std::vect
   // The clearance of every place (the distance transform): where it is at least half the longest chord that
   // matters, every chord through the point is that long (each side reaches at least the clearance), and the
   // point's width is taken as twice its clearance without casting rays.
-  // Only the path's cells need it (preciseDistanceAt: no float image of the map).
-  const auto clearanceAt = [&](int cx, int cy) { return preciseDistanceAt(places, cv::Point(cx, cy)); };
+  // Only the path's cells need it (preciseDistanceAt: no float image of the map); the samples are a cell apart, so
+  // consecutive ones often share a cell, whose value is kept.
+  cv::Point last_cell(-1, -1);
+  float last_clearance = 0;
+  const auto clearanceAt = [&](int cx, int cy) {
+    if (cv::Point(cx, cy) != last_cell) last_cell = {cx, cy}, last_clearance = preciseDistanceAt(places, last_cell);
+    return last_clearance;
+  };
   std::vector<Chord> chord(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (isGap(s[i])) continue;

@@ -265,12 +265,16 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
   return big;
 }
 
-cv::Mat segmentationImage16(const cv::Mat& seg, cv::Point frame, cv::Size map_size) {
+void requireSixteenBitSegments(const cv::Mat& seg) {
   double mx = 0;
   cv::minMaxLoc(seg, nullptr, &mx);
   if (mx > 65535) throw std::runtime_error("segmentation has more than 65535 segments");
-  cv::Mat out(map_size.empty() ? seg.size() : map_size, CV_16U, cv::Scalar(0));
-  seg.convertTo(out(cv::Rect(frame, seg.size())), CV_16U);
+}
+
+cv::Mat segmentationImage16(const cv::Mat& seg) {
+  requireSixteenBitSegments(seg);
+  cv::Mat out;
+  seg.convertTo(out, CV_16U);
   return out;
 }
 
@@ -281,11 +285,11 @@ cv::Vec3b segmentColour(int id) {
                    static_cast<unsigned char>(64 + ((h >> 16) & 0xbf)));
 }
 
-cv::Mat colourSegmentation(const cv::Mat& seg, cv::Point frame, cv::Size map_size) {
-  cv::Mat out(map_size.empty() ? seg.size() : map_size, CV_8UC3, cv::Scalar(0, 0, 0));
+cv::Mat colourSegmentation(const cv::Mat& seg) {
+  cv::Mat out(seg.size(), CV_8UC3, cv::Scalar(0, 0, 0));
   for (int y = 0; y < seg.rows; ++y)
     for (int x = 0; x < seg.cols; ++x)
-      if (const int id = seg.at<int>(y, x)) out.at<cv::Vec3b>(y + frame.y, x + frame.x) = segmentColour(id);
+      if (const int id = seg.at<int>(y, x)) out.at<cv::Vec3b>(y, x) = segmentColour(id);
   return out;
 }
 

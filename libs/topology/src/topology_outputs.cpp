@@ -63,9 +63,7 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
          codesRow(labels_before_correction, cv::Rect(cv::Point(), labels_before_correction.size())));
   if (!topo.segmentation.empty()) {
     const cv::Rect seg(frame, topo.segmentation.size());
-    double most = 0;
-    cv::minMaxLoc(topo.segmentation, nullptr, &most);
-    if (most > 65535) throw std::runtime_error("segmentation has more than 65535 segments");
+    requireSixteenBitSegments(topo.segmentation);
     rows("segmentation.png", CV_16UC1, [&](int y, unsigned char* out) {
       auto* o = reinterpret_cast<unsigned short*>(out);
       std::fill(o, o + map_size.width, static_cast<unsigned short>(0));

@@ -43,9 +43,12 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
                       const TopologicalGraph& g, int scale = 2,
                       const std::vector<DoorPassage>* door_passages = nullptr, cv::Point frame = {});
 
-/// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise), 0 for non-free cells. A segmentation of a
-/// part of a map (its cell (0, 0) the map's cell `frame`) gives the image of the whole map of `map_size` cells.
-cv::Mat segmentationImage16(const cv::Mat& segmentation, cv::Point frame = {}, cv::Size map_size = {});
+/// Throws std::runtime_error when `segmentation` (CV_32S) has ids above 65535 (too many for a 16-bit picture).
+void requireSixteenBitSegments(const cv::Mat& segmentation);
+
+/// Room segmentation as a 16-bit image (ids <= 65535; throws otherwise, requireSixteenBitSegments), 0 for non-free
+/// cells.
+cv::Mat segmentationImage16(const cv::Mat& segmentation);
 
 /// Saturated label colours (BGR) of the evaluation views: room blue, corridor green, doorway red.
 inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0, 170, 0}, {0, 0, 230}};
@@ -54,8 +57,7 @@ inline const cv::Vec3b kLabelColoursBgr[places::kNumLabels] = {{220, 60, 0}, {0,
 /// The colour of segment `id` in colourSegmentation (black for 0).
 cv::Vec3b segmentColour(int id);
 
-/// A colour rendering of a segmentation (random but fixed colour per id) for viewing; `frame`, `map_size` as for
-/// segmentationImage16.
-cv::Mat colourSegmentation(const cv::Mat& segmentation, cv::Point frame = {}, cv::Size map_size = {});
+/// A colour rendering of a segmentation (random but fixed colour per id, segmentColour) for viewing.
+cv::Mat colourSegmentation(const cv::Mat& segmentation);
 
 }  // namespace gridtopo::topology
