@@ -23,6 +23,14 @@ int bitDifferences(const cv::Mat& a, const cv::Mat& b) {
   return n;
 }
 
+// `rows` x `cols` cells, each zero with probability `zero_share`, else 255 (drawn from `rng` row by row).
+cv::Mat randomZeros(cv::RNG& rng, int rows, int cols, double zero_share) {
+  cv::Mat mask(rows, cols, CV_8U);
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < zero_share ? 0 : 255;
+  return mask;
+}
+
 void expectSameAsOpenCv(const cv::Mat& mask, const std::string& what) {
   cv::Mat expected;
   cv::distanceTransform(mask, expected, cv::DIST_L2, cv::DIST_MASK_PRECISE);
@@ -120,10 +128,8 @@ TEST(DistanceTransform, WithinDistanceIsTheThresholdOfThePreciseDistance) {
   cv::RNG rng(11);
   for (int trial = 0; trial < 40; ++trial) {
     const int rows = 1 + rng.uniform(0, 160), cols = 1 + rng.uniform(0, 220);
-    cv::Mat mask(rows, cols, CV_8U);
     const double density = trial % 4 == 0 ? 0.001 : trial % 4 == 1 ? 0.01 : trial % 4 == 2 ? 0.1 : 0.5;
-    for (int y = 0; y < rows; ++y)
-      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    const cv::Mat mask = randomZeros(rng, rows, cols, density);
     const cv::Mat d = gridtopo::preciseDistance(mask);
     // 0.3 / 0.05 is 5.999999999999999 in doubles, 6 as cv::compare's float threshold.
     for (double r : {0.0, 1.0, 1.5, std::sqrt(2.0), 2.0, 5.0, 0.3 / 0.05, 0.3 / 0.05 + 0.5, 6.5, std::sqrt(50.0), 7.0,
@@ -165,10 +171,8 @@ TEST(DistanceTransform, NearestZeroIsAtThePreciseDistance) {
   };
   for (int trial = 0; trial < 30; ++trial) {
     const int rows = 1 + rng.uniform(0, 120), cols = 1 + rng.uniform(0, 150);
-    cv::Mat mask(rows, cols, CV_8U);
     const double density = trial % 3 == 0 ? 0.002 : trial % 3 == 1 ? 0.05 : 0.5;
-    for (int y = 0; y < rows; ++y)
-      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    cv::Mat mask = randomZeros(rng, rows, cols, density);
     mask.at<unsigned char>(rng.uniform(0, rows), rng.uniform(0, cols)) = 0;  // at least one
     check(mask);
   }
@@ -184,10 +188,8 @@ TEST(DistanceTransform, PreciseDistanceAtOneCellIsTheImagesValue) {
   cv::RNG rng(17);
   for (int trial = 0; trial < 30; ++trial) {
     const int rows = 1 + rng.uniform(0, 90), cols = 1 + rng.uniform(0, 120);
-    cv::Mat mask(rows, cols, CV_8U);
     const double density = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.3;
-    for (int y = 0; y < rows; ++y)
-      for (int x = 0; x < cols; ++x) mask.at<unsigned char>(y, x) = rng.uniform(0.0, 1.0) < density ? 0 : 255;
+    const cv::Mat mask = randomZeros(rng, rows, cols, density);
     const cv::Mat d = gridtopo::preciseDistance(mask);
     for (int k = 0; k < 200; ++k) {
       const cv::Point p(rng.uniform(0, cols), rng.uniform(0, rows));

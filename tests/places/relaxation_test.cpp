@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <utility>
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/places/labelling.h"
@@ -140,21 +141,30 @@ void relaxWithWholeIntegral(cv::Mat& probs, const cv::Mat& valid, const Compatib
     std::swap(probs, next);
   }
 }
-}  // namespace
 
-TEST(Relaxation, RingOfIntegralRowsEqualsTheWholeIntegralImage) {
-  // relaxLabels keeps only a band's integral rows; on a lattice many bands tall, with holes (invalid blocks), its
-  // probabilities equal those of the whole integral image bit for bit, for the 8-neighbourhood and a wider window.
-  cv::Mat p(700, 37, CV_32FC3);
+// `rows` x `cols` lattice blocks of random label distributions, a fifth of them invalid (all zero), drawn from `seed`.
+std::pair<cv::Mat, cv::Mat> randomLattice(int rows, int cols, int seed) {
+  cv::Mat p(rows, cols, CV_32FC3);
   cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
-  cv::RNG rng(9);
+  cv::RNG rng(static_cast<std::uint64_t>(seed));
   for (int y = 0; y < p.rows; ++y)
     for (int x = 0; x < p.cols; ++x) {
       cv::Vec3f v(rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f));
       p.at<cv::Vec3f>(y, x) = v / (v[0] + v[1] + v[2]);
       if (rng.uniform(0.0, 1.0) < 0.2) valid.at<unsigned char>(y, x) = 0, p.at<cv::Vec3f>(y, x) = cv::Vec3f(0, 0, 0);
     }
-  const Compatibility r{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+  return {p, valid};
+}
+
+// Room and corridor repel, each attracts itself, doorways mildly attract both.
+const Compatibility kMixedCompatibility{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+}  // namespace
+
+TEST(Relaxation, RingOfIntegralRowsEqualsTheWholeIntegralImage) {
+  // relaxLabels keeps only a band's integral rows; on a lattice many bands tall, with holes (invalid blocks), its
+  // probabilities equal those of the whole integral image bit for bit, for the 8-neighbourhood and a wider window.
+  const auto [p, valid] = randomLattice(700, 37, 9);
+  const Compatibility r = kMixedCompatibility;
   for (const int R : {1, 3}) {
     RelaxationOptions o;
     o.max_iterations = 6;
@@ -202,16 +212,8 @@ TEST(Relaxation, ALatticeInALargeEmptyGridRelaxesAsAlone) {
   // relaxLabels works on the box of the valid blocks (widened by the neighbourhood): a lattice placed in a large
   // grid of invalid blocks relaxes bit for bit as the lattice alone (whole integral image), after an odd and an even
   // number of iterations (the last grid written is one or the other buffer), and the blocks outside stay as they are.
-  cv::Mat p(90, 61, CV_32FC3);
-  cv::Mat valid(p.size(), CV_8U, cv::Scalar(1));
-  cv::RNG rng(21);
-  for (int y = 0; y < p.rows; ++y)
-    for (int x = 0; x < p.cols; ++x) {
-      cv::Vec3f v(rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f), rng.uniform(0.05f, 1.f));
-      p.at<cv::Vec3f>(y, x) = v / (v[0] + v[1] + v[2]);
-      if (rng.uniform(0.0, 1.0) < 0.2) valid.at<unsigned char>(y, x) = 0, p.at<cv::Vec3f>(y, x) = cv::Vec3f(0, 0, 0);
-    }
-  const Compatibility r{{{0.4, -0.3, 0.1}, {-0.3, 0.4, 0.1}, {0.1, 0.1, 0.2}}};
+  const auto [p, valid] = randomLattice(90, 61, 21);
+  const Compatibility r = kMixedCompatibility;
   const cv::Rect at(53, 301, p.cols, p.rows);
   for (const int R : {1, 3})
     for (const int iterations : {5, 6}) {

@@ -290,8 +290,6 @@ TEST(DoorPassages, CropToTheLabelledBoxGivesTheWholeMapsTopology) {
   occ.cells.setTo(places::kFree, labels != places::kNoLabel);
   EXPECT_TRUE(same(renderOverlay(occ, part.labels, part.regions, part.graph, 2, &part.door_passages, part.frame.tl()),
                    renderOverlay(occ, whole.labels, whole.regions, whole.graph, 2, &whole.door_passages)));
-  EXPECT_TRUE(same(segmentationImage16(part.segmentation, part.frame.tl(), part.map_size),
-                   segmentationImage16(whole.segmentation)));
-  EXPECT_TRUE(same(colourSegmentation(part.segmentation, part.frame.tl(), part.map_size),
-                   colourSegmentation(whole.segmentation)));
+  EXPECT_TRUE(same(segmentationImage16(part.inMap(part.segmentation, 0)), segmentationImage16(whole.segmentation)));
+  EXPECT_TRUE(same(colourSegmentation(part.inMap(part.segmentation, 0)), colourSegmentation(whole.segmentation)));
 }
