@@ -194,6 +194,11 @@ TEST(DistanceTransform, PreciseDistanceAtOneCellIsTheImagesValue) {
     for (int k = 0; k < 200; ++k) {
       const cv::Point p(rng.uniform(0, cols), rng.uniform(0, rows));
       ASSERT_EQ(gridtopo::preciseDistanceAt(mask, p), d.at<float>(p)) << "trial " << trial << " at " << p;
+      // Searched no further than a ring: the same value within it, +infinity beyond.
+      const int ring = rng.uniform(0, 12);
+      const float near = gridtopo::preciseDistanceAt(mask, p, ring);
+      if (d.at<float>(p) <= ring) ASSERT_EQ(near, d.at<float>(p)) << "trial " << trial << " at " << p;
+      else ASSERT_TRUE(near > ring) << "trial " << trial << " at " << p << " ring " << ring;
     }
   }
 }

@@ -69,6 +69,33 @@ TEST(MaskOps, RunComponentsAreOpenCVsComponents) {
   }
 }
 
+// rootsInBlockOrder numbers the components as cv::connectedComponents does (8-connected): the neck split and the
+// corridor pieces number their parts by it instead of an image of component numbers. Small random masks, and large
+// ones where OpenCV labels stripes on several threads.
+TEST(MaskOps, RootsInBlockOrderNumberTheComponentsAsOpenCV) {
+  cv::RNG rng(11);
+  for (int trial = 0; trial < 44; ++trial) {
+    const bool large = trial >= 40;
+    const int rows = large ? 1500 + rng.uniform(0, 300) : 1 + rng.uniform(0, 70);
+    const int cols = large ? 1200 + rng.uniform(0, 300) : 1 + rng.uniform(0, 90);
+    const cv::Mat mask = randomMask(rng, rows, cols, 0.3 + 0.4 * rng.uniform(0.0, 1.0)) != 0;
+    {
+      cv::Mat cc;
+      const int n = cv::connectedComponents(mask, cc, 8, CV_32S);
+      const RunComponents comps(mask, true, 8);
+      const std::vector<int> roots = rootsInBlockOrder(mask, comps);
+      ASSERT_EQ(roots.size(), static_cast<std::size_t>(n - 1));
+      std::vector<int> number(comps.root.size(), 0);
+      for (std::size_t k = 0; k < roots.size(); ++k) number[static_cast<std::size_t>(roots[k])] = static_cast<int>(k) + 1;
+      std::size_t i = 0;
+      forEachRun(mask, true, [&](int y, int x0, int x1) {
+        const int id = number[static_cast<std::size_t>(comps.root[i++])];
+        for (int x = x0; x <= x1; ++x) ASSERT_EQ(cc.at<int>(y, x), id) << "trial " << trial << " at " << x << "," << y;
+      });
+    }
+  }
+}
+
 TEST(MaskOps, FillSmallHolesFillsWhatTheComponentImageFilled) {
   cv::RNG rng(8);
   for (int trial = 0; trial < 40; ++trial) {

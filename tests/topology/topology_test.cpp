@@ -148,6 +148,51 @@ TEST(Segmentation, S1SplitsTwoRoomsJoinedThroughANarrowOpening) {
   EXPECT_EQ(cv::norm(splitAtNecks(seg, 0.05, o), seg, cv::NORM_INF), 0.0);
 }
 
+// S1 numbers the parts of a split segment in the order of their first 2 x 2 block (row-major), as
+// cv::connectedComponents numbers components: the first keeps the segment's id, the others take new ids after the
+// last segment, in that order.
+TEST(Segmentation, S1NumbersThePartsInTheOrderOfTheirFirstBlock) {
+  // Three 4 x 4 m rooms of segment 1 joined by 0.9 m openings: top right, then middle left, then bottom right
+  // (reading order of their top-left corners); segment 2 elsewhere.
+  cv::Mat seg(300, 260, CV_32S, cv::Scalar(0));
+  seg(cv::Rect(150, 10, 80, 80)).setTo(1);   // A
+  seg(cv::Rect(60, 101, 80, 80)).setTo(1);   // B (starts on an odd row)
+  seg(cv::Rect(150, 193, 80, 80)).setTo(1);  // C
+  seg(cv::Rect(150, 90, 18, 11)).setTo(1);   // A-B: a corridor stub 0.9 m wide ...
+  seg(cv::Rect(140, 150, 10, 18)).setTo(1);  // B-C
+  seg(cv::Rect(150, 150, 18, 43)).setTo(1);
+  seg(cv::Rect(10, 10, 10, 10)).setTo(2);
+  SegmentationRules o;
+  o.neck_width = 1.2;
+  o.min_part_area = 4.0;
+  const cv::Mat out = splitAtNecks(seg, 0.05, o);
+  EXPECT_EQ(segmentCount(out), 4);
+  EXPECT_EQ(out.at<int>(50, 190), 1);   // A keeps the id
+  EXPECT_EQ(out.at<int>(140, 100), 3);  // B next
+  EXPECT_EQ(out.at<int>(240, 190), 4);  // C last
+  EXPECT_EQ(out.at<int>(15, 15), 2);
+  EXPECT_EQ(cv::countNonZero(out), cv::countNonZero(seg));
+  // The same split whatever the crop's offset in the map (the blocks are the crop's).
+  cv::Mat shifted(seg.rows + 3, seg.cols + 5, CV_32S, cv::Scalar(0));
+  seg.copyTo(shifted(cv::Rect(5, 3, seg.cols, seg.rows)));
+  const cv::Mat out_shifted = splitAtNecks(shifted, 0.05, o);
+  EXPECT_EQ(cv::norm(out_shifted(cv::Rect(5, 3, seg.cols, seg.rows)), out, cv::NORM_INF), 0.0);
+}
+
+TEST(Segmentation, In16BitsOnlyWhenEveryIdFits) {
+  cv::Mat seg(20, 30, CV_32S, cv::Scalar(0));
+  seg(cv::Rect(2, 2, 5, 5)).setTo(7);
+  seg(cv::Rect(10, 2, 5, 5)).setTo(65535);
+  const cv::Mat small = segmentationIn16BitsIfItFits(seg);
+  ASSERT_EQ(small.type(), CV_16U);
+  cv::Mat back;
+  small.convertTo(back, CV_32S);
+  EXPECT_EQ(cv::norm(back, seg, cv::NORM_INF), 0.0);
+  EXPECT_EQ(segmentCount(small), 65535);
+  seg.at<int>(15, 15) = 65536;
+  EXPECT_EQ(segmentationIn16BitsIfItFits(seg).type(), CV_32S);
+}
+
 TEST(Segmentation, S1FillsFurnitureEnclosedByTheSegment) {
   // The two rooms of the test above, furnished: a 0.2 x 0.2 m chair every metre. The 0.6 m band around every
   // chair eats each room's core, so without filling no part is large enough and the missed door is not split.

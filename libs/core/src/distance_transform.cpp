@@ -229,10 +229,11 @@ cv::Mat nearestZero(const cv::Mat& mask) {
   return out;
 }
 
-float preciseDistanceAt(const cv::Mat& mask, cv::Point p) {
+float preciseDistanceAt(const cv::Mat& mask, cv::Point p, int max_ring) {
   CV_Assert(mask.type() == CV_8U && p.inside(cv::Rect(0, 0, mask.cols, mask.rows)));
   long long best = mask.at<unsigned char>(p) == 0 ? 0 : std::numeric_limits<long long>::max();
-  const int far = std::max({p.x, p.y, mask.cols - 1 - p.x, mask.rows - 1 - p.y});
+  const int edge = std::max({p.x, p.y, mask.cols - 1 - p.x, mask.rows - 1 - p.y});
+  const int far = max_ring >= 0 ? std::min(edge, max_ring) : edge;
   for (int r = 1; r <= far && static_cast<long long>(r) * r < best; ++r) {
     const int x0 = std::max(0, p.x - r), x1 = std::min(mask.cols - 1, p.x + r);
     const auto look = [&](int x, int y) {
@@ -247,8 +248,12 @@ float preciseDistanceAt(const cv::Mat& mask, cv::Point p) {
     if (p.x - r >= 0) for (int y = ys; y <= ye; ++y) look(p.x - r, y);
     if (p.x + r < mask.cols) for (int y = ys; y <= ye; ++y) look(p.x + r, y);
   }
-  // No zero cell at all: preciseDistance's value for that (its "infinite" square, 1e15, before the root).
-  if (best == std::numeric_limits<long long>::max()) return static_cast<float>(std::sqrt(1e15));
+  if (best == std::numeric_limits<long long>::max()) {
+    // None within max_ring (the image goes on beyond it): further than that.
+    if (far < edge) return std::numeric_limits<float>::infinity();
+    // No zero cell at all: preciseDistance's value for that (its "infinite" square, 1e15, before the root).
+    return static_cast<float>(std::sqrt(1e15));
+  }
   return static_cast<float>(std::sqrt(static_cast<double>(best)));
 }
 

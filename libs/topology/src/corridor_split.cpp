@@ -106,22 +106,42 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   zone &= mask;
   // Seeds: the skeleton's branches outside the junction zones (on the coarse lattice), and the junction zones
   // (8-connected components) numbered straight into the pieces' image: 16-bit labels when every piece fits (half
-  // the memory of a region's box; zones are at most as many as junction points), else 32-bit.
-  cv::Mat bid;
+  // the memory of a region's box; zones are at most as many as junction points), else 32-bit. Both are found from
+  // their runs (RunComponents) and numbered as cv::connectedComponents would (rootsInBlockOrder): no image of
+  // component numbers.
   const cv::Mat branches = sk & ~small_zone;
-  const int nb = cv::connectedComponents(branches, bid, 8, CV_32S) - 1;
+  const RunComponents branch_comps(branches, true, 8);
+  std::vector<int> branch_id(branch_comps.root.size(), 0);
+  int nb = 0;
+  for (const int c : rootsInBlockOrder(branches, branch_comps)) branch_id[static_cast<std::size_t>(c)] = ++nb;
   const bool narrow = static_cast<long long>(junctions) + nb < 0xffff;
-  const int nz = cv::connectedComponents(zone, pieces, 8, narrow ? CV_16U : CV_32S) - 1;
+  int nz = 0;
+  {
+    const RunComponents zone_comps(zone, true, 8);
+    std::vector<int> zone_id(zone_comps.root.size(), 0);
+    for (const int c : rootsInBlockOrder(zone, zone_comps)) zone_id[static_cast<std::size_t>(c)] = ++nz;
+    pieces = cv::Mat(mask.size(), narrow ? CV_16U : CV_32S, cv::Scalar(0));
+    std::size_t run = 0;
+    forEachRun(zone, true, [&](int y, int x0, int x1) {
+      const int id = zone_id[static_cast<std::size_t>(zone_comps.root[run++])];
+      if (narrow)
+        std::fill(pieces.ptr<unsigned short>(y) + x0, pieces.ptr<unsigned short>(y) + x1 + 1, static_cast<unsigned short>(id));
+      else
+        std::fill(pieces.ptr<int>(y) + x0, pieces.ptr<int>(y) + x1 + 1, id);
+    });
+  }
   zone.release();
   const auto pieceAt = [&](cv::Point p) { return narrow ? int(pieces.at<unsigned short>(p)) : pieces.at<int>(p); };
-  for (int y = 0; y < bid.rows; ++y)
-    for (int x = 0; x < bid.cols; ++x)
-      if (const int b = bid.at<int>(y, x)) {
-        const cv::Point p = toFull(x, y);
-        if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieceAt(p)) continue;
-        if (narrow) pieces.at<unsigned short>(p) = static_cast<unsigned short>(nz + b);
-        else pieces.at<int>(p) = nz + b;
-      }
+  std::size_t run = 0;
+  forEachRun(branches, true, [&](int y, int x0, int x1) {
+    const int b = branch_id[static_cast<std::size_t>(branch_comps.root[run++])];
+    for (int x = x0; x <= x1; ++x) {
+      const cv::Point p = toFull(x, y);
+      if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieceAt(p)) continue;
+      if (narrow) pieces.at<unsigned short>(p) = static_cast<unsigned short>(nz + b);
+      else pieces.at<int>(p) = nz + b;
+    }
+  });
   // Geodesic growth inside the region (breadth-first, 8-connected).
   growSeeds(pieces, mask);
   // Small pieces join the neighbour they share most border with, smallest first (sizes and borders are updated as

@@ -261,11 +261,13 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
   const PathOverRegions over = pathOverRegions(path, rm.ids, resolution);
   const std::vector<cv::Point2d>& samples = over.samples;
   const std::vector<int>& at = over.region;
-  // How far the path goes into the room from a step: the largest distance to the corridor's cells of its samples
-  // in the room region, from sample i on in direction dir, until it reaches another room / corridor region.
-  cv::Mat to_corridor_cells;
-  to_corridor_cells = preciseDistance(labels != kCorridorLabel);
-  const auto depth_into = [&](long i, int room, int dir) {
+  // Whether the path goes at least entry_depth into the room from a step: the largest distance to the corridor's
+  // cells of its samples in the room region, from sample i on in direction dir, until it reaches another room /
+  // corridor region. The distances are looked up at the samples (preciseDistanceAt, searched no further than a
+  // little beyond entry_depth: no float image of the box) and the walk stops once one reaches entry_depth.
+  const cv::Mat not_corridor = labels != kCorridorLabel;
+  const int reach = static_cast<int>(std::ceil(o.entry_depth / resolution)) + 1;
+  const auto goes_deep_into = [&](long i, int room, int dir) {
     float best = 0;
     for (; i >= 0 && i < static_cast<long>(at.size()); i += dir) {
       const int id = at[static_cast<std::size_t>(i)];
@@ -273,9 +275,11 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
       if (id == 0 || rm.region(id).label == static_cast<int>(kDoorway)) continue;
       if (id != room) break;
       const cv::Point2d& q = samples[static_cast<std::size_t>(i)];
-      best = std::max(best, to_corridor_cells.at<float>(static_cast<int>(std::floor(q.y)), static_cast<int>(std::floor(q.x))));
+      const cv::Point cell(static_cast<int>(std::floor(q.x)), static_cast<int>(std::floor(q.y)));
+      best = std::max(best, preciseDistanceAt(not_corridor, cell, reach));
+      if (best * resolution >= o.entry_depth) return true;
     }
-    return best * resolution;
+    return best * resolution >= o.entry_depth;
   };
   long last_i = -1;  // the sample of the last room / corridor region of the path
   bool through_door = false;
@@ -301,8 +305,8 @@ cv::Mat addRoomEntries(const cv::Mat& labels, const std::vector<cv::Point2d>& pa
         bool known = door_near(mid, room, corridor);
         for (const Entry& e : steps) known = known || cv::norm(e.at - mid) <= near;
         // The robot went into the room (not along its border with the corridor).
-        const double into = entering ? depth_into(i, room, 1) : depth_into(last_i, room, -1);
-        if (!known && into >= o.entry_depth) steps.push_back({mid, room, corridor});
+        if (!known && (entering ? goes_deep_into(i, room, 1) : goes_deep_into(last_i, room, -1)))
+          steps.push_back({mid, room, corridor});
       }
     }
     last_i = i;

@@ -1,6 +1,8 @@
 #include "mask_ops.h"
 
+#include <algorithm>
 #include <deque>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -44,6 +46,24 @@ RunComponents::RunComponents(const cv::Mat& mask, bool nonzero, int connectivity
     }
   });
   for (std::size_t i = 0; i < root.size(); ++i) root[i] = find(static_cast<int>(i));
+}
+
+std::vector<int> rootsInBlockOrder(const cv::Mat& mask, const RunComponents& comps) {
+  const long long block_cols = (mask.cols + 1) / 2;
+  std::vector<long long> first_block(comps.root.size(), std::numeric_limits<long long>::max());
+  std::size_t run = 0;
+  forEachRun(mask, true, [&](int y, int x0, int) {
+    long long& b = first_block[static_cast<std::size_t>(comps.root[run++])];
+    b = std::min(b, (y / 2) * block_cols + x0 / 2);
+  });
+  std::vector<std::pair<long long, int>> order;
+  for (std::size_t c = 0; c < comps.root.size(); ++c)
+    if (comps.root[c] == static_cast<int>(c)) order.emplace_back(first_block[c], static_cast<int>(c));
+  std::sort(order.begin(), order.end());
+  std::vector<int> roots;
+  roots.reserve(order.size());
+  for (const auto& [block, root] : order) roots.push_back(root);
+  return roots;
 }
 
 std::size_t RunComponents::componentsOfAtLeast(double min_cells) const {

@@ -35,6 +35,11 @@ void forEachRun(const cv::Mat& mask, bool nonzero, F&& f) {
   }
 }
 
+/// The roots of `comps` (the 8-connected components of the non-zero cells of `mask`) in the order of their first
+/// 2 x 2 block, row-major over the blocks of `mask`: the order in which cv::connectedComponents (8-connected,
+/// block-based) numbers them, without its image of component numbers.
+std::vector<int> rootsInBlockOrder(const cv::Mat& mask, const RunComponents& comps);
+
 /// Copy of `mask` (CV_8U, 0 / 255) with its small holes set to 255: the 4-connected components of zero cells that
 /// touch no image border, have at most `max_cells` cells and, when `veto` (CV_8U, same size) is given, hold no
 /// cell where veto != 0.

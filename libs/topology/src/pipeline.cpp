@@ -257,7 +257,7 @@ cv::Mat TopologyResult::inMap(const cv::Mat& image, double fill) const {
   return out;
 }
 
-TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
+TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling, cv::Point2d origin,
                              const std::vector<cv::Point2d>& map_path, bool crop) {
   TopologyResult r;
@@ -279,6 +279,11 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     input = input(r.frame).clone();
     if (!r.labels_blob_vote.empty()) r.labels_blob_vote = input;
   }
+  if (crop) {
+    // The labels as they came, for labels_before_correction.png; a caller that moved its labels in lets them go.
+    r.labels_classified = LabelRuns::of(labels);
+    labels.release();
+  }
   std::vector<cv::Point2d> shifted;
   if (part) {
     shifted.reserve(map_path.size());
@@ -298,13 +303,16 @@ TopologyResult buildTopology(const cv::Mat& labels, double resolution, const Top
     r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);
   r.segmentation = segmentRooms(r.regions, resolution, o);
+  // On the box (gridtopo-topology's runs) the segmentation goes on in 16 bits when it fits (the GUI and the
+  // evaluation keep CV_32S).
+  if (crop && !o.seg_rules.segment_vote) r.segmentation = segmentationIn16BitsIfItFits(r.segmentation);
   r.labels_corrected = r.labels;
   if (o.seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
     r.regions = extractRegions(r.labels, resolution);
   }
   r.regions = graphRegions(std::move(r.regions), r.segmentation, resolution, o.corridor_split, o.graph_rules);
-  r.graph = buildGraph(r.regions, resolution, origin, off, labels.size());
+  r.graph = buildGraph(r.regions, resolution, origin, off, r.map_size);
   // The path's findings in the map's frame.
   if (part) {
     const cv::Point2d offd(off);
@@ -351,7 +359,9 @@ MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const 
   if (outputs_only && !o.blob_vote.enabled) releaseLabellingGrids();  // else the blob vote reads them
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();
-  t.topo = buildTopology(t.labelling.labels, t.occ.resolution, o, &t.labelling, map.origin,
+  // With outputs_only the labelling's labels go into the topology, which keeps them as runs (labels_classified).
+  t.topo = buildTopology(outputs_only ? std::move(t.labelling.labels) : t.labelling.labels, t.occ.resolution, o,
+                         &t.labelling, map.origin,
                          pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()), /*crop=*/outputs_only);
   t.seconds_graph = since(t0);
   if (outputs_only) {

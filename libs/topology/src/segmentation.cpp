@@ -1,8 +1,10 @@
 #include "gridtopo/topology/segmentation.h"
 
 #include <opencv2/imgproc.hpp>
-#include <vector>
+#include <algorithm>
 #include <functional>
+#include <limits>
+#include <vector>
 
 #include "gridtopo/places/place_label.h"
 #include "gridtopo/core/distance_transform.h"
@@ -131,38 +133,45 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     if (cv::countNonZero(inner) < 2 * min_part_px) continue;
     // `area`: the segment plus the obstacles it encloses (furniture standing in the room), so that the distance
     // transform measures the room's walls, not the gaps between chairs.
-    const cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
+    cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
+    mask.release(), inner.release();  // (the segment's cells are read from `seg` again at the end)
     // One segment can span most of a large map (the hospital's corridors: a box of 8 000 × 4 500 cells), so its
-    // crop-sized images are let go as soon as they are used: the distance once the core is marked, and the core's
-    // components become the seed image in place.
-    cv::Mat core, cc, stats, cent;
-    core = withinDistance(area, half_px);  // preciseDistance(area) > half_px, without its floats:
+    // crop-sized images are let go as soon as they are used, and the parts are found from the core's runs
+    // (RunComponents) rather than as an image of component numbers.
+    cv::Mat core = withinDistance(area, half_px);  // preciseDistance(area) > half_px, without its floats:
     cv::bitwise_not(core, core);
-    // Fewer than two large parts (most segments): nothing to split, known from the parts' runs without an image
-    // of component numbers; else the components in OpenCV's numbering, which orders the new segments.
-    if (RunComponents(core, true, 8).componentsOfAtLeast(min_part_px) < 2) continue;
-    const int n = cv::connectedComponentsWithStats(core, cc, stats, cent, 8, CV_32S);
-    core.release();
-    std::vector<int> part_id(static_cast<std::size_t>(n), 0);
+    const RunComponents comps(core, true, 8);
+    // Fewer than two large parts (most segments): nothing to split.
+    if (comps.componentsOfAtLeast(min_part_px) < 2) continue;
+    // The large parts in the order of their first 2 x 2 block: the numbering of cv::connectedComponents, which
+    // orders the new segments. The first keeps the segment's id.
+    std::vector<int> part_id(comps.root.size(), 0);
     int parts = 0;
-    for (int c = 1; c < n; ++c)
-      if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_part_px) part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
-    if (parts < 2) continue;
-    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet,
-    // written over the components).
-    cv::Mat own = cc;
-    for (int y = 0; y < own.rows; ++y)
-      for (int x = 0; x < own.cols; ++x) {
-        int& id = own.at<int>(y, x);
-        id = part_id[static_cast<std::size_t>(id)];
-      }
-    cc.release();
+    for (const int c : rootsInBlockOrder(core, comps))
+      if (comps.area[static_cast<std::size_t>(c)] >= min_part_px)
+        part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
+    // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet), in
+    // 16 bits while the ids fit.
+    cv::Mat own(core.size(), next <= 65535 ? CV_16U : CV_32S, cv::Scalar(0));
+    std::size_t run = 0;
+    forEachRun(core, true, [&](int y, int x0, int x1) {
+      const int id = part_id[static_cast<std::size_t>(comps.root[run++])];
+      if (!id) return;
+      if (own.type() == CV_16U)
+        std::fill(own.ptr<unsigned short>(y) + x0, own.ptr<unsigned short>(y) + x1 + 1, static_cast<unsigned short>(id));
+      else
+        std::fill(own.ptr<int>(y) + x0, own.ptr<int>(y) + x1 + 1, id);
+    });
+    core.release();
     growSeeds(own, area);
-    for (int y = 0; y < r.height; ++y)
+    area.release();
+    for (int y = 0; y < r.height; ++y) {
+      int* out = seg.ptr<int>(r.y + y) + r.x;
       for (int x = 0; x < r.width; ++x) {
-        const int id = own.at<int>(y + 1, x + 1);
-        if (id && inner.at<unsigned char>(y, x)) seg.at<int>(r.y + y, r.x + x) = id;
+        const int id = own.type() == CV_16U ? own.at<unsigned short>(y + 1, x + 1) : own.at<int>(y + 1, x + 1);
+        if (id && out[x] == s) out[x] = id;
       }
+    }
   }
 }
 
@@ -186,6 +195,16 @@ cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& seg) {
       const auto i = static_cast<std::size_t>(s);
       l = static_cast<unsigned char>(n_corr[i] > n_room[i] ? corr : room);
     }
+  return out;
+}
+
+cv::Mat segmentationIn16BitsIfItFits(const cv::Mat& seg) {
+  CV_Assert(seg.type() == CV_32S);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(seg, &lo, &hi);
+  if (lo < 0 || hi > 65535) return seg;
+  cv::Mat out;
+  seg.convertTo(out, CV_16U);
   return out;
 }
 

@@ -61,6 +61,10 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
   if (!labels_before_correction.empty())
     rows("labels_before_correction.png", CV_8UC1,
          codesRow(labels_before_correction, cv::Rect(cv::Point(), labels_before_correction.size())));
+  else if (!topo.labels_classified.empty())  // the caller let its labels go into the topology (topologyOfMap)
+    rows("labels_before_correction.png", CV_8UC1, [&](int y, unsigned char* out) {
+      topo.labels_classified.row(y, out, places::kNoLabelCode, [](unsigned char l) { return places::labelCode(l); });
+    });
   if (!topo.segmentation.empty()) {
     const cv::Rect seg(frame, topo.segmentation.size());
     requireSixteenBitSegments(topo.segmentation);
@@ -68,15 +72,22 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
       auto* o = reinterpret_cast<unsigned short*>(out);
       std::fill(o, o + map_size.width, static_cast<unsigned short>(0));
       if (y < seg.y || y >= seg.y + seg.height) return;
+      if (topo.segmentation.type() == CV_16U) {
+        const unsigned short* s = topo.segmentation.ptr<unsigned short>(y - seg.y);
+        std::copy(s, s + seg.width, o + seg.x);
+        return;
+      }
       const int* s = topo.segmentation.ptr<int>(y - seg.y);
       for (int x = 0; x < seg.width; ++x) o[seg.x + x] = static_cast<unsigned short>(std::max(0, s[x]));
     });
     rows("segmentation_colour.png", CV_8UC3, [&](int y, unsigned char* out) {
       std::fill(out, out + 3 * map_size.width, static_cast<unsigned char>(0));
       if (y < seg.y || y >= seg.y + seg.height) return;
-      const int* s = topo.segmentation.ptr<int>(y - seg.y);
+      const bool s16 = topo.segmentation.type() == CV_16U;
+      const int* s = s16 ? nullptr : topo.segmentation.ptr<int>(y - seg.y);
+      const unsigned short* s_16 = s16 ? topo.segmentation.ptr<unsigned short>(y - seg.y) : nullptr;
       for (int x = 0; x < seg.width; ++x) {
-        const cv::Vec3b c = segmentColour(s[x]);
+        const cv::Vec3b c = segmentColour(s16 ? s_16[x] : s[x]);
         std::copy(c.val, c.val + 3, out + 3 * (seg.x + x));
       }
     });

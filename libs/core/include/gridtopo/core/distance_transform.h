@@ -28,7 +28,10 @@ cv::Mat withinDistance(const cv::Mat& mask, double max_distance);
 /// preciseDistance(mask) at one cell, without the image: square rings around `p` are searched for zero cells until
 /// a ring lies further than the nearest found (the exact squared distance, the same float); work grows with the
 /// square of the distance. For the few cells a step reads (a skeleton's points, a path's cells).
-float preciseDistanceAt(const cv::Mat& mask, cv::Point p);
+/// With `max_ring` >= 0 the search stops after the ring at that Chebyshev distance: the same value when it is at
+/// most `max_ring`, else some value above `max_ring` (+infinity when no zero cell lies within the ring): for a test
+/// against a threshold below `max_ring`, at a cost bounded by the threshold.
+float preciseDistanceAt(const cv::Mat& mask, cv::Point p, int max_ring = -1);
 
 /// The nearest zero cell of every cell of `mask` (CV_8U) by exact Euclidean distance: CV_32S, its row-major index
 /// (y * cols + x; a zero cell's own), -1 when the mask has no zero cell. The same two passes as preciseDistance (a

@@ -18,6 +18,7 @@
 #include "gridtopo/topology/doorway_geometry.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/graph_rules.h"
+#include "gridtopo/topology/label_runs.h"
 #include "gridtopo/topology/map_preparation.h"
 #include "gridtopo/topology/open_spaces.h"
 #include "gridtopo/topology/thoroughfares.h"
@@ -101,11 +102,14 @@ struct TopologyResult {
   CorrectionStats correction;
   RegionMap regions;        ///< the graph's regions: 8-connected equal-label regions, corridors split at junctions
   TopologicalGraph graph;
-  cv::Mat segmentation;  ///< CV_32S room segmentation, 0 for non-free cells
+  cv::Mat segmentation;  ///< room segmentation, 0 for non-free cells: CV_32S (CV_16U with `crop` when the ids fit)
   std::vector<DoorPassage> door_passages;  ///< the doors the robot's path went through (door_passages.h)
   std::vector<cv::Point> room_entries;     ///< where it stepped from a corridor into a room without a door (cells)
   std::vector<OpenSpace> open_spaces;      ///< the open spaces it crossed whose pieces were joined (open_spaces.h)
   std::vector<Thoroughfare> thoroughfares;  ///< room regions it travelled through, relabelled corridor (thoroughfares.h)
+  /// With `crop` only: the labels buildTopology was given (the labelling's, before the blob vote and every later
+  /// step), as runs in the map's frame: what labels_before_correction.png shows when the caller let its image go.
+  LabelRuns labels_classified;
   /// The part of the map that the images above and `regions` cover: their cell (0, 0) is the map's cell frame.tl(),
   /// the map is `map_size` cells. The whole map unless buildTopology worked on the box of the labelled cells
   /// (`crop`). The graph and the positions of the door passages, room entries, open spaces and thoroughfares are in
@@ -140,7 +144,9 @@ places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyO
 /// `crop`: every step after the blob vote works on the box of the labelled cells with a frame of one cell (the
 /// result's images and regions cover that box, TopologyResult::frame): on a large map whose places fill a part of
 /// it, each full-map image of the steps is that much smaller. The graph and every output are those of the whole map.
-TopologyResult buildTopology(const cv::Mat& labels, double resolution, const TopologyOptions& o,
+/// `labels` is taken by value: a caller that moves its image in lets it go once the box is cut (its labels are then
+/// kept as runs, TopologyResult::labels_classified).
+TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOptions& o,
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
                              const std::vector<cv::Point2d>& path = {}, bool crop = false);
 

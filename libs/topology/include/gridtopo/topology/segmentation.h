@@ -54,7 +54,11 @@ void splitAtNecksInPlace(cv::Mat& segmentation, double resolution, const Segment
 /// segment of `segmentation` (CV_32S), the room and corridor cells take the majority label of the two.
 cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& segmentation);
 
-/// Number of segments (max id).
+/// Number of segments (max id). `segmentation` CV_32S or CV_16U.
 int segmentCount(const cv::Mat& segmentation);
+
+/// The segmentation (CV_32S) in 16 bits (CV_16U, the same ids) when every id fits, else itself: half the memory of
+/// a large map's segmentation for the steps after it (the graph's G3 and the outputs read both types).
+cv::Mat segmentationIn16BitsIfItFits(const cv::Mat& segmentation);
 
 }  // namespace gridtopo::topology

@@ -12,8 +12,9 @@
 
 namespace gridtopo::topology {
 
-/// Writes the set into `dir` (created if needed), or nothing. `labels_before_correction` (the labelling's labels)
-/// and an empty `topo.segmentation` leave their pictures out; `options_ini` is the text of options.ini.
+/// Writes the set into `dir` (created if needed), or nothing. `labels_before_correction`: the labelling's labels;
+/// when empty, `topo.labels_classified` (a topologyOfMap run with outputs_only); when both are empty, and for an
+/// empty `topo.segmentation`, their pictures are left out. `options_ini` is the text of options.ini.
 void writeTopologyOutputs(const std::string& dir, const places::OccupancyImage& occ, const TopologyResult& topo,
                           const cv::Mat& labels_before_correction, int overlay_scale, const std::string& options_ini);
 /// The same files as temporary files of `set`, which the caller commits with its other files (gridtopo-map).
