@@ -302,10 +302,9 @@ TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOp
   if (o.door_passages.enabled && o.door_passages.room_entries && !path.empty())
     r.labels = addRoomEntries(r.labels, path, resolution, o.door_passages, &r.room_entries);
   r.regions = extractRegions(r.labels, resolution);
-  r.segmentation = segmentRooms(r.regions, resolution, o);
-  // On the box (gridtopo-topology's runs) the segmentation goes on in 16 bits when it fits (the GUI and the
-  // evaluation keep CV_32S).
-  if (crop && !o.seg_rules.segment_vote) r.segmentation = segmentationIn16BitsIfItFits(r.segmentation);
+  // On the box (gridtopo-topology's runs) the segmentation is made in 16 bits when its ids fit (the GUI and the
+  // evaluation keep CV_32S; the segment vote reads CV_32S).
+  r.segmentation = segmentRooms(r.regions, resolution, o, crop && !o.seg_rules.segment_vote);
   r.labels_corrected = r.labels;
   if (o.seg_rules.segment_vote) {
     r.labels = voteLabelsInSegments(r.labels, r.segmentation);
@@ -324,9 +323,10 @@ TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOp
   return r;
 }
 
-cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o) {
-  cv::Mat s = o.segmentation == "doorways" ? doorwaySegmentation(regions)
-                                           : roomSegmentation(regions, o.seg_rules.merge_contact, resolution);
+cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o, bool sixteen_bits) {
+  cv::Mat s = o.segmentation == "doorways"
+                  ? doorwaySegmentation(regions, sixteen_bits)
+                  : roomSegmentation(regions, o.seg_rules.merge_contact, resolution, sixteen_bits);
   if (o.seg_rules.neck_width > 0) splitAtNecksInPlace(s, resolution, o.seg_rules);
   return s;
 }

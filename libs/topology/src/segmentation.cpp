@@ -13,26 +13,42 @@
 namespace gridtopo::topology {
 
 namespace {
-// Seeds: seg_of[region id - 1] > 0; grows them into the remaining labelled cells.
-cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int next) {
-  cv::Mat seg(rm.ids.size(), CV_32S, cv::Scalar(0));
-  for (int y = 0; y < seg.rows; ++y)
+// Seeds: seg_of[region id - 1] > 0; grows them into the remaining labelled cells. Ids of type T.
+template <class T>
+void growSegmentsInto(cv::Mat& seg, const RegionMap& rm, const std::vector<int>& seg_of, int next) {
+  for (int y = 0; y < seg.rows; ++y) {
+    const int* ids = rm.ids.ptr<int>(y);
+    T* out = seg.ptr<T>(y);
     for (int x = 0; x < seg.cols; ++x) {
-      const int id = rm.ids.at<int>(y, x);
-      if (id > 0 && seg_of[static_cast<std::size_t>(id - 1)] > 0) seg.at<int>(y, x) = seg_of[static_cast<std::size_t>(id - 1)];
+      const int id = ids[x];
+      if (id > 0 && seg_of[static_cast<std::size_t>(id - 1)] > 0)
+        out[x] = static_cast<T>(seg_of[static_cast<std::size_t>(id - 1)]);
     }
+  }
   // Grow into doorway cells; only seeds that border a doorway cell ever expand.
   growSeeds(seg, rm.ids > 0);
   // Isolated doorway regions.
   std::vector<int> own(rm.regions.size(), 0);
-  for (int y = 0; y < seg.rows; ++y)
+  for (int y = 0; y < seg.rows; ++y) {
+    const int* ids = rm.ids.ptr<int>(y);
+    T* out = seg.ptr<T>(y);
     for (int x = 0; x < seg.cols; ++x) {
-      const int id = rm.ids.at<int>(y, x);
-      if (id <= 0 || seg.at<int>(y, x) != 0) continue;
+      const int id = ids[x];
+      if (id <= 0 || out[x] != 0) continue;
       int& o = own[static_cast<std::size_t>(id - 1)];
       if (!o) o = ++next;
-      seg.at<int>(y, x) = o;
+      out[x] = static_cast<T>(o);
     }
+  }
+}
+
+// The segmentation image: CV_16U when asked and every id fits (the `next` seeded segments and at most one per
+// region for the isolated doorways), else CV_32S.
+cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int next, bool sixteen_bits) {
+  const bool narrow = sixteen_bits && static_cast<long long>(next) + static_cast<long long>(rm.regions.size()) <= 65535;
+  cv::Mat seg(rm.ids.size(), narrow ? CV_16U : CV_32S, cv::Scalar(0));
+  if (narrow) growSegmentsInto<unsigned short>(seg, rm, seg_of, next);
+  else growSegmentsInto<int>(seg, rm, seg_of, next);
   return seg;
 }
 
@@ -49,7 +65,7 @@ cv::Mat withEnclosedObstacles(const cv::Mat& mask, const cv::Mat& seg_crop, doub
 
 cv::Mat roomSegmentation(const RegionMap& rm) { return roomSegmentation(rm, 0.0, 1.0); }
 
-cv::Mat roomSegmentation(const RegionMap& rm, double merge_contact_m, double resolution) {
+cv::Mat roomSegmentation(const RegionMap& rm, double merge_contact_m, double resolution, bool sixteen_bits) {
   const int door = static_cast<int>(places::PlaceLabel::Doorway);
   std::vector<int> parent(rm.regions.size());
   for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
@@ -71,10 +87,10 @@ cv::Mat roomSegmentation(const RegionMap& rm, double merge_contact_m, double res
     if (!s) s = ++next;
     seg_of[static_cast<std::size_t>(r.id - 1)] = s;
   }
-  return growSegments(rm, seg_of, next);
+  return growSegments(rm, seg_of, next, sixteen_bits);
 }
 
-cv::Mat doorwaySegmentation(const RegionMap& rm) {
+cv::Mat doorwaySegmentation(const RegionMap& rm, bool sixteen_bits) {
   const int door = static_cast<int>(places::PlaceLabel::Doorway);
   // Union of touching non-doorway regions.
   std::vector<int> parent(rm.regions.size());
@@ -94,26 +110,29 @@ cv::Mat doorwaySegmentation(const RegionMap& rm) {
     if (!s) s = ++next;
     seg_of[static_cast<std::size_t>(r.id - 1)] = s;
   }
-  return growSegments(rm, seg_of, next);
+  return growSegments(rm, seg_of, next, sixteen_bits);
 }
 
 cv::Mat splitAtNecks(const cv::Mat& seg_in, double resolution, const SegmentationRules& o) {
-  CV_Assert(seg_in.type() == CV_32S);
+  CV_Assert(seg_in.type() == CV_32S || seg_in.type() == CV_16U);
   cv::Mat seg = seg_in.clone();
   splitAtNecksInPlace(seg, resolution, o);
   return seg;
 }
 
 void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRules& o) {
-  CV_Assert(seg.type() == CV_32S);
+  CV_Assert(seg.type() == CV_32S || seg.type() == CV_16U);
   if (o.neck_width <= 0) return;
   const int K = segmentCount(seg);
+  const auto at = [&seg](int y, int x) {
+    return seg.type() == CV_16U ? static_cast<int>(seg.at<unsigned short>(y, x)) : seg.at<int>(y, x);
+  };
   // Bounding boxes of the segments.
   std::vector<cv::Rect> box(static_cast<std::size_t>(K) + 1);
   std::vector<int> x0(box.size(), seg.cols), y0(box.size(), seg.rows), x1(box.size(), -1), y1(box.size(), -1);
   for (int y = 0; y < seg.rows; ++y)
     for (int x = 0; x < seg.cols; ++x) {
-      const int s = seg.at<int>(y, x);
+      const int s = at(y, x);
       if (s <= 0) continue;
       const auto i = static_cast<std::size_t>(s);
       x0[i] = std::min(x0[i], x), y0[i] = std::min(y0[i], y), x1[i] = std::max(x1[i], x), y1[i] = std::max(y1[i], y);
@@ -152,6 +171,7 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
         part_id[static_cast<std::size_t>(c)] = parts++ == 0 ? s : ++next;
     // Seeds: the large parts; grow them over the segment's cells in the crop (label image `own`, 0 = not yet), in
     // 16 bits while the ids fit.
+    if (next > 65535 && seg.type() == CV_16U) seg.convertTo(seg, CV_32S);  // the new ids no longer fit 16 bits
     cv::Mat own(core.size(), next <= 65535 ? CV_16U : CV_32S, cv::Scalar(0));
     std::size_t run = 0;
     forEachRun(core, true, [&](int y, int x0, int x1) {
@@ -165,13 +185,13 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     core.release();
     growSeeds(own, area);
     area.release();
-    for (int y = 0; y < r.height; ++y) {
-      int* out = seg.ptr<int>(r.y + y) + r.x;
+    for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
         const int id = own.type() == CV_16U ? own.at<unsigned short>(y + 1, x + 1) : own.at<int>(y + 1, x + 1);
-        if (id && out[x] == s) out[x] = id;
+        if (!id || at(r.y + y, r.x + x) != s) continue;
+        if (seg.type() == CV_16U) seg.at<unsigned short>(r.y + y, r.x + x) = static_cast<unsigned short>(id);
+        else seg.at<int>(r.y + y, r.x + x) = id;
       }
-    }
   }
 }
 
@@ -195,16 +215,6 @@ cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& seg) {
       const auto i = static_cast<std::size_t>(s);
       l = static_cast<unsigned char>(n_corr[i] > n_room[i] ? corr : room);
     }
-  return out;
-}
-
-cv::Mat segmentationIn16BitsIfItFits(const cv::Mat& seg) {
-  CV_Assert(seg.type() == CV_32S);
-  double lo = 0, hi = 0;
-  cv::minMaxLoc(seg, &lo, &hi);
-  if (lo < 0 || hi > 65535) return seg;
-  cv::Mat out;
-  seg.convertTo(out, CV_16U);
   return out;
 }
 

@@ -150,8 +150,10 @@ TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOp
                              const places::LabellingResult* labelling = nullptr, cv::Point2d origin = {0, 0},
                              const std::vector<cv::Point2d>& path = {}, bool crop = false);
 
-/// The room segmentation of the 8-connected `regions` with the run's rules (`o.segmentation`, `o.seg_rules`: S0, S1).
-cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o);
+/// The room segmentation of the 8-connected `regions` with the run's rules (`o.segmentation`, `o.seg_rules`: S0, S1):
+/// CV_32S, or CV_16U with `sixteen_bits` when the ids fit.
+cv::Mat segmentRooms(const RegionMap& regions, double resolution, const TopologyOptions& o,
+                     bool sixteen_bits = false);
 
 /// The graph's regions of final labels (e.g. a run's labels.png): extractRegions, segmentRooms, graphRegions. What
 /// gridtopo-topology-compare scores; equal to buildTopology's regions unless the segment vote is on (buildTopology

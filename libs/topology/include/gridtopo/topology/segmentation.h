@@ -12,12 +12,14 @@ namespace gridtopo::topology {
 /// region order. A doorway region touching no room / corridor becomes its own segment.
 cv::Mat roomSegmentation(const RegionMap& regions);
 /// The same with rule S0: room and corridor regions touching along more than `merge_contact_m` are one segment.
-cv::Mat roomSegmentation(const RegionMap& regions, double merge_contact_m, double resolution);
+/// `sixteen_bits`: CV_16U instead when every id fits (half the memory of a large map's segmentation).
+cv::Mat roomSegmentation(const RegionMap& regions, double merge_contact_m, double resolution,
+                         bool sixteen_bits = false);
 
 /// Room segmentation where only doorways separate places: every 8-connected component of non-doorway cells
 /// (room and corridor cells together) is one segment, doorway cells join the nearest segment as above.
 /// Room / corridor confusions inside a place then cannot split it; a missed doorway merges two places.
-cv::Mat doorwaySegmentation(const RegionMap& regions);
+cv::Mat doorwaySegmentation(const RegionMap& regions, bool sixteen_bits = false);
 
 /// Rule S1 (neck split): a segment whose free area falls apart into two or more large parts when every cell
 /// closer than neck_width / 2 to the segment's border is removed (i.e. the parts are joined only through
@@ -47,7 +49,8 @@ struct SegmentationRules {
 };
 /// Returns the split segmentation (new segments get ids after the current maximum).
 cv::Mat splitAtNecks(const cv::Mat& segmentation, double resolution, const SegmentationRules& options);
-/// The same split written into `segmentation` itself (no second full-map image).
+/// The same split written into `segmentation` itself (no second full-map image); CV_32S or CV_16U (turned CV_32S
+/// when the new ids no longer fit 16 bits).
 void splitAtNecksInPlace(cv::Mat& segmentation, double resolution, const SegmentationRules& options);
 
 /// Segment vote (see SegmentationRules::segment_vote): copy of `labels` (CV_8U place labels) where, in every
@@ -56,9 +59,5 @@ cv::Mat voteLabelsInSegments(const cv::Mat& labels, const cv::Mat& segmentation)
 
 /// Number of segments (max id). `segmentation` CV_32S or CV_16U.
 int segmentCount(const cv::Mat& segmentation);
-
-/// The segmentation (CV_32S) in 16 bits (CV_16U, the same ids) when every id fits, else itself: half the memory of
-/// a large map's segmentation for the steps after it (the graph's G3 and the outputs read both types).
-cv::Mat segmentationIn16BitsIfItFits(const cv::Mat& segmentation);
 
 }  // namespace gridtopo::topology
