@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <opencv2/imgproc.hpp>
 #include <utility>
 
 #include "gridtopo/core/error.h"
@@ -237,4 +238,33 @@ TEST(Relaxation, ALatticeInALargeEmptyGridRelaxesAsAlone) {
       EXPECT_EQ(cv::norm(big, outside, cv::NORM_INF), 0.0);
       EXPECT_GT(cv::norm(alone, p, cv::NORM_INF), 0.05);
     }
+}
+
+TEST(Labelling, WithoutTheGridsTheLabelsAreTheSame) {
+  // labelPlaces(…, keep_grids = false) (gridtopo-topology) relaxes a grid of only the part of the lattice that
+  // relaxLabels relaxes (relaxationBox) and returns no grids: the cell labels are those of the whole grids', on a
+  // building that fills a corner of a larger map (the part is then much smaller than the grid).
+  OccupancyImage occ;
+  occ.resolution = 0.05;
+  occ.cells = cv::Mat(420, 530, CV_8U, cv::Scalar(kUnknown));
+  const cv::Rect building(263, 171, 240, 160);
+  occ.cells(building).setTo(kOccupied);
+  cv::Mat b = occ.cells(building);
+  b(cv::Rect(5, 5, 230, 30)).setTo(kFree);
+  b(cv::Rect(5, 40, 110, 110)).setTo(kFree);
+  b(cv::Rect(120, 40, 115, 110)).setTo(kFree);
+  b(cv::Rect(40, 35, 18, 5)).setTo(kFree);
+  b(cv::Rect(160, 35, 18, 5)).setTo(kFree);
+  b(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+  const PlacesModel model = PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
+  const LabellingResult with = labelPlaces(occ, model, RelaxationOptions(), 2, "<map>", {}, false, true, true);
+  const LabellingResult without = labelPlaces(occ, model, RelaxationOptions(), 2, "<map>", {}, false, false, false);
+  ASSERT_FALSE(with.probs.empty());
+  EXPECT_TRUE(without.probs.empty() && without.valid.empty() && without.probs_initial.empty());
+  const cv::Rect part = relaxationBox(cv::boundingRect(with.valid), with.valid.size(), RelaxationOptions());
+  EXPECT_LT(part.area() * 3, with.valid.size().area());
+  ASSERT_EQ(without.labels.size(), with.labels.size());
+  EXPECT_EQ(cv::countNonZero(without.labels != with.labels), 0);
+  EXPECT_EQ(without.relaxation.iterations, with.relaxation.iterations);
+  EXPECT_GT(cv::countNonZero(with.labels == 1), 1000);  // a corridor was found: the labels are no constant
 }

@@ -21,14 +21,14 @@ struct Stopwatch {
 };
 }  // namespace
 
-cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs) {
+cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs, cv::Point grid_offset) {
   cv::Mat out(occ.cells.size(), CV_8U, cv::Scalar(kNoLabel));
   for (int r = 0; r < occ.rows(); ++r)
     for (int c = 0; c < occ.cols(); ++c) {
       if (!occ.isFree(r, c)) continue;
       const int by = r / lattice.stride, bx = c / lattice.stride;
       if (lattice.block_sample.at<int>(by, bx) < 0) continue;
-      const cv::Vec3f& p = probs.at<cv::Vec3f>(by, bx);
+      const cv::Vec3f& p = probs.at<cv::Vec3f>(by - grid_offset.y, bx - grid_offset.x);
       int best = 0;
       for (int l = 1; l < kNumLabels; ++l)
         if (p[l] > p[best]) best = l;
@@ -59,26 +59,34 @@ cv::Mat labelsFromCodes(const cv::Mat& codes) {
 }
 
 namespace {
-// Classifier output p (samples x 1, CV_32FC3) -> the lattice grids, relaxation and the cell labels.
+// Classifier output p (samples x 1, CV_32FC3) -> the lattice grids, relaxation and the cell labels. Without
+// `keep_grids` the grids cover only the part of the lattice that relaxLabels relaxes (relaxationBox: the same
+// values) and are not returned.
 LabellingResult labelFromProbabilities(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& p,
                                        const PlacesModel& model, const RelaxationOptions& relax, int threads,
-                                       bool keep_initial = true) {
+                                       bool keep_initial = true, bool keep_grids = true) {
   LabellingResult res;
   res.lattice = lattice;
-  res.probs = cv::Mat(lattice.block_sample.size(), CV_32FC3, cv::Scalar(0, 0, 0));
-  res.valid = cv::Mat(lattice.block_sample.size(), CV_8U, cv::Scalar(0));
+  cv::Rect box(cv::Point(), lattice.block_sample.size());
+  if (!keep_grids) {
+    cv::Rect blocks;
+    for (const cv::Point& b : lattice.blocks) blocks = blocks.empty() ? cv::Rect(b, cv::Size(1, 1)) : blocks | cv::Rect(b, cv::Size(1, 1));
+    box = relaxationBox(blocks, box.size(), relax);
+  }
+  cv::Mat probs(box.size(), CV_32FC3, cv::Scalar(0, 0, 0)), valid(box.size(), CV_8U, cv::Scalar(0));
   for (std::size_t i = 0; i < lattice.samples.size(); ++i) {
-    res.probs.at<cv::Vec3f>(lattice.blocks[i]) = p.at<cv::Vec3f>(static_cast<int>(i));
-    res.valid.at<unsigned char>(lattice.blocks[i]) = 1;
+    probs.at<cv::Vec3f>(lattice.blocks[i] - box.tl()) = p.at<cv::Vec3f>(static_cast<int>(i));
+    valid.at<unsigned char>(lattice.blocks[i] - box.tl()) = 1;
   }
   if (keep_initial) {
-    res.probs_initial = res.probs.clone();
-    res.labels_initial = cellLabels(occ, lattice, res.probs_initial);
+    res.probs_initial = probs.clone();
+    res.labels_initial = cellLabels(occ, lattice, res.probs_initial, box.tl());
   }
   const auto t0 = std::chrono::steady_clock::now();
-  res.relaxation = relaxLabels(res.probs, res.valid, model.compatibility, relax, threads);
+  res.relaxation = relaxLabels(probs, valid, model.compatibility, relax, threads);
   res.seconds_relax = since(t0);
-  res.labels = cellLabels(occ, lattice, res.probs);
+  res.labels = cellLabels(occ, lattice, probs, box.tl());
+  if (keep_grids) res.probs = probs, res.valid = valid;
   return res;
 }
 }  // namespace
@@ -144,7 +152,7 @@ cv::Mat classifyLattice(const OccupancyImage& occ, const Lattice& lattice, const
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads, const std::string& source,
                             const std::function<void(const std::string&, std::size_t, std::size_t)>& progress,
-                            bool keep_scans_and_features, bool keep_initial) {
+                            bool keep_scans_and_features, bool keep_initial, bool keep_grids) {
   if (countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
   const Lattice lattice = buildLattice(occ, model.scan.lattice_spacing);
   if (!keep_scans_and_features && model.features.context_radius <= 0) {
@@ -157,7 +165,7 @@ LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model,
         },
         &t);
     if (progress) progress("features", 1, 1);
-    LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads, keep_initial);
+    LabellingResult res = labelFromProbabilities(occ, lattice, p, model, relax, threads, keep_initial, keep_grids);
     res.seconds_scans = t.scans, res.seconds_features = t.features, res.seconds_classify = t.classify;
     res.cpu_seconds_scans = t.cpu_scans, res.cpu_seconds_features = t.cpu_features;
     return res;

@@ -159,6 +159,13 @@ RelaxationResult relaxGrid(cv::Mat& probs, const cv::Mat& valid, const Compatibi
 }
 }  // namespace
 
+cv::Rect relaxationBox(cv::Rect valid_blocks, cv::Size grid, const RelaxationOptions& options) {
+  const cv::Rect all(cv::Point(), grid);
+  if (valid_blocks.empty()) return all;
+  const int m = options.neighbourhood_radius + 1;
+  return cv::Rect(valid_blocks.x - m, valid_blocks.y - m, valid_blocks.width + 2 * m, valid_blocks.height + 2 * m) & all;
+}
+
 RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
                              const RelaxationOptions& options, int threads) {
   options.validate();
@@ -172,10 +179,9 @@ RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compati
     for (int x = 0; x < valid.cols; ++x)
       if (v[x]) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = y;
   }
-  const int m = options.neighbourhood_radius + 1;
   const cv::Rect all(0, 0, probs.cols, probs.rows);
   const cv::Rect box =
-      y1 < 0 ? all : cv::Rect(x0 - m, y0 - m, x1 - x0 + 1 + 2 * m, y1 - y0 + 1 + 2 * m) & all;
+      relaxationBox(y1 < 0 ? cv::Rect() : cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1), probs.size(), options);
   if (box == all) return relaxGrid(probs, valid, r, options, threads);
   cv::Mat part = probs(box);
   RelaxationResult res = relaxGrid(part, valid(box), r, options, threads);

@@ -353,9 +353,10 @@ MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const 
       m->release();
   };
   if (outputs_only) t.prepared.places.release(), t.prepared.seen_not_place.release();
-  t.labelling =
-      places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress, keep_scans_and_features,
-                          /*keep_initial=*/!outputs_only);
+  // With outputs_only the lattice grids are kept only for the blob vote.
+  t.labelling = places::labelPlaces(t.occ, model, o.relaxation, o.threads, map.source, progress,
+                                    keep_scans_and_features, /*keep_initial=*/!outputs_only,
+                                    /*keep_grids=*/!outputs_only || o.blob_vote.enabled);
   if (outputs_only && !o.blob_vote.enabled) releaseLabellingGrids();  // else the blob vote reads them
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();

@@ -18,7 +18,7 @@ constexpr unsigned char kNoLabel = 255;  ///< value of non-free cells in label i
 
 struct LabellingResult {
   Lattice lattice;
-  cv::Mat valid;                   ///< CV_8U lattice grid: 1 where a block has a sample
+  cv::Mat valid;                   ///< CV_8U lattice grid: 1 where a block has a sample (see labelPlaces' keep_grids)
   cv::Mat probs_initial, probs;    ///< CV_32FC3 lattice grids: classifier output, after relaxation
   RelaxationResult relaxation;
   cv::Mat labels_initial, labels;  ///< CV_8U per map cell: 0 room, 1 corridor, 2 doorway, kNoLabel not free
@@ -36,11 +36,15 @@ struct LabellingResult {
 /// decision list, relaxation. `keep_scans_and_features`: also return the scans and features (for inspection).
 /// `keep_initial` false: probs_initial and labels_initial stay empty (the relaxation then works on the classifier's
 /// grid itself: a lattice grid of 12 bytes per block less at once on a large map; every other result the same).
+/// `keep_grids` false (with a model without context features and without keep_scans_and_features): valid, probs and
+/// probs_initial stay empty, and the relaxation works on a grid of only the part of the lattice it relaxes
+/// (relaxationBox) instead of the whole map's; the labels the same.
 /// Throws gridtopo::InputError (naming `source`) if the map has no free cell.
 LabellingResult labelPlaces(const OccupancyImage& occ, const PlacesModel& model, const RelaxationOptions& relax,
                             int threads = 2, const std::string& source = "<map>",
                             const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
-                            bool keep_scans_and_features = false, bool keep_initial = true);
+                            bool keep_scans_and_features = false, bool keep_initial = true,
+                            bool keep_grids = true);
 
 /// Samples per stripe of labelPlaces: the simulated scans (2 bytes per beam) and features of this many samples
 /// are held at a time (about 260 MB with 360 beams and 74 features).
@@ -68,7 +72,10 @@ LabellingResult labelFromFeatures(const OccupancyImage& occ, const Lattice& latt
                                   const PlacesModel& model, const RelaxationOptions& relax, int threads = 2);
 
 /// Per-cell labels (argmax of the block's distribution) for every free cell; kNoLabel elsewhere.
-cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs);
+/// `probs` may cover a part of the lattice grid whose block (0, 0) is the grid's `grid_offset` (every block with a
+/// sample inside it).
+cv::Mat cellLabels(const OccupancyImage& occ, const Lattice& lattice, const cv::Mat& probs,
+                   cv::Point grid_offset = {});
 
 /// Label indices -> training-map codes (room 77, corridor 115, doorway 179, 0 elsewhere).
 cv::Mat labelsToCodes(const cv::Mat& labels);

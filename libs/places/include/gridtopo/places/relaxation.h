@@ -51,4 +51,10 @@ struct RelaxationResult {
 RelaxationResult relaxLabels(cv::Mat& probs, const cv::Mat& valid, const Compatibility& r,
                              const RelaxationOptions& options, int threads = 2);
 
+/// The part of a lattice grid of `grid` blocks that relaxLabels relaxes when the valid blocks fill `valid_blocks`
+/// (their bounding box): that box widened by the neighbourhood and one block more, within the grid (outside it no
+/// block is valid, so every sum the box reads is the whole grid's); the whole grid when `valid_blocks` is empty. A
+/// grid of that part alone relaxes to the very same values.
+cv::Rect relaxationBox(cv::Rect valid_blocks, cv::Size grid, const RelaxationOptions& options);
+
 }  // namespace gridtopo::places
