@@ -60,3 +60,29 @@ TEST(Occupancy, OpeningKeepsFreeCellsAtTheImageBorder) {
   occ.cells = cv::Mat(30, 30, CV_8U, cv::Scalar(kFree));  // a map cut out of a larger free area
   EXPECT_EQ(openFreeSpace(occ, 0.1), 0u);
 }
+
+TEST(Occupancy, OpeningIsOpenCVsMorphologicalOpening) {
+  // openFreeSpace erodes, then dilates in place (one full-map image less than cv::morphologyEx): the same cells as
+  // MORPH_OPEN with the border counted free, on random maps and radii.
+  cv::RNG rng(5);
+  for (int trial = 0; trial < 12; ++trial) {
+    OccupancyImage occ;
+    occ.resolution = 0.05;
+    occ.cells = cv::Mat(40 + rng.uniform(0, 60), 40 + rng.uniform(0, 70), CV_8U);
+    for (int y = 0; y < occ.cells.rows; ++y)
+      for (int x = 0; x < occ.cells.cols; ++x) {
+        const double u = rng.uniform(0.0, 1.0);
+        occ.cells.at<unsigned char>(y, x) = u < 0.7 ? kFree : u < 0.85 ? kOccupied : kUnknown;
+      }
+    const double radius = 0.05 * (1 + trial % 3);
+    const int r = static_cast<int>(std::lround(radius / occ.resolution));
+    cv::Mat opened, expected = occ.cells.clone();
+    cv::morphologyEx(occ.cells == kFree, opened, cv::MORPH_OPEN,
+                     cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1)), cv::Point(-1, -1), 1,
+                     cv::BORDER_CONSTANT, cv::Scalar(255));
+    const cv::Mat removed = (occ.cells == kFree) & ~opened;
+    expected.setTo(kUnknown, removed);
+    EXPECT_EQ(openFreeSpace(occ, radius), static_cast<std::size_t>(cv::countNonZero(removed)));
+    EXPECT_EQ(cv::countNonZero(occ.cells != expected), 0) << "trial " << trial;
+  }
+}

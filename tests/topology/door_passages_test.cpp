@@ -265,7 +265,7 @@ TEST(DoorPassages, CropToTheLabelledBoxGivesTheWholeMapsTopology) {
   part.inMap(part.segmentation, 0).convertTo(part_segmentation, CV_32S);
   EXPECT_TRUE(same(part_segmentation, whole.segmentation));
   // The labels it was given, kept as runs in the map's frame (labels_before_correction.png).
-  EXPECT_TRUE(same(part.labels_classified.image(places::kNoLabel), labels));
+  EXPECT_TRUE(same(part.labels_classified.image(), labels));
   EXPECT_TRUE(whole.labels_classified.empty());
   EXPECT_TRUE(same(part.inMap(part.regions.ids, 0), whole.regions.ids));
   ASSERT_EQ(part.graph.nodes.size(), whole.graph.nodes.size());

@@ -96,6 +96,29 @@ TEST(MaskOps, RootsInBlockOrderNumberTheComponentsAsOpenCV) {
   }
 }
 
+// The fill in place with a veto of another type covering a part of the mask (S1's enclosed obstacles: the
+// segmentation inside the mask's one-cell frame) fills what fillSmallHoles fills with the same veto as a mask.
+TEST(MaskOps, FillSmallHolesInPlaceTakesAVetoOfAnyTypeAtAnOffset) {
+  cv::RNG rng(9);
+  for (int trial = 0; trial < 30; ++trial) {
+    const int rows = 3 + rng.uniform(0, 60), cols = 3 + rng.uniform(0, 80);
+    const cv::Mat mask = randomMask(rng, rows, cols, 0.6 + 0.3 * rng.uniform(0.0, 1.0));
+    cv::Mat veto_ids(rows - 2, cols - 2, trial % 2 ? CV_16U : CV_32S, cv::Scalar(0));
+    for (int k = 0; k < 3; ++k)  // a few cells of other segments
+      veto_ids(cv::Rect(rng.uniform(0, cols - 2), rng.uniform(0, rows - 2), 1, 1)).setTo(cv::Scalar(1 + rng.uniform(0, 65535)));
+    cv::Mat veto(mask.size(), CV_8U, cv::Scalar(0));
+    cv::compare(veto_ids, 0, veto(cv::Rect(1, 1, cols - 2, rows - 2)), cv::CMP_NE);
+    const double max_cells = rng.uniform(1, 40);
+    const cv::Mat expected = fillSmallHoles(mask, max_cells, veto);
+    cv::Mat in_place = mask.clone();
+    fillSmallHolesInPlace(in_place, max_cells, veto_ids, {1, 1});
+    EXPECT_EQ(cv::countNonZero(in_place != expected), 0) << "trial " << trial;
+    cv::Mat plain = mask.clone();
+    fillSmallHolesInPlace(plain, max_cells);
+    EXPECT_EQ(cv::countNonZero(plain != fillSmallHoles(mask, max_cells)), 0) << "trial " << trial;
+  }
+}
+
 TEST(MaskOps, FillSmallHolesFillsWhatTheComponentImageFilled) {
   cv::RNG rng(8);
   for (int trial = 0; trial < 40; ++trial) {

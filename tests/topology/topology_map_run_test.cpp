@@ -9,7 +9,10 @@
 #include "common/same_outputs.h"
 #include "common/scratch.h"
 #include "gridtopo/core/error.h"
+#include "gridtopo/places/model.h"
+#include "gridtopo/topology/pipeline.h"
 #include "gridtopo/topology/topology_map_run.h"
+#include "gridtopo/topology/topology_outputs.h"
 
 using namespace gridtopo;
 namespace fs = std::filesystem;
@@ -55,4 +58,49 @@ TEST(TopologyMapRun, AMissingModelIsBadInputAndWritesNothing) {
   std::ostringstream log;
   EXPECT_THROW(topology::runTopologyOnMapFile(spec, true, log), InputError);
   EXPECT_FALSE(fs::exists(spec.output));
+}
+
+// gridtopo-topology's run (topologyOfMap with outputs_only: the box of the places, the labels and the occupancy as
+// runs, the region borders instead of the ids, the segmentation in 16 bits, no lattice grids) writes the very files
+// of the whole-map run the GUI makes, on a SLAM-like map whose building fills a part of it, with a path.
+TEST(TopologyMapRun, OutputsOnlyWritesTheFilesOfTheWholeRun) {
+  MapImage map;
+  map.resolution = 0.05;
+  map.kind = MapKind::ProbabilisticGrid;
+  map.source = "<building in the unknown>";
+  map.grey = cv::Mat(300, 420, CV_8U, cv::Scalar(127));  // unknown
+  const cv::Rect b(131, 77, 176, 130);                       // the building: walls, two rooms, a corridor, doors
+  map.grey(b).setTo(0);
+  map.grey(cv::Rect(b.x + 3, b.y + 3, 80, 70)).setTo(255);
+  map.grey(cv::Rect(b.x + 86, b.y + 3, 87, 70)).setTo(255);
+  map.grey(cv::Rect(b.x + 3, b.y + 76, 170, 30)).setTo(255);   // corridor
+  map.grey(cv::Rect(b.x + 30, b.y + 73, 18, 3)).setTo(255);    // doors onto it
+  map.grey(cv::Rect(b.x + 120, b.y + 73, 18, 3)).setTo(255);
+  map.grey(cv::Rect(b.x + 60, b.y + 30, 8, 8)).setTo(0);       // furniture
+  // The path (world metres, y up): along the corridor, into each room and back.
+  const auto world = [&](double col, double row) { return cv::Point2d(col * 0.05, (map.grey.rows - row) * 0.05); };
+  for (double c = b.x + 10; c <= b.x + 165; c += 2) map.path.push_back(world(c, b.y + 90));
+  for (double r = b.y + 90; r >= b.y + 30; r -= 2) map.path.push_back(world(b.x + 128, r));
+  for (double r = b.y + 30; r <= b.y + 90; r += 2) map.path.push_back(world(b.x + 128, r));
+  for (double c = b.x + 165; c >= b.x + 39; c -= 2) map.path.push_back(world(c, b.y + 90));
+  for (double r = b.y + 90; r >= b.y + 30; r -= 2) map.path.push_back(world(b.x + 39, r));
+  const places::PlacesModel model =
+      places::PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
+  const topology::TopologyOptions o;
+  const topology::MapTopology whole = topology::topologyOfMap(map, model, o);
+  const topology::MapTopology part = topology::topologyOfMap(map, model, o, {}, false, /*outputs_only=*/true);
+  EXPECT_LT(part.topo.frame.area() * 3, whole.topo.frame.area());  // the box, not the map
+  EXPECT_TRUE(part.labelling.labels.empty() && part.topo.regions.ids.empty() && part.labelling.probs.empty());
+  EXPECT_EQ(part.topo.segmentation.type(), CV_16U);
+  ASSERT_GE(whole.topo.graph.nodes.size(), 3u);
+  const fs::path dir = test::scratch("map_run_outputs_only");
+  topology::writeTopologyOutputs((dir / "whole").string(), whole.occ, whole.topo, whole.labelling.labels, 2, "ini\n");
+  topology::writeTopologyOutputs((dir / "part").string(), part.occ, part.topo, part.labelling.labels, 2, "ini\n");
+  std::size_t files = 0;
+  for (const auto& f : fs::directory_iterator(dir / "whole")) {
+    ++files;
+    EXPECT_EQ(testing_outputs::slurp(f.path()), testing_outputs::slurp(dir / "part" / f.path().filename()))
+        << f.path().filename();
+  }
+  EXPECT_EQ(files, 10u);  // graphml, json, dot, pose graph, overlay, labels, labels before correction, two segmentations, ini
 }

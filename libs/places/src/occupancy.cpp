@@ -39,15 +39,24 @@ std::size_t openFreeSpace(OccupancyImage& occ, double radius) {
   if (occ.cells.empty() || !(radius > 0) || !std::isfinite(radius)) return 0;
   const int r = static_cast<int>(std::lround(radius / occ.resolution));
   if (r < 1) return 0;
-  const cv::Mat free_mask = occ.cells == kFree;
-  cv::Mat opened;
+  // The opening as cv::morphologyEx's MORPH_OPEN makes it (an erosion, then a dilation of its result with the same
+  // kernel and border), the dilation in place and the free mask let go in between: one full-map image less at once.
   // Pixels outside the image count as free for the erosion, so a map cut at its border keeps its edge cells.
-  cv::morphologyEx(free_mask, opened, cv::MORPH_OPEN,
-                   cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1)), cv::Point(-1, -1), 1,
-                   cv::BORDER_CONSTANT, cv::Scalar(255));
-  const cv::Mat removed = free_mask & ~opened;
-  occ.cells.setTo(kUnknown, removed);
-  return static_cast<std::size_t>(cv::countNonZero(removed));
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1));
+  cv::Mat opened;
+  {
+    const cv::Mat free_mask = occ.cells == kFree;
+    cv::erode(free_mask, opened, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(255));
+  }
+  cv::dilate(opened, opened, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(255));
+  std::size_t removed = 0;
+  for (int y = 0; y < occ.cells.rows; ++y) {
+    unsigned char* c = occ.cells.ptr<unsigned char>(y);
+    const unsigned char* o = opened.ptr<unsigned char>(y);
+    for (int x = 0; x < occ.cells.cols; ++x)
+      if (c[x] == kFree && !o[x]) c[x] = kUnknown, ++removed;
+  }
+  return removed;
 }
 
 std::size_t countFree(const OccupancyImage& occ) {

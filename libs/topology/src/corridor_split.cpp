@@ -115,22 +115,30 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   int nb = 0;
   for (const int c : rootsInBlockOrder(branches, branch_comps)) branch_id[static_cast<std::size_t>(c)] = ++nb;
   const bool narrow = static_cast<long long>(junctions) + nb < 0xffff;
+  // The zones' runs with their numbers are kept and the zone image let go before the pieces' image exists.
   int nz = 0;
+  struct ZoneRun {
+    int y, x0, x1, id;
+  };
+  std::vector<ZoneRun> zone_runs;
   {
     const RunComponents zone_comps(zone, true, 8);
     std::vector<int> zone_id(zone_comps.root.size(), 0);
     for (const int c : rootsInBlockOrder(zone, zone_comps)) zone_id[static_cast<std::size_t>(c)] = ++nz;
-    pieces = cv::Mat(mask.size(), narrow ? CV_16U : CV_32S, cv::Scalar(0));
+    zone_runs.reserve(zone_comps.root.size());
     std::size_t run = 0;
     forEachRun(zone, true, [&](int y, int x0, int x1) {
-      const int id = zone_id[static_cast<std::size_t>(zone_comps.root[run++])];
-      if (narrow)
-        std::fill(pieces.ptr<unsigned short>(y) + x0, pieces.ptr<unsigned short>(y) + x1 + 1, static_cast<unsigned short>(id));
-      else
-        std::fill(pieces.ptr<int>(y) + x0, pieces.ptr<int>(y) + x1 + 1, id);
+      zone_runs.push_back({y, x0, x1, zone_id[static_cast<std::size_t>(zone_comps.root[run++])]});
     });
   }
   zone.release();
+  pieces = cv::Mat(mask.size(), narrow ? CV_16U : CV_32S, cv::Scalar(0));
+  for (const ZoneRun& z : zone_runs) {
+    if (narrow)
+      std::fill(pieces.ptr<unsigned short>(z.y) + z.x0, pieces.ptr<unsigned short>(z.y) + z.x1 + 1, static_cast<unsigned short>(z.id));
+    else
+      std::fill(pieces.ptr<int>(z.y) + z.x0, pieces.ptr<int>(z.y) + z.x1 + 1, z.id);
+  }
   const auto pieceAt = [&](cv::Point p) { return narrow ? int(pieces.at<unsigned short>(p)) : pieces.at<int>(p); };
   std::size_t run = 0;
   forEachRun(branches, true, [&](int y, int x0, int x1) {

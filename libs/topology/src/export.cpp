@@ -169,9 +169,32 @@ int overlayScaleFor(cv::Size map, int requested) {
   return scale;
 }
 
+cv::Mat regionBorders(const cv::Mat& ids) {
+  CV_Assert(ids.type() == CV_32S);
+  cv::Mat borders(ids.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < ids.rows; ++y) {
+    const int* row = ids.ptr<int>(y);
+    const int* below = y + 1 < ids.rows ? ids.ptr<int>(y + 1) : nullptr;
+    unsigned char* out = borders.ptr<unsigned char>(y);
+    for (int x = 0; x < ids.cols; ++x) {
+      const int id = row[x];
+      const int right = x + 1 < ids.cols ? row[x + 1] : 0, down = below ? below[x] : 0;
+      if (id > 0 && ((right > 0 && right != id) || (down > 0 && down != id))) out[x] = 255;
+    }
+  }
+  return borders;
+}
+
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& rm,
                       const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages,
                       cv::Point frame) {
+  return renderOverlay(occ, labels, regionBorders(rm.ids), g, scale, door_passages, frame);
+}
+
+cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const cv::Mat& borders,
+                      const TopologicalGraph& g, int scale, const std::vector<DoorPassage>* door_passages,
+                      cv::Point frame) {
+  CV_Assert(borders.type() == CV_8U && borders.size() == labels.size());
   scale = overlayScaleFor(occ.cells.size(), scale);
   static const cv::Vec3b tint[] = {{235, 170, 120}, {130, 220, 130}, {90, 90, 240}};  // BGR room, corridor, door
   // The map's cells drawn straight at the overlay's scale: each output pixel takes the cell
@@ -198,15 +221,14 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
       const int fy = y - frame.y, fw = labels.cols;
       const bool in_rows = fy >= 0 && fy < labels.rows;
       const unsigned char* lab = in_rows ? labels.ptr<unsigned char>(fy) : nullptr;
-      const int* ids = in_rows ? rm.ids.ptr<int>(fy) : nullptr;
-      const int* ids_below = in_rows && fy + 1 < labels.rows ? rm.ids.ptr<int>(fy + 1) : nullptr;
+      const unsigned char* border = in_rows ? borders.ptr<unsigned char>(fy) : nullptr;
       const auto labelAt = [&](int x) {
         const int fx = x - frame.x;
         return lab && fx >= 0 && fx < fw ? lab[fx] : static_cast<unsigned char>(places::kNoLabel);
       };
-      const auto idAt = [&](const int* r, int x) {
+      const auto borderAt = [&](int x) {
         const int fx = x - frame.x;
-        return r && fx >= 0 && fx < fw ? r[fx] : 0;
+        return border && fx >= 0 && fx < fw && border[fx];
       };
       for (int x = 0; x < cols; ++x) {
         const unsigned char s = cells[x];
@@ -217,10 +239,7 @@ cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, 
                                                : cv::Vec3b(180, 180, 180);
         const unsigned char l = labelAt(x);
         if (l < places::kNumLabels) c = tint[l];
-        // Region borders in dark grey.
-        const int id = idAt(ids, x);
-        const int right = x + 1 < cols ? idAt(ids, x + 1) : 0, below = idAt(ids_below, x);
-        if (id > 0 && ((right > 0 && right != id) || (below > 0 && below != id))) c = cv::Vec3b(60, 60, 60);
+        if (borderAt(x)) c = cv::Vec3b(60, 60, 60);  // region borders in dark grey
         row[static_cast<std::size_t>(x)] = c;
       }
       cv::Vec3b* out = big.ptr<cv::Vec3b>(Y);

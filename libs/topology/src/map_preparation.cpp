@@ -148,7 +148,7 @@ PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOp
     r.removed_unreachable = before - count(places);
   }
   r.places = places;
-  r.seen_not_place = free & ~places;
+  cv::subtract(free, places, r.seen_not_place);  // free & ~places (both 0 / 255; places within free), no temporary
   r.place_cells = count(places);
   return r;
 }

@@ -74,7 +74,28 @@ std::size_t RunComponents::componentsOfAtLeast(double min_cells) const {
 }
 
 cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& veto) {
-  CV_Assert(mask.type() == CV_8U && (veto.empty() || (veto.type() == CV_8U && veto.size() == mask.size())));
+  CV_Assert(veto.empty() || veto.size() == mask.size());
+  cv::Mat out = mask.clone();
+  fillSmallHolesInPlace(out, max_cells, veto);
+  return out;
+}
+
+void fillSmallHolesInPlace(cv::Mat& mask, double max_cells, const cv::Mat& veto, cv::Point veto_offset) {
+  CV_Assert(mask.type() == CV_8U);
+  CV_Assert(veto.empty() || veto.type() == CV_8U || veto.type() == CV_16U || veto.type() == CV_32S);
+  // Whether any cell x0..x1 of mask row y is a veto cell.
+  const auto vetoed = [&](int y, int x0, int x1) {
+    const int vy = y - veto_offset.y;
+    if (veto.empty() || vy < 0 || vy >= veto.rows) return false;
+    const int a = std::max(x0 - veto_offset.x, 0), b = std::min(x1 - veto_offset.x, veto.cols - 1);
+    for (int x = a; x <= b; ++x) {
+      const bool v = veto.type() == CV_8U    ? veto.at<unsigned char>(vy, x) != 0
+                     : veto.type() == CV_16U ? veto.at<unsigned short>(vy, x) != 0
+                                             : veto.at<int>(vy, x) != 0;
+      if (v) return true;
+    }
+    return false;
+  };
   // The 4-connected components of zero cells from their runs (RunComponents: no image of component numbers, which
   // would take 4 bytes a cell of a segment or corridor region spanning most of a large map); a component touching
   // the border or a veto cell is no hole.
@@ -84,17 +105,14 @@ cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& vet
   forEachRun(mask, false, [&](int y, int x0, int x1) {
     char& b = blocked[static_cast<std::size_t>(zero.root[i++])];
     if (b) return;
-    b = y == 0 || y == mask.rows - 1 || x0 == 0 || x1 == mask.cols - 1;
-    if (!veto.empty())
-      for (const unsigned char* v = veto.ptr<unsigned char>(y); !b && x0 <= x1; ++x0) b = v[x0] != 0;
+    b = y == 0 || y == mask.rows - 1 || x0 == 0 || x1 == mask.cols - 1 || vetoed(y, x0, x1);
   });
-  cv::Mat out = mask.clone();
+  // Filled run by run as they are found (a run is found before it is filled: the scan goes on after it).
   i = 0;
   forEachRun(mask, false, [&](int y, int x0, int x1) {
     const auto r = static_cast<std::size_t>(zero.root[i++]);
-    if (!blocked[r] && zero.area[r] <= max_cells) std::fill(out.ptr<unsigned char>(y) + x0, out.ptr<unsigned char>(y) + x1 + 1, 255);
+    if (!blocked[r] && zero.area[r] <= max_cells) std::fill(mask.ptr<unsigned char>(y) + x0, mask.ptr<unsigned char>(y) + x1 + 1, 255);
   });
-  return out;
 }
 
 namespace {

@@ -44,6 +44,11 @@ std::vector<int> rootsInBlockOrder(const cv::Mat& mask, const RunComponents& com
 /// touch no image border, have at most `max_cells` cells and, when `veto` (CV_8U, same size) is given, hold no
 /// cell where veto != 0.
 cv::Mat fillSmallHoles(const cv::Mat& mask, double max_cells, const cv::Mat& veto = cv::Mat());
+/// The same fill written into `mask` itself. `veto` may be CV_8U, CV_16U or CV_32S (a veto cell is non-zero) and
+/// cover a part of the mask: the veto of mask cell (y, x) is veto(y - veto_offset.y, x - veto_offset.x), none
+/// outside it.
+void fillSmallHolesInPlace(cv::Mat& mask, double max_cells, const cv::Mat& veto = cv::Mat(),
+                           cv::Point veto_offset = {});
 
 /// Multi-source breadth-first growth, 8-connected: the cells of `ids` (CV_32S, or CV_16U) > 0 are the seeds (queued in
 /// row-major order); each cell reached takes the id of the cell it was reached from. Only cells with

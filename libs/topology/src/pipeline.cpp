@@ -13,6 +13,7 @@
 
 #include "gridtopo/core/error.h"
 #include "gridtopo/io/map_io.h"
+#include "gridtopo/topology/export.h"
 #include "gridtopo/topology/segmentation.h"
 
 namespace gridtopo::topology {
@@ -208,9 +209,10 @@ MapPreparationOptions TopologyOptions::preparationFor(MapKind kind) const {
   return p;
 }
 
-places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o, PreparedMap* prepared) {
+places::OccupancyImage occupancyForTopology(MapImage map, const TopologyOptions& o, PreparedMap* prepared) {
   const double opening_radius = o.freeOpeningRadiusFor(map.kind);
   places::OccupancyImage occ = places::occupancyFromMap(map, o.freeThresholdFor(map.kind));
+  map.grey.release();  // (freed here when the caller moved its map in)
   const std::string& source = map.source;
   if (places::countFree(occ) == 0) throw InputError(source, "the map has no free cell (nothing to label)");
   places::openFreeSpace(occ, opening_radius);
@@ -281,7 +283,7 @@ TopologyResult buildTopology(cv::Mat labels, double resolution, const TopologyOp
   }
   if (crop) {
     // The labels as they came, for labels_before_correction.png; a caller that moved its labels in lets them go.
-    r.labels_classified = LabelRuns::of(labels);
+    r.labels_classified = ByteRuns::of(labels, places::kNoLabel);
     labels.release();
   }
   std::vector<cv::Point2d> shifted;
@@ -344,8 +346,13 @@ MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const 
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   auto t0 = std::chrono::steady_clock::now();
-  t.occ = occupancyForTopology(map, o, &t.prepared);
-  map.grey.release();  // the later steps read the occupancy (freed here only when the caller moved its map in)
+  {
+    // The map goes in without keeping its grey image here: once the occupancy exists it is let go (freed when the
+    // caller moved its map in); the later steps read the occupancy.
+    MapImage grey_holder = map;
+    map.grey.release();
+    t.occ = occupancyForTopology(std::move(grey_holder), o, &t.prepared);
+  }
   t.seconds_prepare = since(t0);
   const auto releaseLabellingGrids = [&] {
     for (cv::Mat* m : {&t.labelling.probs_initial, &t.labelling.probs, &t.labelling.valid,
@@ -360,12 +367,20 @@ MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const 
   if (outputs_only && !o.blob_vote.enabled) releaseLabellingGrids();  // else the blob vote reads them
   if (progress) progress("regions", 0, 1);
   t0 = std::chrono::steady_clock::now();
+  const std::vector<cv::Point2d> path = pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows());
+  // With outputs_only the occupancy, which buildTopology does not read, waits as runs (unknown cells left out).
+  ByteRuns occupancy;
+  if (outputs_only) occupancy = ByteRuns::of(t.occ.cells, places::kUnknown), t.occ.cells.release();
   // With outputs_only the labelling's labels go into the topology, which keeps them as runs (labels_classified).
   t.topo = buildTopology(outputs_only ? std::move(t.labelling.labels) : t.labelling.labels, t.occ.resolution, o,
                          &t.labelling, map.origin,
-                         pathInCells(map.path, map.origin, t.occ.resolution, t.occ.rows()), /*crop=*/outputs_only);
+                         path, /*crop=*/outputs_only);
   t.seconds_graph = since(t0);
   if (outputs_only) {
+    t.occ.cells = occupancy.image();
+    // The overlay needs only the regions' borders: an 8-bit image instead of the 32-bit ids.
+    t.topo.region_borders = regionBorders(t.topo.regions.ids);
+    t.topo.regions.ids.release();
     releaseLabellingGrids();
     t.topo.labels_corrected.release();
     t.topo.labels_blob_vote.release();

@@ -53,13 +53,11 @@ cv::Mat growSegments(const RegionMap& rm, const std::vector<int>& seg_of, int ne
 }
 
 // `mask`: a segment's cells in a crop with a one-cell empty frame; `seg_crop`: the segmentation in the crop
-// (without the frame). Returns the mask plus every 4-connected component of non-segment cells that does not
-// reach the frame, holds no cell of another segment (only non-free or unlabelled cells) and is at most
-// `max_px` cells: obstacles enclosed by the segment.
-cv::Mat withEnclosedObstacles(const cv::Mat& mask, const cv::Mat& seg_crop, double max_px) {
-  cv::Mat other(mask.size(), CV_8U, cv::Scalar(0));  // cells of other segments veto a hole
-  cv::compare(seg_crop, 0, other(cv::Rect(1, 1, seg_crop.cols, seg_crop.rows)), cv::CMP_NE);
-  return fillSmallHoles(mask, max_px, other);
+// (without the frame). Adds to the mask every 4-connected component of non-segment cells that does not reach the
+// frame, holds no cell of another segment (only non-free or unlabelled cells) and is at most `max_px` cells:
+// obstacles enclosed by the segment.
+void addEnclosedObstacles(cv::Mat& mask, const cv::Mat& seg_crop, double max_px) {
+  fillSmallHolesInPlace(mask, max_px, seg_crop, {1, 1});  // cells of other segments veto a hole
 }
 }  // namespace
 
@@ -152,8 +150,9 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     if (cv::countNonZero(inner) < 2 * min_part_px) continue;
     // `area`: the segment plus the obstacles it encloses (furniture standing in the room), so that the distance
     // transform measures the room's walls, not the gaps between chairs.
-    cv::Mat area = fill_px > 0 ? withEnclosedObstacles(mask, seg(r), fill_px) : mask;
-    mask.release(), inner.release();  // (the segment's cells are read from `seg` again at the end)
+    inner.release();  // (the segment's cells are read from `seg` again at the end)
+    if (fill_px > 0) addEnclosedObstacles(mask, seg(r), fill_px);
+    cv::Mat area = std::move(mask);
     // One segment can span most of a large map (the hospital's corridors: a box of 8 000 × 4 500 cells), so its
     // crop-sized images are let go as soon as they are used, and the parts are found from the core's runs
     // (RunComponents) rather than as an image of component numbers.

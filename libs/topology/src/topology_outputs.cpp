@@ -41,7 +41,9 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
   const cv::Point frame = topo.frame.tl();
   const cv::Size map_size = topo.map_size.empty() ? topo.labels.size() : topo.map_size;
   png("overlay.png",
-      renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages, frame));
+      topo.regions.ids.empty()
+          ? renderOverlay(occ, topo.labels, topo.region_borders, topo.graph, overlay_scale, &topo.door_passages, frame)
+          : renderOverlay(occ, topo.labels, topo.regions, topo.graph, overlay_scale, &topo.door_passages, frame));
   // The label and segmentation pictures row by row from the frame's images (io::writePngRows): no picture of the
   // whole map is made for them (on the hospital's map each is 56-168 MB).
   const cv::Rect inner(frame, topo.labels.size());
@@ -63,7 +65,9 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
          codesRow(labels_before_correction, cv::Rect(cv::Point(), labels_before_correction.size())));
   else if (!topo.labels_classified.empty())  // the caller let its labels go into the topology (topologyOfMap)
     rows("labels_before_correction.png", CV_8UC1, [&](int y, unsigned char* out) {
-      topo.labels_classified.row(y, out, places::kNoLabelCode, [](unsigned char l) { return places::labelCode(l); });
+      topo.labels_classified.row(y, out, [](unsigned char l) {
+        return l < places::kNumLabels ? places::labelCode(l) : places::kNoLabelCode;
+      });
     });
   if (!topo.segmentation.empty()) {
     const cv::Rect seg(frame, topo.segmentation.size());

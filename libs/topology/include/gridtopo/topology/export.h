@@ -42,6 +42,14 @@ int overlayScaleFor(cv::Size map, int requested);
 cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const RegionMap& regions,
                       const TopologicalGraph& g, int scale = 2,
                       const std::vector<DoorPassage>* door_passages = nullptr, cv::Point frame = {});
+/// The same with the region borders given as regionBorders of the regions' ids (same size as `labels`).
+cv::Mat renderOverlay(const places::OccupancyImage& occ, const cv::Mat& labels, const cv::Mat& region_borders,
+                      const TopologicalGraph& g, int scale = 2,
+                      const std::vector<DoorPassage>* door_passages = nullptr, cv::Point frame = {});
+
+/// The cells renderOverlay draws as region borders: CV_8U, 255 where a cell of a region (id > 0) has a right or
+/// lower neighbour in another region, 0 elsewhere. `ids`: CV_32S region ids (RegionMap::ids).
+cv::Mat regionBorders(const cv::Mat& ids);
 
 /// Throws std::runtime_error when `segmentation` (CV_32S) has ids above 65535 (too many for a 16-bit picture).
 void requireSixteenBitSegments(const cv::Mat& segmentation);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gridtopo/core/byte_runs.h"
 #include "gridtopo/core/map_image.h"
 #include "gridtopo/core/option_schema.h"
 #include "gridtopo/places/labelling.h"
@@ -18,7 +19,6 @@
 #include "gridtopo/topology/doorway_geometry.h"
 #include "gridtopo/topology/graph.h"
 #include "gridtopo/topology/graph_rules.h"
-#include "gridtopo/topology/label_runs.h"
 #include "gridtopo/topology/map_preparation.h"
 #include "gridtopo/topology/open_spaces.h"
 #include "gridtopo/topology/thoroughfares.h"
@@ -109,7 +109,10 @@ struct TopologyResult {
   std::vector<Thoroughfare> thoroughfares;  ///< room regions it travelled through, relabelled corridor (thoroughfares.h)
   /// With `crop` only: the labels buildTopology was given (the labelling's, before the blob vote and every later
   /// step), as runs in the map's frame: what labels_before_correction.png shows when the caller let its image go.
-  LabelRuns labels_classified;
+  ByteRuns labels_classified;  ///< (runs of the labelled cells: the background is places::kNoLabel)
+  /// With topologyOfMap's outputs_only: the region borders the overlay draws (regionBorders of regions.ids, whose
+  /// image is then let go: `regions` keeps its list), in the frame of `labels`.
+  cv::Mat region_borders;
   /// The part of the map that the images above and `regions` cover: their cell (0, 0) is the map's cell frame.tl(),
   /// the map is `map_size` cells. The whole map unless buildTopology worked on the box of the labelled cells
   /// (`crop`). The graph and the positions of the door passages, room entries, open spaces and thoroughfares are in
@@ -124,8 +127,9 @@ struct TopologyResult {
 /// (o.freeThresholdFor(map.kind)), then places::openFreeSpace with o.freeOpeningRadiusFor(map.kind), then the map
 /// preparation (prepareMap with o.preparationFor(map.kind) and map.path): free cells that are no place become
 /// places::kSeen. `prepared`, when given, receives what the preparation found. Throws InputError (naming
-/// map.source) for an unusable image or a map without free cells or without places.
-places::OccupancyImage occupancyForTopology(const MapImage& map, const TopologyOptions& o,
+/// map.source) for an unusable image or a map without free cells or without places. `map` is taken by value: a
+/// caller that moves its map in lets its grey image go once the occupancy is made from it.
+places::OccupancyImage occupancyForTopology(MapImage map, const TopologyOptions& o,
                                             PreparedMap* prepared = nullptr);
 
 /// Steps 6-8 of the method, the one call every app and the GUI make after labelling: builds regions, graph and
@@ -174,9 +178,11 @@ struct MapTopology {
 /// `outputs_only`: each full-map image that the outputs (writeTopologyOutputs) and the run summary do not read is
 /// let go as soon as the run no longer needs it (the preparation's masks; the lattice grids of probabilities, the
 /// classifier's labels before relaxation, the lattice's block grid; the labels before the segment vote and the blob
-/// vote's; the initial probabilities and labels), and the steps after labelling work on the box of the labelled
-/// cells (buildTopology's `crop`): less memory at once on a large map. gridtopo-topology runs so; the GUI, which
-/// shows them, does not. `map` is taken by value: a caller that moves its map in lets its grey image go once the
+/// vote's; the initial probabilities and labels; the labelling's labels, kept as runs, TopologyResult::
+/// labels_classified; the regions' id image, of which the overlay keeps the borders, TopologyResult::region_borders),
+/// the occupancy is held as runs while the topology is built (it is the outputs' again afterwards), and the steps
+/// after labelling work on the box of the labelled cells (buildTopology's `crop`): less memory at once on a large
+/// map. gridtopo-topology runs so; the GUI, which shows them, does not. `map` is taken by value: a caller that moves its map in lets its grey image go once the
 /// occupancy exists.
 MapTopology topologyOfMap(MapImage map, const places::PlacesModel& model, const TopologyOptions& o,
                           const std::function<void(const std::string&, std::size_t, std::size_t)>& progress = {},
