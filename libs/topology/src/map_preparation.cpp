@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <thread>
 
 namespace gridtopo::topology {
@@ -34,12 +35,13 @@ cv::Mat robotFits(const cv::Mat& free, double radius_cells) {
 /// Step 2: the cells seen along a free line of sight from a path sample at most `range_cells` away. Rays are cast
 /// from every sample over 360 degrees, close enough that neighbouring rays are a cell apart at the range, in steps
 /// of half a cell; a ray stops at the first cell that is not free in the map (glass and open doors are free: seen
-/// through them counts).
-cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells, int threads) {
-  // The samples split over the threads, each marking its own image; the union does not depend on the split.
+/// through them counts). One bit per cell (row-major, y * cols + x): an eighth of a byte image per thread.
+using CellBits = std::vector<std::uint64_t>;
+CellBits seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& samples, double range_cells, int threads) {
+  // The samples split over the threads, each marking its own bits; the union does not depend on the split.
   const int nt = std::max(1, std::min(threads, static_cast<int>(samples.size() / 16)));
   if (nt > 1) {
-    std::vector<cv::Mat> part(static_cast<std::size_t>(nt));
+    std::vector<CellBits> part(static_cast<std::size_t>(nt));
     std::vector<std::thread> pool;
     auto run = [&](int t) {
       const auto a = samples.begin() + static_cast<long>(samples.size() * t / nt);
@@ -49,10 +51,12 @@ cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& sample
     for (int t = 1; t < nt; ++t) pool.emplace_back(run, t);
     run(0);
     for (auto& t : pool) t.join();
-    for (int t = 1; t < nt; ++t) part[0] |= part[static_cast<std::size_t>(t)];
-    return part[0];
+    for (int t = 1; t < nt; ++t)
+      for (std::size_t w = 0; w < part[0].size(); ++w) part[0][w] |= part[static_cast<std::size_t>(t)][w];
+    return std::move(part[0]);
   }
-  cv::Mat seen = cv::Mat::zeros(free.size(), CV_8U);
+  const int cols = free.cols, rows = free.rows;
+  CellBits seen((static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols) + 63) / 64, 0);
   const int n_rays = std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * range_cells)));
   std::vector<cv::Point2d> dir(static_cast<std::size_t>(n_rays));
   for (int k = 0; k < n_rays; ++k) {
@@ -60,10 +64,8 @@ cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& sample
     dir[static_cast<std::size_t>(k)] = {0.5 * std::cos(a), 0.5 * std::sin(a)};
   }
   const int steps = static_cast<int>(std::ceil(2.0 * range_cells));
-  const int cols = free.cols, rows = free.rows;
-  const std::size_t free_step = free.step, seen_step = seen.step;
+  const std::size_t free_step = free.step;
   const unsigned char* free_data = free.data;
-  unsigned char* seen_data = seen.data;
   for (const cv::Point2d& p : samples) {
     const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
     if (px < 0 || py < 0 || px >= free.cols || py >= free.rows) continue;
@@ -77,12 +79,24 @@ cv::Mat seenFromNear(const cv::Mat& free, const std::vector<cv::Point2d>& sample
         if (cx == last_x && cy == last_y) continue;  // half-cell steps: the same cell again
         if (cx >= cols || cy >= rows) break;
         if (!free_data[static_cast<std::size_t>(cy) * free_step + static_cast<std::size_t>(cx)]) break;
-        seen_data[static_cast<std::size_t>(cy) * seen_step + static_cast<std::size_t>(cx)] = 255;
+        const std::size_t bit = static_cast<std::size_t>(cy) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(cx);
+        seen[bit >> 6] |= std::uint64_t(1) << (bit & 63);
         last_x = cx, last_y = cy;
       }
     }
   }
   return seen;
+}
+
+/// `places` keeps only the cells whose bit is set in `seen` (seenFromNear's bits of an image of its size).
+void keepSeen(cv::Mat& places, const CellBits& seen) {
+  const auto cols = static_cast<std::size_t>(places.cols);
+  for (int y = 0; y < places.rows; ++y) {
+    unsigned char* row = places.ptr<unsigned char>(y);
+    const std::size_t base = static_cast<std::size_t>(y) * cols;
+    for (std::size_t x = 0; x < cols; ++x)
+      if (row[x] && !((seen[(base + x) >> 6] >> ((base + x) & 63)) & 1)) row[x] = 0;
+  }
 }
 
 /// Step 3: the 8-connected groups of `places` of at least `min_cells` that, when the path is known, the path enters
@@ -139,7 +153,7 @@ PreparedMap prepareMap(const places::OccupancyImage& occ, const MapPreparationOp
         if (samples.empty() || std::hypot(p.x - samples.back().x, p.y - samples.back().y) * res >= o.path_step)
           samples.push_back(p);
       const std::size_t before = count(places);
-      places &= seenFromNear(free, samples, o.view_range / res, threads);
+      keepSeen(places, seenFromNear(free, samples, o.view_range / res, threads));
       r.removed_far = before - count(places);
     }
     const std::size_t before = count(places);
