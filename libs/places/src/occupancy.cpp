@@ -60,7 +60,12 @@ std::size_t openFreeSpace(OccupancyImage& occ, double radius) {
 }
 
 std::size_t countFree(const OccupancyImage& occ) {
-  return occ.cells.empty() ? 0 : static_cast<std::size_t>(cv::countNonZero(occ.cells == kFree));
+  std::size_t n = 0;  // counted in place: no mask image of the map
+  for (int y = 0; y < occ.cells.rows; ++y) {
+    const unsigned char* c = occ.cells.ptr<unsigned char>(y);
+    for (int x = 0; x < occ.cells.cols; ++x) n += c[x] == kFree;
+  }
+  return n;
 }
 
 }  // namespace gridtopo::places
