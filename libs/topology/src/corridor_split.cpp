@@ -111,9 +111,8 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   // component numbers.
   const cv::Mat branches = sk & ~small_zone;
   const RunComponents branch_comps(branches, true, 8);
-  std::vector<int> branch_id(branch_comps.root.size(), 0);
   int nb = 0;
-  for (const int c : rootsInBlockOrder(branches, branch_comps)) branch_id[static_cast<std::size_t>(c)] = ++nb;
+  const std::vector<int> branch_id = numbersInBlockOrder(branches, branch_comps, nb);
   const bool narrow = static_cast<long long>(junctions) + nb < 0xffff;
   // The zones' runs with their numbers are kept and the zone image let go before the pieces' image exists.
   int nz = 0;
@@ -123,8 +122,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   std::vector<ZoneRun> zone_runs;
   {
     const RunComponents zone_comps(zone, true, 8);
-    std::vector<int> zone_id(zone_comps.root.size(), 0);
-    for (const int c : rootsInBlockOrder(zone, zone_comps)) zone_id[static_cast<std::size_t>(c)] = ++nz;
+    const std::vector<int> zone_id = numbersInBlockOrder(zone, zone_comps, nz);
     zone_runs.reserve(zone_comps.root.size());
     std::size_t run = 0;
     forEachRun(zone, true, [&](int y, int x0, int x1) {

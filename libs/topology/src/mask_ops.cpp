@@ -66,6 +66,13 @@ std::vector<int> rootsInBlockOrder(const cv::Mat& mask, const RunComponents& com
   return roots;
 }
 
+std::vector<int> numbersInBlockOrder(const cv::Mat& mask, const RunComponents& comps, int& count) {
+  std::vector<int> number(comps.root.size(), 0);
+  count = 0;
+  for (const int c : rootsInBlockOrder(mask, comps)) number[static_cast<std::size_t>(c)] = ++count;
+  return number;
+}
+
 std::size_t RunComponents::componentsOfAtLeast(double min_cells) const {
   std::size_t n = 0;
   for (std::size_t i = 0; i < root.size(); ++i)

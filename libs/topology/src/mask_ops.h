@@ -40,6 +40,10 @@ void forEachRun(const cv::Mat& mask, bool nonzero, F&& f) {
 /// block-based) numbers them, without its image of component numbers.
 std::vector<int> rootsInBlockOrder(const cv::Mat& mask, const RunComponents& comps);
 
+/// Per run of `comps`' numbering, its component's number 1, 2, ... in rootsInBlockOrder's order (indexed by root;
+/// other entries 0), and in `count` how many there are.
+std::vector<int> numbersInBlockOrder(const cv::Mat& mask, const RunComponents& comps, int& count);
+
 /// Copy of `mask` (CV_8U, 0 / 255) with its small holes set to 255: the 4-connected components of zero cells that
 /// touch no image border, have at most `max_cells` cells and, when `veto` (CV_8U, same size) is given, hold no
 /// cell where veto != 0.

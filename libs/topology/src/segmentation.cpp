@@ -3,7 +3,6 @@
 #include <opencv2/imgproc.hpp>
 #include <algorithm>
 #include <functional>
-#include <limits>
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
