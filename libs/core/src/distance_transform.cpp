@@ -107,8 +107,7 @@ cv::Mat preciseDistance(const cv::Mat& mask) {
 cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
   CV_Assert(mask.type() == CV_8U);
   const int m = mask.rows, n = mask.cols;
-  cv::Mat out(m, n, CV_8U, cv::Scalar(0));
-  if (m == 0 || n == 0 || max_distance < 0) return out;
+  if (m == 0 || n == 0 || max_distance < 0) return cv::Mat(m, n, CV_8U, cv::Scalar(0));
   // The largest integer squared distance whose float root (as preciseDistance gives it) is within max_distance,
   // compared as cv::compare(preciseDistance(mask), max_distance, CMP_LE) does: the threshold rounded to a float
   // (0.3 / 0.05 = 5.999999999999999 is 6).
@@ -120,12 +119,13 @@ cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
   int reach = 0;  // the largest vertical (or horizontal) distance that can be within: floor(sqrt(max_sq))
   while (static_cast<long long>(reach + 1) * (reach + 1) <= max_sq) ++reach;
   if (reach >= 255) {
-    cv::Mat d = preciseDistance(mask);
-    cv::compare(d, max_distance, out, cv::CMP_LE);
+    cv::Mat out;
+    cv::compare(preciseDistance(mask), max_distance, out, cv::CMP_LE);
     return out;
   }
   const int cap = reach + 1;  // "further than reach"
-  // Column pass: per cell, the vertical distance to the nearest zero cell of its column, capped at `cap`.
+  // Column pass: per cell, the vertical distance to the nearest zero cell of its column, capped at `cap`. The row
+  // pass then writes each row's result over that row's distances (it reads no other row): one image in all.
   cv::Mat vert(m, n, CV_8U);
   {
     std::vector<unsigned char> run(static_cast<std::size_t>(n), static_cast<unsigned char>(cap));
@@ -167,7 +167,7 @@ cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
         ++diff[static_cast<std::size_t>(std::max(0, x - w))];
         --diff[static_cast<std::size_t>(std::min(n, x + w + 1))];
       }
-      unsigned char* o = out.ptr<unsigned char>(y);
+      unsigned char* o = vert.ptr<unsigned char>(y);  // the row's distances are read: its result goes over them
       int on = 0;
       for (int x = 0; x < n; ++x) {
         on += diff[static_cast<std::size_t>(x)];
@@ -175,7 +175,7 @@ cv::Mat withinDistance(const cv::Mat& mask, double max_distance) {
       }
     }
   }, m / 64.0);
-  return out;
+  return vert;
 }
 
 cv::Mat nearestZero(const cv::Mat& mask) {
