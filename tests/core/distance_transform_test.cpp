@@ -126,8 +126,9 @@ TEST(DistanceTransform, ExactOnMapsWiderAndTallerThan4096Cells) {
 // the exact roots of integers and the half-cell steps the map preparation uses) and on masks with long gaps.
 TEST(DistanceTransform, WithinDistanceIsTheThresholdOfThePreciseDistance) {
   cv::RNG rng(11);
-  for (int trial = 0; trial < 40; ++trial) {
-    const int rows = 1 + rng.uniform(0, 160), cols = 1 + rng.uniform(0, 220);
+  for (int trial = 0; trial < 44; ++trial) {
+    // The last trials wider than a block of the column pass (1024 columns), at an odd width.
+    const int rows = 1 + rng.uniform(0, 160), cols = trial < 40 ? 1 + rng.uniform(0, 220) : 2049 + rng.uniform(0, 700);
     const double density = trial % 4 == 0 ? 0.001 : trial % 4 == 1 ? 0.01 : trial % 4 == 2 ? 0.1 : 0.5;
     const cv::Mat mask = randomZeros(rng, rows, cols, density);
     const cv::Mat d = gridtopo::preciseDistance(mask);
