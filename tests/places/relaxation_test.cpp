@@ -180,19 +180,28 @@ TEST(Relaxation, RingOfIntegralRowsEqualsTheWholeIntegralImage) {
   }
 }
 
+namespace {
+// A 240 x 160 cell building drawn over `cells` (its top-left 240 x 160 cells): a corridor along the top, two rooms
+// below it with a door each onto it, a piece of furniture in the left room; walls elsewhere.
+void drawRoomsAndCorridor(cv::Mat cells) {
+  cells(cv::Rect(0, 0, 240, 160)).setTo(kOccupied);
+  cells(cv::Rect(5, 5, 230, 30)).setTo(kFree);    // corridor
+  cells(cv::Rect(5, 40, 110, 110)).setTo(kFree);  // two rooms below it, doors onto it
+  cells(cv::Rect(120, 40, 115, 110)).setTo(kFree);
+  cells(cv::Rect(40, 35, 18, 5)).setTo(kFree);
+  cells(cv::Rect(160, 35, 18, 5)).setTo(kFree);
+  cells(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+}
+}  // namespace
+
 TEST(Labelling, StripesOfTheLatticeGiveTheWholeLatticesProbabilities) {
   // classifyLattice takes the lattice a stripe of block rows at a time (labelPlaces: at most kStripeSamples): the
   // classifier's output is the same bits for stripes of one block row, of a few hundred samples and of the whole
   // lattice, with the shipped model, on rooms and a corridor with clutter.
   OccupancyImage occ;
   occ.resolution = 0.05;
-  occ.cells = cv::Mat(160, 240, CV_8U, cv::Scalar(kOccupied));
-  occ.cells(cv::Rect(5, 5, 230, 30)).setTo(kFree);    // corridor
-  occ.cells(cv::Rect(5, 40, 110, 110)).setTo(kFree);  // two rooms below it, doors onto it
-  occ.cells(cv::Rect(120, 40, 115, 110)).setTo(kFree);
-  occ.cells(cv::Rect(40, 35, 18, 5)).setTo(kFree);
-  occ.cells(cv::Rect(160, 35, 18, 5)).setTo(kFree);
-  occ.cells(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+  occ.cells = cv::Mat(160, 240, CV_8U);
+  drawRoomsAndCorridor(occ.cells);
   occ.cells(cv::Rect(150, 60, 30, 4)).setTo(kUnknown);
   const PlacesModel model = PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
   const Lattice lat = buildLattice(occ, model.scan.lattice_spacing);
@@ -247,15 +256,7 @@ TEST(Labelling, WithoutTheGridsTheLabelsAreTheSame) {
   OccupancyImage occ;
   occ.resolution = 0.05;
   occ.cells = cv::Mat(420, 530, CV_8U, cv::Scalar(kUnknown));
-  const cv::Rect building(263, 171, 240, 160);
-  occ.cells(building).setTo(kOccupied);
-  cv::Mat b = occ.cells(building);
-  b(cv::Rect(5, 5, 230, 30)).setTo(kFree);
-  b(cv::Rect(5, 40, 110, 110)).setTo(kFree);
-  b(cv::Rect(120, 40, 115, 110)).setTo(kFree);
-  b(cv::Rect(40, 35, 18, 5)).setTo(kFree);
-  b(cv::Rect(160, 35, 18, 5)).setTo(kFree);
-  b(cv::Rect(60, 80, 10, 25)).setTo(kOccupied);
+  drawRoomsAndCorridor(occ.cells(cv::Rect(263, 171, 240, 160)));
   const PlacesModel model = PlacesModel::load(std::string(GRIDTOPO_DATA_DIR) + "/models/places_model.yml");
   const LabellingResult with = labelPlaces(occ, model, RelaxationOptions(), 2, "<map>", {}, false, true, true);
   const LabellingResult without = labelPlaces(occ, model, RelaxationOptions(), 2, "<map>", {}, false, false, false);

@@ -131,21 +131,15 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
   }
   zone.release();
   pieces = cv::Mat(mask.size(), narrow ? CV_16U : CV_32S, cv::Scalar(0));
-  for (const ZoneRun& z : zone_runs) {
-    if (narrow)
-      std::fill(pieces.ptr<unsigned short>(z.y) + z.x0, pieces.ptr<unsigned short>(z.y) + z.x1 + 1, static_cast<unsigned short>(z.id));
-    else
-      std::fill(pieces.ptr<int>(z.y) + z.x0, pieces.ptr<int>(z.y) + z.x1 + 1, z.id);
-  }
-  const auto pieceAt = [&](cv::Point p) { return narrow ? int(pieces.at<unsigned short>(p)) : pieces.at<int>(p); };
+  for (const ZoneRun& z : zone_runs) setIds(pieces, z.y, z.x0, z.x1, z.id);
+  const auto pieceAt = [&](cv::Point p) { return idAt(pieces, p.y, p.x); };
   std::size_t run = 0;
   forEachRun(branches, true, [&](int y, int x0, int x1) {
     const int b = branch_id[static_cast<std::size_t>(branch_comps.root[run++])];
     for (int x = x0; x <= x1; ++x) {
       const cv::Point p = toFull(x, y);
       if (p.x >= mask.cols || p.y >= mask.rows || !mask.at<unsigned char>(p) || pieceAt(p)) continue;
-      if (narrow) pieces.at<unsigned short>(p) = static_cast<unsigned short>(nz + b);
-      else pieces.at<int>(p) = nz + b;
+      setIds(pieces, p.y, p.x, p.x, nz + b);
     }
   });
   // Geodesic growth inside the region (breadth-first, 8-connected).
@@ -179,8 +173,7 @@ int splitOne(const cv::Mat& mask, double resolution, const CorridorSplitOptions&
       const int v = pieceAt({x, y});
       if (!v) continue;
       const int k = renum.emplace(merge.root(v), static_cast<int>(renum.size()) + 1).first->second;
-      if (narrow) pieces.at<unsigned short>(y, x) = static_cast<unsigned short>(k);  // k <= v: fits
-      else pieces.at<int>(y, x) = k;
+      setIds(pieces, y, x, x, k);  // k <= v: fits
     }
   return static_cast<int>(renum.size());
 }
@@ -284,9 +277,7 @@ RegionMap splitCorridors(RegionMap&& rm, double resolution, const CorridorSplitO
     std::vector<cv::Rect> box(static_cast<std::size_t>(k));
     for (int y = 0; y < mask.rows; ++y)
       for (int x = 0; x < mask.cols; ++x) {
-        const int p = pieces.empty()                ? (mask.at<unsigned char>(y, x) ? 1 : 0)
-                      : pieces.type() == CV_16U ? pieces.at<unsigned short>(y, x)
-                                                : pieces.at<int>(y, x);
+        const int p = pieces.empty() ? (mask.at<unsigned char>(y, x) ? 1 : 0) : idAt(pieces, y, x);
         if (!p) continue;
         const int gx = x + off.x, gy = y + off.y;
         ids.at<int>(gy, gx) = -(base + p);  // pieces lie inside the mask: only this region's cells are written

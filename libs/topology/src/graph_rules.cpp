@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gridtopo/places/place_label.h"
+#include "mask_ops.h"
 #include "region_merge.h"
 
 namespace gridtopo::topology {
@@ -55,16 +56,13 @@ namespace {
 // map), else over a copy. While the pieces are found, a cell already in a piece holds minus the piece's number.
 RegionMap splitRoomsBySegmentsIn(const RegionMap& rm, const cv::Mat& segmentation, double resolution, bool in_place) {
   CV_Assert((segmentation.type() == CV_32S || segmentation.type() == CV_16U) && segmentation.size() == rm.ids.size());
-  const bool seg16 = segmentation.type() == CV_16U;
   constexpr int kRoom = static_cast<int>(places::PlaceLabel::Room);
   cv::Mat ids = in_place ? rm.ids : rm.ids.clone();
   // A cell's key: its region, and for room cells also its segment. Pieces are the 8-connected sets of equal keys,
   // found by flood fill row by row (so each region's pieces come in the order of their first cell).
   const auto key = [&](int y, int x) {
     const int id = ids.at<int>(y, x);
-    const int seg = id > 0 && rm.region(id).label == kRoom
-                          ? (seg16 ? segmentation.at<unsigned short>(y, x) : segmentation.at<int>(y, x))
-                          : 0;
+    const int seg = id > 0 && rm.region(id).label == kRoom ? idAt(segmentation, y, x) : 0;
     return std::make_pair(id, seg);
   };
   std::vector<int> region_of{0};  // piece -> input region

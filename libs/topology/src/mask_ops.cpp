@@ -95,12 +95,8 @@ void fillSmallHolesInPlace(cv::Mat& mask, double max_cells, const cv::Mat& veto,
     const int vy = y - veto_offset.y;
     if (veto.empty() || vy < 0 || vy >= veto.rows) return false;
     const int a = std::max(x0 - veto_offset.x, 0), b = std::min(x1 - veto_offset.x, veto.cols - 1);
-    for (int x = a; x <= b; ++x) {
-      const bool v = veto.type() == CV_8U    ? veto.at<unsigned char>(vy, x) != 0
-                     : veto.type() == CV_16U ? veto.at<unsigned short>(vy, x) != 0
-                                             : veto.at<int>(vy, x) != 0;
-      if (v) return true;
-    }
+    for (int x = a; x <= b; ++x)
+      if (idAt(veto, vy, x)) return true;
     return false;
   };
   // The 4-connected components of zero cells from their runs (RunComponents: no image of component numbers, which

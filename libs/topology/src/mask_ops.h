@@ -2,6 +2,7 @@
 // Mask operations shared by the segmentation rule S1, the blob vote and the corridor pieces (library-internal).
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace gridtopo::topology {
@@ -16,6 +17,23 @@ struct RunComponents {
   /// The roots of the components of at least `min_cells` cells.
   std::size_t componentsOfAtLeast(double min_cells) const;
 };
+
+/// The value at (y, x) of an id image (region ids, segments, pieces: CV_16U or CV_32S; a CV_8U mask too) as an int.
+inline int idAt(const cv::Mat& ids, int y, int x) {
+  switch (ids.depth()) {
+    case CV_8U: return ids.at<unsigned char>(y, x);
+    case CV_16U: return ids.at<unsigned short>(y, x);
+    default: return ids.at<int>(y, x);
+  }
+}
+
+/// Writes `id` into cells x0..x1 of row y of an id image (CV_16U, where it must fit, or CV_32S).
+inline void setIds(cv::Mat& ids, int y, int x0, int x1, int id) {
+  if (ids.depth() == CV_16U)
+    std::fill(ids.ptr<unsigned short>(y) + x0, ids.ptr<unsigned short>(y) + x1 + 1, static_cast<unsigned short>(id));
+  else
+    std::fill(ids.ptr<int>(y) + x0, ids.ptr<int>(y) + x1 + 1, id);
+}
 
 /// Calls f(y, x0, x1) for each run [x0, x1] of row y of the non-zero (`nonzero`) or zero cells of `mask`, in
 /// row-major order (RunComponents' numbering).

@@ -121,15 +121,12 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
   CV_Assert(seg.type() == CV_32S || seg.type() == CV_16U);
   if (o.neck_width <= 0) return;
   const int K = segmentCount(seg);
-  const auto at = [&seg](int y, int x) {
-    return seg.type() == CV_16U ? static_cast<int>(seg.at<unsigned short>(y, x)) : seg.at<int>(y, x);
-  };
   // Bounding boxes of the segments.
   std::vector<cv::Rect> box(static_cast<std::size_t>(K) + 1);
   std::vector<int> x0(box.size(), seg.cols), y0(box.size(), seg.rows), x1(box.size(), -1), y1(box.size(), -1);
   for (int y = 0; y < seg.rows; ++y)
     for (int x = 0; x < seg.cols; ++x) {
-      const int s = at(y, x);
+      const int s = idAt(seg, y, x);
       if (s <= 0) continue;
       const auto i = static_cast<std::size_t>(s);
       x0[i] = std::min(x0[i], x), y0[i] = std::min(y0[i], y), x1[i] = std::max(x1[i], x), y1[i] = std::max(y1[i], y);
@@ -174,21 +171,15 @@ void splitAtNecksInPlace(cv::Mat& seg, double resolution, const SegmentationRule
     std::size_t run = 0;
     forEachRun(core, true, [&](int y, int x0, int x1) {
       const int id = part_id[static_cast<std::size_t>(comps.root[run++])];
-      if (!id) return;
-      if (own.type() == CV_16U)
-        std::fill(own.ptr<unsigned short>(y) + x0, own.ptr<unsigned short>(y) + x1 + 1, static_cast<unsigned short>(id));
-      else
-        std::fill(own.ptr<int>(y) + x0, own.ptr<int>(y) + x1 + 1, id);
+      if (id) setIds(own, y, x0, x1, id);
     });
     core.release();
     growSeeds(own, area);
     area.release();
     for (int y = 0; y < r.height; ++y)
       for (int x = 0; x < r.width; ++x) {
-        const int id = own.type() == CV_16U ? own.at<unsigned short>(y + 1, x + 1) : own.at<int>(y + 1, x + 1);
-        if (!id || at(r.y + y, r.x + x) != s) continue;
-        if (seg.type() == CV_16U) seg.at<unsigned short>(r.y + y, r.x + x) = static_cast<unsigned short>(id);
-        else seg.at<int>(r.y + y, r.x + x) = id;
+        const int id = idAt(own, y + 1, x + 1);
+        if (id && idAt(seg, r.y + y, r.x + x) == s) setIds(seg, r.y + y, r.x + x, r.x + x, id);
       }
   }
 }

@@ -12,6 +12,7 @@
 #include "gridtopo/places/labelling.h"
 #include "gridtopo/topology/export.h"
 #include "gridtopo/topology/mrpt_graph.h"
+#include "mask_ops.h"
 #include "gridtopo/topology/segmentation.h"
 
 namespace gridtopo::topology {
@@ -76,22 +77,14 @@ void addTopologyOutputs(OutputSet& outs, const std::string& dir, const places::O
       auto* o = reinterpret_cast<unsigned short*>(out);
       std::fill(o, o + map_size.width, static_cast<unsigned short>(0));
       if (y < seg.y || y >= seg.y + seg.height) return;
-      if (topo.segmentation.type() == CV_16U) {
-        const unsigned short* s = topo.segmentation.ptr<unsigned short>(y - seg.y);
-        std::copy(s, s + seg.width, o + seg.x);
-        return;
-      }
-      const int* s = topo.segmentation.ptr<int>(y - seg.y);
-      for (int x = 0; x < seg.width; ++x) o[seg.x + x] = static_cast<unsigned short>(std::max(0, s[x]));
+      for (int x = 0; x < seg.width; ++x)
+        o[seg.x + x] = static_cast<unsigned short>(std::max(0, idAt(topo.segmentation, y - seg.y, x)));
     });
     rows("segmentation_colour.png", CV_8UC3, [&](int y, unsigned char* out) {
       std::fill(out, out + 3 * map_size.width, static_cast<unsigned char>(0));
       if (y < seg.y || y >= seg.y + seg.height) return;
-      const bool s16 = topo.segmentation.type() == CV_16U;
-      const int* s = s16 ? nullptr : topo.segmentation.ptr<int>(y - seg.y);
-      const unsigned short* s_16 = s16 ? topo.segmentation.ptr<unsigned short>(y - seg.y) : nullptr;
       for (int x = 0; x < seg.width; ++x) {
-        const cv::Vec3b c = segmentColour(s16 ? s_16[x] : s[x]);
+        const cv::Vec3b c = segmentColour(idAt(topo.segmentation, y - seg.y, x));
         std::copy(c.val, c.val + 3, out + 3 * (seg.x + x));
       }
     });
