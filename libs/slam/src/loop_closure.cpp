@@ -75,9 +75,10 @@ LoopCloser::LoopCloser(const LoopClosureOptions& options, const MotionModelOptio
 }
 
 LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
-                                    const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
+                                    const Pose2& motion, const Pose2* odometry, const PreparedScan& scan,
+                                    bool matched) {
   LoopClosureStep step;
-  addFilterMotion(scan_index, timestamp, filter_pose, motion, odometry, scan);
+  addFilterMotion(scan_index, timestamp, filter_pose, motion, odometry, scan, matched);
   const std::size_t i = nodes_.size() - 1;
   step.newest_before = step.newest_after = graph_.pose(i);
   {
@@ -121,9 +122,9 @@ LoopClosureStep LoopCloser::addScan(std::size_t scan_index, double timestamp, co
 std::vector<Pose2> LoopCloser::finalPoses() const {
   PoseGraph g = graph_;
   if (filter_path_) {
-    const std::vector<Pose2> path = filter_path_();
+    const std::vector<FilterStep> path = filter_path_();
     if (path.size() == nodes_.size()) {
-      if (closures_.empty()) return path;
+      if (closures_.empty()) return posesOf(path);
       setMotionEdges(path, g);
     }
   }
@@ -140,13 +141,22 @@ PoseGraphSolveOptions LoopCloser::solveOptions() const {
   return so;
 }
 
-void LoopCloser::setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const {
+void LoopCloser::setMotionEdges(const std::vector<FilterStep>& path, PoseGraph& g) const {
   for (std::size_t k = 1; k < path.size(); ++k) {
     const auto change = frame_changes_.find(k);
-    const Pose2 from = change == frame_changes_.end() ? path[k - 1] : compose(change->second, path[k - 1]);
+    const Pose2& before = path[k - 1].estimate;
+    const Pose2 from = change == frame_changes_.end() ? before : compose(change->second, before);
     const Pose2* odometry = nodes_[k].odometry ? &*nodes_[k].odometry : nullptr;
-    g.replaceEdge(nodes_[k].motion_edge, motionEdge(k - 1, relative(from, path[k]), odometry));
+    g.replaceEdge(nodes_[k].motion_edge,
+                  motionEdge(k - 1, relative(from, path[k].estimate), odometry, path[k].matched));
   }
+}
+
+std::vector<Pose2> LoopCloser::posesOf(const std::vector<FilterStep>& path) {
+  std::vector<Pose2> poses;
+  poses.reserve(path.size());
+  for (const FilterStep& s : path) poses.push_back(s.estimate);
+  return poses;
 }
 
 std::vector<Pose2> LoopCloser::poses() const {
@@ -156,9 +166,10 @@ std::vector<Pose2> LoopCloser::poses() const {
 }
 
 void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose,
-                                 const Pose2& motion, const Pose2* odometry, const PreparedScan& scan) {
+                                 const Pose2& motion, const Pose2* odometry, const PreparedScan& scan, bool matched) {
   Node n;
   if (odometry) n.odometry = *odometry;
+  n.matched = matched;
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);
@@ -186,7 +197,7 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
   } else {
     const std::size_t prev = nodes_.size() - 1;
     graph_.addNode(compose(graph_.pose(prev), motion));
-    const PoseGraphEdge e = motionEdge(prev, motion, odometry);
+    const PoseGraphEdge e = motionEdge(prev, motion, odometry, matched);
     n.motion_edge = graph_.addEdge(e);
   }
   nodes_.push_back(std::move(n));
@@ -207,7 +218,8 @@ std::optional<LoopCloser::Disagreement> LoopCloser::suspectDisagreement(const Po
                       std::abs(wrapAngle(motion.theta - odometry->theta))};
 }
 
-PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const {
+PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry,
+                                     bool matched) const {
   // A step where the filter and the odometry disagree beyond the motion model's noise is suspect: one of them is
   // wrong (a filter that followed something moving with the robot, or an odometry that slipped). Its edge is
   // weakened by the difference, so that a closure can bend it (and the search windows of paths through it widen).
@@ -216,20 +228,27 @@ PoseGraphEdge LoopCloser::motionEdge(std::size_t prev, const Pose2& motion, cons
   e.a = prev;
   e.b = prev + 1;
   e.z = motion;
-  const double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * std::hypot(motion.x, motion.y) + d.xy;
-  const double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + d.theta;
+  double sxy = o_.odometry_sigma_xy + o_.odometry_sigma_xy_per_m * std::hypot(motion.x, motion.y) + d.xy;
+  double st = o_.odometry_sigma_theta + o_.odometry_sigma_theta_per_rad * std::abs(motion.theta) + d.theta;
+  if (!matched && o_.unmatched_steps_as_odometry) {
+    // The match failed: the pose is a draw from the motion model around the odometry (or around no motion without
+    // odometry), as uncertain as the model says, not a match good to millimetres.
+    const OdometryMotionModel::Sigmas m = motion_.sigmas(odometry ? *odometry : motion, odometry != nullptr);
+    sxy = std::hypot(sxy, m.xy);
+    st = std::hypot(st, m.theta);
+  }
   e.sqrt_information = sqrtInformationOfSigmas(sxy, sxy, st);
   return e;
 }
 
 void LoopCloser::adoptFilterPath() {
   if (!filter_path_) return;
-  const std::vector<Pose2> path = filter_path_();
+  const std::vector<FilterStep> path = filter_path_();
   if (path.size() != nodes_.size()) return;
   setMotionEdges(path, graph_);
   // Without a closure the graph is the filter's path itself.
   if (closures_.empty())
-    for (std::size_t k = 0; k < path.size(); ++k) graph_.setPose(k, path[k]);
+    for (std::size_t k = 0; k < path.size(); ++k) graph_.setPose(k, path[k].estimate);
 }
 
 Eigen::Matrix3d LoopCloser::closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
@@ -272,7 +291,7 @@ Eigen::Matrix3d LoopCloser::closureSqrtInformation(const CorrelationGrid& grid, 
 std::vector<Pose2> LoopCloser::localGeometry() const {
   // With feedback the filter's path changes frame at the corrected nodes: the graph's poses then.
   if (filter_path_ && frame_changes_.empty()) {
-    std::vector<Pose2> path = filter_path_();
+    std::vector<Pose2> path = posesOf(filter_path_());
     if (path.size() == nodes_.size()) return path;
   }
   return poses();

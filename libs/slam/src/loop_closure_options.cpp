@@ -69,6 +69,8 @@ const OptionSchema<LoopClosureOptions>& loopClosureOptionSchema() {
                "reject a new closure still this far off after the optimisation (0 = keep all)")
           .add("disagreement_sigmas", &O::disagreement_sigmas, R::atLeast(0), "sigma",
                "filter vs odometry disagreement (motion-model deviations) above which a step is suspect")
+          .add("unmatched_steps_as_odometry", &O::unmatched_steps_as_odometry, R::any(), "",
+               "a step whose scan match failed gets the motion model's deviations")
           .add("optimize_every", &O::optimize_every, R::closed(1, 1000000), "", "processed scans between optimisations")
           .add("max_iterations", &O::max_iterations, R::closed(1, 10000), "", "solver iterations per optimisation")
           .add("feedback", &O::feedback, R::any(), "", "the particles continue from the optimised poses and map")

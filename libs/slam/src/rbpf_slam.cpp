@@ -81,7 +81,9 @@ bool RbpfSlam::processScan(const ScanRecord& record) {
     const std::vector<ProposalPlan> plans = matchAndFitProposals(groups, u, odo.available, scan);
     std::vector<Pose2> estimates;
     const std::vector<Pose2> poses = sampleFromProposals(groups, plans, u, odo.available, scan, st, estimates);
-    updateMaps(poses, estimates, scan, index);
+    std::vector<char> matched(n);
+    for (std::size_t i = 0; i < n; ++i) matched[i] = plans[groups.group_of[i]].matched;
+    updateMaps(poses, estimates, matched, scan, index);
     const std::vector<double> w = normaliseWeights();
     st.neff = effectiveSampleSize(w);
     const std::size_t maximum = static_cast<std::size_t>(o_.particles);
@@ -238,12 +240,14 @@ std::vector<Pose2> RbpfSlam::sampleFromProposals(const ProposalGroups& groups, c
 }
 
 void RbpfSlam::updateMaps(const std::vector<Pose2>& poses, const std::vector<Pose2>& estimates,
-                          const PreparedScan& scan, std::size_t index) {
+                          const std::vector<char>& matched, const PreparedScan& scan, std::size_t index) {
   pool_->parallelFor(particles_.size(), [&](std::size_t i) {
     Particle& p = particles_[i];
     p.pose = poses[i];
     p.map.insertScan(p.pose, scan.sensor, scan.map_beams, o_.map);
-    p.node = std::make_shared<const TrajectoryNode>(p.pose, estimates[i], index, p.node);
+    auto node = std::make_shared<TrajectoryNode>(p.pose, estimates[i], index, p.node);
+    node->matched = matched[i] != 0;
+    p.node = std::move(node);
   });
 }
 
@@ -374,9 +378,12 @@ void RbpfSlam::applyCorrection(const Pose2& correction, const GridMap& map) {
   for (Particle& p : particles_) {
     p.pose = compose(correction, p.pose);
     p.map = map;
-    if (p.node)
-      p.node = std::make_shared<const TrajectoryNode>(p.pose, compose(correction, p.node->estimate),
-                                                      p.node->scan_index, p.node->parent);
+    if (p.node) {
+      auto node = std::make_shared<TrajectoryNode>(p.pose, compose(correction, p.node->estimate),
+                                                   p.node->scan_index, p.node->parent);
+      node->matched = p.node->matched;
+      p.node = std::move(node);
+    }
   }
 }
 

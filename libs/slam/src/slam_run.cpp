@@ -104,8 +104,8 @@ void SlamRun::startLoopCloser() {
   // The motion edges follow the best particle's path as it is at each optimisation: resampling has pruned it of
   // the lineages that died out since (a fixed-lag smoother's view of the filter's motion).
   closer_->setFilterPath([this] {
-    std::vector<Pose2> path;
-    for (const TrajectoryNode* n : pathOf(closer_node_)) path.push_back(n->estimate);
+    std::vector<LoopCloser::FilterStep> path;
+    for (const TrajectoryNode* n : pathOf(closer_node_)) path.push_back({n->estimate, n->matched});
     return path;
   });
 }
@@ -130,7 +130,7 @@ void SlamRun::closeLoops(std::size_t index) {
     closer_jobs_.push_back([this, node, index, t = record.scan.timestamp, motion, odometry,
                             scan = filter_->lastPreparedScan()] {
       closer_node_ = node;
-      closer_->addScan(index, t, node->estimate, motion, odometry ? &*odometry : nullptr, scan);
+      closer_->addScan(index, t, node->estimate, motion, odometry ? &*odometry : nullptr, scan, node->matched);
     });
     lock.unlock();
     closer_wake_.notify_one();
@@ -138,7 +138,8 @@ void SlamRun::closeLoops(std::size_t index) {
   }
   closer_node_ = node;
   const LoopClosureStep step = closer_->addScan(index, record.scan.timestamp, node->estimate, motion,
-                                                odometry ? &*odometry : nullptr, filter_->lastPreparedScan());
+                                                odometry ? &*odometry : nullptr, filter_->lastPreparedScan(),
+                                                node->matched);
   if (!step.feedback) return;
   // The filter goes on from the optimised estimate: every particle moved by the correction that takes the best
   // particle's estimate to the optimised pose, in the map of the optimised poses.

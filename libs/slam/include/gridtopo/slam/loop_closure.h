@@ -103,13 +103,19 @@ class LoopCloser {
   /// that much weaker and the search window that much wider.
   /// Where the motion edges come from at each optimisation and at the end: the filter's current best path (one
   /// pose per node so far). Without it the edges keep the motion given to addScan (the best particle's then).
-  void setFilterPath(std::function<std::vector<Pose2>()> path) { filter_path_ = std::move(path); }
+  /// Each step also says whether its pose came from a scan match (see LoopClosureOptions::unmatched_steps_as_odometry).
+  struct FilterStep {
+    Pose2 estimate;
+    bool matched = true;
+  };
+  void setFilterPath(std::function<std::vector<FilterStep>()> path) { filter_path_ = std::move(path); }
   /// The filter was moved by `correction` (x ↦ correction ⊕ x) at the newest node (feedback): its path changes
   /// frame there, which the motion edge into that node takes into account.
   void noteFilterCorrection(const Pose2& correction) { frame_changes_[nodes_.size() - 1] = correction; }
 
+  /// `matched`: whether the filter's newest pose came from its scan match (false: drawn from the motion model).
   LoopClosureStep addScan(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
-                          const Pose2* odometry, const PreparedScan& scan);
+                          const Pose2* odometry, const PreparedScan& scan, bool matched = true);
   /// A closure from outside the search (a person's, a fiducial's, a test's): the newest node seen from node `from`
   /// at `z` (in `from`'s frame), with deviations `sigma_xy` (m) and `sigma_theta` (rad). It is judged as the
   /// windowed search's closures are: Huber loss, and left out when it still disagrees by more than
@@ -140,6 +146,7 @@ class LoopCloser {
     std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
     Point2 sensor;                ///< the laser's position in the robot frame (where the points' beams start)
     std::optional<Pose2> odometry;  ///< the odometry's motion since the previous node
+    bool matched = true;            ///< the filter's pose came from its scan match (as given to addScan)
     std::size_t motion_edge = 0;    ///< the edge from the previous node (none for the first)
   };
   struct Submap {
@@ -151,7 +158,7 @@ class LoopCloser {
   };
 
   void addFilterMotion(std::size_t scan_index, double timestamp, const Pose2& filter_pose, const Pose2& motion,
-                       const Pose2* odometry, const PreparedScan& scan);
+                       const Pose2* odometry, const PreparedScan& scan, bool matched);
   void searchForClosures(LoopClosureStep& step, std::size_t node);
   /// The windowed search, again, for the nodes from backfill_from_ to before `newest` (a new loop closed).
   void backfillClosures(LoopClosureStep& step, std::size_t newest);
@@ -237,13 +244,15 @@ class LoopCloser {
   Eigen::Matrix3d closureSqrtInformation(const CorrelationGrid& grid, const std::vector<Point2>& query,
                                          const Pose2& x, double dtheta) const;
   /// The motion edge from node `prev` to the next: `motion` with a deviation widened by a disagreement with the
-  /// odometry beyond the motion model's noise.
-  PoseGraphEdge motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry) const;
+  /// odometry beyond the motion model's noise, and by the motion model's deviations where the match failed.
+  PoseGraphEdge motionEdge(std::size_t prev, const Pose2& motion, const Pose2* odometry, bool matched) const;
   /// The motion edges re-derived from the filter's current best path (filter_path_), whose history resampling
   /// has pruned of the lineages that died out; without closures the nodes take its poses.
   void adoptFilterPath();
   /// The motion edges of `g` from the filter path `path` (one pose per node; frame changes of feedback applied).
-  void setMotionEdges(const std::vector<Pose2>& path, PoseGraph& g) const;
+  void setMotionEdges(const std::vector<FilterStep>& path, PoseGraph& g) const;
+  /// The poses of a filter path.
+  static std::vector<Pose2> posesOf(const std::vector<FilterStep>& path);
   /// How far the filter's motion and the odometry's differ (m, rad), on a suspect step: one where they differ by
   /// more than disagreement_sigmas motion-model deviations (Mahalanobis). None on other steps or without odometry.
   struct Disagreement {
@@ -261,7 +270,7 @@ class LoopCloser {
 
   LoopClosureOptions o_;
   OdometryMotionModel motion_;
-  std::function<std::vector<Pose2>()> filter_path_;
+  std::function<std::vector<FilterStep>()> filter_path_;
   std::map<std::size_t, Pose2> frame_changes_;  ///< node -> the correction applied to the filter at it
   PoseGraph graph_;
   std::vector<Node> nodes_;

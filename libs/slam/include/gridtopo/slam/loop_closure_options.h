@@ -110,6 +110,10 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   /// model (Mahalanobis) is suspect: its motion edge is weakened by the difference, and the difference widens the
   /// search window of every path through it. Below it, the disagreement is odometry noise and the edge stays stiff.
   double disagreement_sigmas = 3.0;
+  /// A step where the best particle's scan match failed (its pose drawn from the odometry motion model, not from
+  /// the match) is as uncertain as the motion model says: its motion edge takes the model's deviations for the
+  /// step (in quadrature with the filter's own). false: every motion edge as stiff as a matched one.
+  bool unmatched_steps_as_odometry = true;
   int optimize_every = 15;      ///< processed scans between optimisations (when a closure was added since)
   int max_iterations = 30;      ///< solver iterations per optimisation
 

@@ -137,7 +137,8 @@ class RbpfSlam {
                                          StepStats& st, std::vector<Pose2>& estimates);
   /// Update the maps: every particle moves to its new pose, inserts the scan there and extends its trajectory
   /// (with the reported estimate of that pose).
-  void updateMaps(const std::vector<Pose2>& poses, const std::vector<Pose2>& estimates, const PreparedScan& scan,
+  void updateMaps(const std::vector<Pose2>& poses, const std::vector<Pose2>& estimates,
+                  const std::vector<char>& matched, const PreparedScan& scan,
                   std::size_t index);
   /// The normalised weights (for N_eff and resampling); the log weights are rebased to a maximum of 0.
   std::vector<double> normaliseWeights();

@@ -15,6 +15,9 @@ struct TrajectoryNode {
   /// estimate of the pose given the particle's past, which lacks the sample's own noise), or the pose itself.
   Pose2 estimate;
   std::size_t scan_index = 0;  ///< index of the scan (in input order) this pose belongs to
+  /// Whether the pose came from the scan match (false: the match failed and the pose was drawn from the odometry
+  /// motion model). The loop closure's motion edge into it is as uncertain as that.
+  bool matched = true;
   std::shared_ptr<const TrajectoryNode> parent;
 
   TrajectoryNode(const Pose2& p, std::size_t scan, std::shared_ptr<const TrajectoryNode> par)
