@@ -112,8 +112,10 @@ struct LoopClosureOptions : TableOptions<LoopClosureOptions, loopClosureOptionSc
   double disagreement_sigmas = 3.0;
   /// A step where the best particle's scan match failed (its pose drawn from the odometry motion model, not from
   /// the match) is as uncertain as the motion model says: its motion edge takes the model's deviations for the
-  /// step (in quadrature with the filter's own). false: every motion edge as stiff as a matched one.
-  bool unmatched_steps_as_odometry = true;
+  /// step (in quadrature with the filter's own). false (the default): every motion edge as stiff as a matched one.
+  /// On, the campus holds with 20 particles and the hospital improves, but a weak wrong closure at the window's
+  /// edge bends a soft stretch of the campus with 30 (doc/journal/2026-12-07-unmatched-steps.md).
+  bool unmatched_steps_as_odometry = false;
   int optimize_every = 15;      ///< processed scans between optimisations (when a closure was added since)
   int max_iterations = 30;      ///< solver iterations per optimisation
 
