@@ -169,7 +169,6 @@ void LoopCloser::addFilterMotion(std::size_t scan_index, double timestamp, const
                                  const Pose2& motion, const Pose2* odometry, const PreparedScan& scan, bool matched) {
   Node n;
   if (odometry) n.odometry = *odometry;
-  n.matched = matched;
   n.scan_index = scan_index;
   n.timestamp = timestamp;
   n.travelled = nodes_.empty() ? 0.0 : nodes_.back().travelled + std::hypot(motion.x, motion.y);

@@ -146,7 +146,6 @@ class LoopCloser {
     std::vector<Point2> points;   ///< matching hits within point_range, robot frame, one per grid cell
     Point2 sensor;                ///< the laser's position in the robot frame (where the points' beams start)
     std::optional<Pose2> odometry;  ///< the odometry's motion since the previous node
-    bool matched = true;            ///< the filter's pose came from its scan match (as given to addScan)
     std::size_t motion_edge = 0;    ///< the edge from the previous node (none for the first)
   };
   struct Submap {
