@@ -80,9 +80,9 @@ bool RbpfSlam::processScan(const ScanRecord& record) {
     const ProposalGroups groups = groupParticles(odo.available);
     const std::vector<ProposalPlan> plans = matchAndFitProposals(groups, u, odo.available, scan);
     std::vector<Pose2> estimates;
-    const std::vector<Pose2> poses = sampleFromProposals(groups, plans, u, odo.available, scan, st, estimates);
-    std::vector<char> matched(n);
-    for (std::size_t i = 0; i < n; ++i) matched[i] = plans[groups.group_of[i]].matched;
+    std::vector<char> matched;
+    const std::vector<Pose2> poses =
+        sampleFromProposals(groups, plans, u, odo.available, scan, st, estimates, matched);
     updateMaps(poses, estimates, matched, scan, index);
     const std::vector<double> w = normaliseWeights();
     st.neff = effectiveSampleSize(w);
@@ -212,7 +212,7 @@ std::vector<ProposalPlan> RbpfSlam::matchAndFitProposals(const ProposalGroups& g
 std::vector<Pose2> RbpfSlam::sampleFromProposals(const ProposalGroups& groups, const std::vector<ProposalPlan>& plans,
                                                  const std::vector<Pose2>& u, bool has_odometry,
                                                  const PreparedScan& scan, StepStats& st,
-                                                 std::vector<Pose2>& estimates) {
+                                                 std::vector<Pose2>& estimates, std::vector<char>& matched) {
   const std::size_t n = particles_.size();
   const std::size_t step = stats_.size();
   std::vector<Pose2> poses(n);
@@ -230,8 +230,10 @@ std::vector<Pose2> RbpfSlam::sampleFromProposals(const ProposalGroups& groups, c
     p.log_weight += dw;
     p.log_weight_total += dw;
   });
+  matched.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    st.failed_matches += !plans[groups.group_of[i]].matched;
+    matched[i] = plans[groups.group_of[i]].matched;
+    st.failed_matches += !matched[i];
     st.evaluations += extra_evals[i];
   }
   for (const auto& pl : plans) st.evaluations += pl.evaluations;

@@ -131,12 +131,13 @@ class RbpfSlam {
                                                  bool has_odometry, const PreparedScan& scan);
   /// Draw every particle's new pose from its group's proposal and weight it (drawFromProposal); the match
   /// failures and likelihood evaluations go into `st`. `estimates` gets the pose each particle reports in the
-  /// trajectory: the informed proposal's mean (proposal_report_mean), else the drawn pose.
+  /// trajectory: the informed proposal's mean (proposal_report_mean), else the drawn pose; `matched` whether its
+  /// group's scan match succeeded (0: drawn from the motion model).
   std::vector<Pose2> sampleFromProposals(const ProposalGroups& groups, const std::vector<ProposalPlan>& plans,
                                          const std::vector<Pose2>& u, bool has_odometry, const PreparedScan& scan,
-                                         StepStats& st, std::vector<Pose2>& estimates);
+                                         StepStats& st, std::vector<Pose2>& estimates, std::vector<char>& matched);
   /// Update the maps: every particle moves to its new pose, inserts the scan there and extends its trajectory
-  /// (with the reported estimate of that pose).
+  /// (with the reported estimate of that pose and whether it came from the match).
   void updateMaps(const std::vector<Pose2>& poses, const std::vector<Pose2>& estimates,
                   const std::vector<char>& matched, const PreparedScan& scan,
                   std::size_t index);
