@@ -5,7 +5,10 @@
 # medians with the ratio B / A, and checks that A and B gave the same trajectory (a speed change should not move
 # the result; "differs" says when it did).
 #   usage: scripts/bench_speed.sh [-r REPS] [-t THREADS] [-p PARTICLES] [-s SEED] [-c INI] [-o OUT] A_BIN_DIR B_BIN_DIR [LOG ...]
-#   e.g.   cp -r build/bin /tmp/bin_old; (change, rebuild); scripts/bench_speed.sh /tmp/bin_old build/bin intel aces
+#   e.g.   mkdir /tmp/old; cp -r build/bin build/lib /tmp/old; (change, rebuild);
+#          scripts/bench_speed.sh /tmp/old/bin build/bin intel aces
+# A binary's libraries are taken from the lib folder beside its bin folder when there is one (the build's RUNPATH
+# names build/lib by its absolute path: a copied bin alone would run with the new libraries).
 # LOG is a name under datasets/slam (intel, aces, mit-csail, fr079, fr-clinic; default: all five) or a path to a
 # .clf(.gz) with a .relations(.gz) beside it. Not a test: a run of the five logs with 3 repetitions takes about
 # 30 minutes on two cores.
@@ -20,7 +23,7 @@ while getopts "r:t:p:s:c:o:" f; do
 done
 shift $((OPTIND - 1))
 if [ $# -lt 2 ]; then
-  sed -n '2,12p' "$0" >&2
+  sed -n '2,15p' "$0" >&2
   exit 2
 fi
 A=$1 B=$2
@@ -49,7 +52,9 @@ for name in "${LOGS[@]}"; do
     for side in A B; do
       bin=$A; [ $side = B ] && bin=$B
       dir=$OUT/$tag-$side-$r
-      /usr/bin/time -f "%e %U %S %M" -o "$dir.time" "$bin/gridtopo-slam" -i "$log" -c "$INI" -p "$PARTICLES" \
+      libs=${LD_LIBRARY_PATH:-}
+      [ -d "$bin/../lib" ] && libs=$(cd "$bin/../lib" && pwd)${libs:+:$libs}
+      LD_LIBRARY_PATH=$libs /usr/bin/time -f "%e %U %S %M" -o "$dir.time" "$bin/gridtopo-slam" -i "$log" -c "$INI" -p "$PARTICLES" \
         -s "$SEED" -t "$THREADS" -o "$dir" -q > "$dir.log" 2>&1 || { echo "bench_speed: $bin on $log failed: $dir.log" >&2; exit 1; }
     done
   done

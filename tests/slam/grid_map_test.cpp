@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <iterator>
 
 #include "gridtopo/slam/grid_map.h"
@@ -101,6 +102,54 @@ TEST(GridMap, CopiesShareTilesUntilWritten) {
   b = GridMap(0.05);
   EXPECT_FLOAT_EQ(c.cell(10, 10)->log_odds, 3.0f);
   EXPECT_EQ(sharedTiles(a, c), tiles - 2);
+}
+
+TEST(GridMap, AScanIntoASharedMapEqualsItsBeamsInsertedOneByOne) {
+  // insertScan keeps the tiles it made writable in a small direct-mapped table (by the low bits of the tile
+  // coordinates); beams 12 m long in every direction cross tiles 16 apart that share its entries, and a copy of a
+  // map shares every tile until written. The scan into a copy must equal its beams inserted one call each into
+  // another copy (no beam of those revisits an entry: it spans 15 tiles), and leave the original untouched.
+  MapUpdateOptions o;
+  GridMap base(0.05);
+  std::vector<MapBeam> wall;
+  for (int k = 0; k < 90; ++k) wall.push_back({11.0 * std::cos(k * 0.07), 11.0 * std::sin(k * 0.07), true});
+  base.insertScan({0.3, -0.2, 0.1}, {}, wall, o);
+  std::vector<MapBeam> beams;
+  for (int k = 0; k < 361; ++k) {
+    const double r = 12.0 - 0.01 * (k % 7), a = k * 2.0 * M_PI / 361.0;
+    beams.push_back({r * std::cos(a), r * std::sin(a), k % 5 != 0, k % 3 == 0 ? 0.8 : 1.0});
+  }
+  const Pose2 robot{0.12, 0.07, 0.3}, sensor{0.2, 0.0, 0.0};
+  GridMap whole = base, one_by_one = base;
+  whole.insertScan(robot, sensor, beams, o);
+  for (const MapBeam& b : beams) one_by_one.insertScan(robot, sensor, {b}, o);
+  std::size_t cells = 0, hits = 0;
+  whole.forEachTile([&](int tx, int ty, const GridMap::Tile&) {
+    for (int y = 0; y < GridMap::kTileSize; ++y)
+      for (int x = 0; x < GridMap::kTileSize; ++x) {
+        const int cx = tx * GridMap::kTileSize + x, cy = ty * GridMap::kTileSize + y;
+        const auto a = whole.cell(cx, cy), b = one_by_one.cell(cx, cy);
+        ASSERT_TRUE(b) << cx << ' ' << cy;
+        ASSERT_EQ(a->log_odds, b->log_odds) << cx << ' ' << cy;
+        ASSERT_EQ(a->hits, b->hits) << cx << ' ' << cy;
+        ASSERT_EQ(a->hit_x, b->hit_x) << cx << ' ' << cy;
+        cells += a->log_odds != 0.0f;
+        hits += a->hits;
+      }
+  });
+  EXPECT_EQ(whole.tileCount(), one_by_one.tileCount());
+  EXPECT_GT(cells, 50000u);
+  EXPECT_GT(hits, 280u);
+  // The original kept its own tiles: the wall's cells as before, the new scan's far cells unknown.
+  EXPECT_FALSE(base.cell(base.cellIndex(-11.9), base.cellIndex(0.0)));
+  EXPECT_LT(sharedTiles(base, whole), base.tileCount());
+  GridMap again(0.05);
+  again.insertScan({0.3, -0.2, 0.1}, {}, wall, o);
+  base.forEachTile([&](int tx, int ty, const GridMap::Tile& t) {
+    const GridMap::Tile* u = again.tileAt(tx * GridMap::kTileSize, ty * GridMap::kTileSize);
+    ASSERT_TRUE(u);
+    EXPECT_EQ(t.log_odds, u->log_odds);
+  });
 }
 
 TEST(GridMap, TileCopiesShareHitMeansUntilHit) {

@@ -84,6 +84,61 @@ TEST(ScanMatcher, CachedScorerEqualsScoreScanBitForBit) {
   }
 }
 
+TEST(ScanMatcher, ScorersReuseTheirThreadsTablesWithoutCarryingAnythingOver) {
+  // A scorer takes its tables from the thread's pool and gives them back emptied: the next scorer, on another map
+  // and a scan of another size, nested in a third or after a scorer whose table grew, scores exactly as scoreScan.
+  Fixture f;
+  const auto scan = f.scanAt({6.3, 2.8, 0.05});
+  PreparedScan few;
+  for (std::size_t b = 0; b < scan.size(); b += 7) {
+    few.ex.push_back(scan.ex[b]);
+    few.ey.push_back(scan.ey[b]);
+    few.fx.push_back(scan.fx[b]);
+    few.fy.push_back(scan.fy[b]);
+    few.nx.push_back(scan.nx[b]);
+    few.ny.push_back(scan.ny[b]);
+  }
+  GridMap shifted(0.05);  // the same walls 0.4 m further east: every window differs from f.map's
+  {
+    sim::SimOptions so = f.so;
+    const auto log = sim::simulate(f.plan, {{2, 2.8, 0}, {9, 2.8, 0}}, so);
+    for (std::size_t i = 0; i < log.records.size(); ++i) {
+      const auto ps = prepareScan(log.records[i].scan, f.bo, shifted.resolution());
+      const auto& t = log.truth[i];
+      shifted.insertScan({t.x + 0.4, t.y, t.phi}, ps.sensor, ps.map_beams, MapUpdateOptions{});
+    }
+  }
+  ScanMatcherOptions o;
+  std::uint64_t state = 7;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  // Scores `n` poses spread by `r` around (x, y) with a scorer and with scoreScan; returns how many poses differ.
+  auto check = [&](ScanScorer& scorer, const GridMap& map, const PreparedScan& s, double r, int n) {
+    int differing = 0;
+    for (int i = 0; i < n; ++i) {
+      const Pose2 x{6.3 + r * (uniform() - 0.5), 2.8 + r * (uniform() - 0.5), 0.05 + 0.3 * (uniform() - 0.5)};
+      const ScanScore a = scoreScan(map, x, s, o), b = scorer.score(x);
+      differing += a.matched != b.matched || a.log_likelihood != b.log_likelihood;
+    }
+    return differing;
+  };
+  {
+    ScanScorer wide(f.map, scan, o);  // poses over 6 m: thousands of windows, the table grows
+    EXPECT_EQ(check(wide, f.map, scan, 6.0, 3000), 0);
+  }
+  for (int round = 0; round < 3; ++round) {
+    ScanScorer outer(shifted, round == 1 ? few : scan, o);
+    EXPECT_EQ(check(outer, shifted, round == 1 ? few : scan, 0.3, 200), 0) << round;
+    {
+      ScanScorer inner(f.map, round == 1 ? scan : few, o);
+      EXPECT_EQ(check(inner, f.map, round == 1 ? scan : few, 0.3, 200), 0) << round;
+    }
+    EXPECT_EQ(check(outer, shifted, round == 1 ? few : scan, 0.3, 200), 0) << round;
+  }
+}
+
 TEST(ScanMatcher, ScoreAboveGivesUpOnlyBelowItsBound) {
   // scoreAbove (the hill climb's early exit) returns nothing exactly when the full score is <= the bound, and
   // otherwise exactly score(x): the climb's decisions are those of the full evaluation.

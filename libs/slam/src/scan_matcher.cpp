@@ -116,12 +116,47 @@ inline std::uint64_t cellKey(int cx, int cy) {
 }
 }  // namespace
 
+struct ScanScorer::Tables {
+  std::vector<Slot> table;
+  std::vector<std::uint32_t> filled;
+  std::vector<double> hits;
+  std::vector<Slot> near;
+};
+
+namespace {
+constexpr std::size_t kInitialTableBits = 12;
+// Each thread's unused tables: a scorer takes one (or makes one) and gives it back emptied. A proposal's coarse
+// scorer lives inside the fine one, so a thread holds two.
+template <class T>
+std::vector<std::unique_ptr<T>>& tablePool() {
+  thread_local std::vector<std::unique_ptr<T>> pool;
+  return pool;
+}
+template <class T>
+std::unique_ptr<T> takeTables() {
+  auto& pool = tablePool<T>();
+  if (pool.empty()) return std::make_unique<T>();
+  std::unique_ptr<T> t = std::move(pool.back());
+  pool.pop_back();
+  return t;
+}
+}  // namespace
+
 ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o)
-    : map_(map), scan_(scan), o_(o) {
-  table_.assign(4096, Slot{kEmpty, 0, 0});
-  shift_ = 64 - 12;
+    : map_(map), scan_(scan), o_(o), tables_(takeTables<Tables>()), table_(tables_->table), filled_(tables_->filled),
+      hits_(tables_->hits), near_(tables_->near) {
+  // A table given back keeps its size (every slot empty): a power of two, at least 2^12.
+  if (table_.empty()) table_.assign(std::size_t{1} << kInitialTableBits, Slot{kEmpty, 0, 0});
+  shift_ = 64 - __builtin_ctzll(table_.size());
   hits_.reserve(4096);
   near_.assign(scan.size() * kNearSlots, Slot{kEmpty, 0, 0});
+}
+
+ScanScorer::~ScanScorer() {
+  for (const std::uint32_t i : filled_) table_[i].key = kEmpty;
+  filled_.clear();
+  hits_.clear();
+  tablePool<Tables>().push_back(std::move(tables_));
 }
 
 void ScanScorer::grow() {
@@ -129,11 +164,13 @@ void ScanScorer::grow() {
   old.swap(table_);
   --shift_;
   const std::size_t mask = table_.size() - 1;
+  filled_.clear();
   for (const Slot& s : old) {
     if (s.key == kEmpty) continue;
     std::size_t i = static_cast<std::size_t>((s.key * 0x9E3779B97F4A7C15ULL) >> shift_);
     while (table_[i].key != kEmpty) i = (i + 1) & mask;
     table_[i] = s;
+    filled_.push_back(static_cast<std::uint32_t>(i));
   }
 }
 
@@ -169,6 +206,7 @@ const ScanScorer::Slot& ScanScorer::window(int cx, int cy) {
         if (const GridMap::Tile* t = map_.tileAt(cx + dx, cy + dy)) take(t, GridMap::cellOffset(cx + dx, cy + dy));
   }
   table_[i] = Slot{key, static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(hits_.size() / 2 - offset)};
+  filled_.push_back(static_cast<std::uint32_t>(i));
   const Slot& filled = table_[i];
   if (++used_ * 2 > table_.size()) {
     grow();
