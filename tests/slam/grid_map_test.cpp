@@ -105,10 +105,9 @@ TEST(GridMap, CopiesShareTilesUntilWritten) {
 }
 
 TEST(GridMap, AScanIntoASharedMapEqualsItsBeamsInsertedOneByOne) {
-  // insertScan keeps the tiles it made writable in a small direct-mapped table (by the low bits of the tile
-  // coordinates); beams 12 m long in every direction cross tiles 16 apart that share its entries, and a copy of a
-  // map shares every tile until written. The scan into a copy must equal its beams inserted one call each into
-  // another copy (no beam of those revisits an entry: it spans 15 tiles), and leave the original untouched.
+  // A copy of a map shares every tile until written, and a scan writes hundreds of tiles, most of them many times
+  // (every beam starts in the sensor's tiles). Beams 12 m long in every direction into a copy must give what the
+  // same beams give inserted one call each into another copy, and leave the original untouched.
   MapUpdateOptions o;
   GridMap base(0.05);
   std::vector<MapBeam> wall;

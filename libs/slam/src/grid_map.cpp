@@ -1,7 +1,6 @@
 #include "gridtopo/slam/grid_map.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdlib>
 
@@ -86,23 +85,17 @@ void GridMap::insertScan(const Pose2& robot, const Pose2& sensor, const std::vec
   }
   ensureBlockRange(minx >> kBlockCellBits, miny >> kBlockCellBits, maxx >> kBlockCellBits, maxy >> kBlockCellBits);
 
-  // The tiles made writable so far, direct-mapped by their low coordinate bits: consecutive cells of a beam mostly
-  // share a tile, and every beam starts in the sensor's tiles, which the beams before it made writable already. A
-  // tile made writable stays this map's own until the scan is in (nothing else copies the map meanwhile).
-  struct Writable {
-    int tx = 0x7fffffff, ty = 0x7fffffff;
-    Tile* tile = nullptr;
-  };
-  constexpr int kCacheBits = 4;
-  constexpr int kCacheMask = (1 << kCacheBits) - 1;
-  std::array<Writable, std::size_t{1} << (2 * kCacheBits)> writable;
-  Writable* last = &writable[0];
+  // Cache of the last writable tile (consecutive cells of a beam mostly share a tile).
+  int cached_tx = 0x7fffffff, cached_ty = 0x7fffffff;
+  Tile* cached = nullptr;
   auto tileOf = [&](int cx, int cy) -> Tile* {
     const int tx = cx >> kTileBits, ty = cy >> kTileBits;
-    if (tx == last->tx && ty == last->ty) return last->tile;
-    last = &writable[static_cast<std::size_t>(((ty & kCacheMask) << kCacheBits) | (tx & kCacheMask))];
-    if (tx != last->tx || ty != last->ty) *last = {tx, ty, writableTile(cx, cy)};
-    return last->tile;
+    if (tx != cached_tx || ty != cached_ty) {
+      cached = writableTile(cx, cy);
+      cached_tx = tx;
+      cached_ty = ty;
+    }
+    return cached;
   };
 
   for (std::size_t k = 0; k < beams.size(); ++k) {
