@@ -125,8 +125,8 @@ struct ScanScorer::Tables {
 
 namespace {
 constexpr std::size_t kInitialTableBits = 12;
-// Each thread's unused tables: a scorer takes one (or makes one) and gives it back emptied. A proposal's coarse
-// scorer lives inside the fine one, so a thread holds two.
+// Each thread's unused tables: a scorer takes one (or makes one) and gives it back emptied. Scorers can nest (the
+// coarse-to-fine search's coarse scorer lives inside the fine one): a thread then holds two.
 template <class T>
 std::vector<std::unique_ptr<T>>& tablePool() {
   thread_local std::vector<std::unique_ptr<T>> pool;

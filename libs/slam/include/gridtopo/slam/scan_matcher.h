@@ -87,8 +87,8 @@ ScanScore scoreScan(const GridMap& map, const Pose2& x, const PreparedScan& scan
 /// points of a search fall in cells seen before (the search steps back and forth by a cell or less), so most
 /// evaluations read no map tile and most skip the hash table. Gives exactly scoreScan's result.
 /// The map must not change while the scorer is used. Its tables are reused by the next scorer of the same thread
-/// (a proposal makes two per particle and scan: allocating and filling 150 kB each time was ~9 % of the hospital's
-/// CPU); only the slots a scorer filled are emptied when it ends.
+/// (a proposal makes one per particle and scan, two with the coarse-to-fine search; allocating and filling ≈ 150 kB
+/// each time was 9 % of the hospital's CPU in `perf`); only the slots a scorer filled are emptied when it ends.
 class ScanScorer {
  public:
   ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o);
