@@ -89,15 +89,7 @@ TEST(ScanMatcher, ScorersReuseTheirThreadsTablesWithoutCarryingAnythingOver) {
   // and a scan of another size, nested in a third or after a scorer whose table grew, scores exactly as scoreScan.
   Fixture f;
   const auto scan = f.scanAt({6.3, 2.8, 0.05});
-  PreparedScan few;
-  for (std::size_t b = 0; b < scan.size(); b += 7) {
-    few.ex.push_back(scan.ex[b]);
-    few.ey.push_back(scan.ey[b]);
-    few.fx.push_back(scan.fx[b]);
-    few.fy.push_back(scan.fy[b]);
-    few.nx.push_back(scan.nx[b]);
-    few.ny.push_back(scan.ny[b]);
-  }
+  const PreparedScan few = everyNthMatchingPoint(scan, 7);
   GridMap shifted(0.05);  // the same walls 0.4 m further east: every window differs from f.map's
   {
     sim::SimOptions so = f.so;

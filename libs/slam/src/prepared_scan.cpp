@@ -144,4 +144,17 @@ PreparedScan prepareScan(const LaserScan& scan, const BeamOptions& o, double res
   return p;
 }
 
+PreparedScan everyNthMatchingPoint(const PreparedScan& scan, std::size_t step) {
+  PreparedScan sub;
+  for (std::size_t b = 0; b < scan.size(); b += step) {
+    sub.ex.push_back(scan.ex[b]);
+    sub.ey.push_back(scan.ey[b]);
+    sub.fx.push_back(scan.fx[b]);
+    sub.fy.push_back(scan.fy[b]);
+    sub.nx.push_back(scan.nx[b]);
+    sub.ny.push_back(scan.ny[b]);
+  }
+  return sub;
+}
+
 }  // namespace gridtopo::slam

@@ -125,25 +125,25 @@ struct ScanScorer::Tables {
 
 namespace {
 constexpr std::size_t kInitialTableBits = 12;
+}  // namespace
+
 // Each thread's unused tables: a scorer takes one (or makes one) and gives it back emptied. Scorers can nest (the
 // coarse-to-fine search's coarse scorer lives inside the fine one): a thread then holds two.
-template <class T>
-std::vector<std::unique_ptr<T>>& tablePool() {
-  thread_local std::vector<std::unique_ptr<T>> pool;
+std::vector<std::unique_ptr<ScanScorer::Tables>>& ScanScorer::threadPool() {
+  thread_local std::vector<std::unique_ptr<Tables>> pool;
   return pool;
 }
-template <class T>
-std::unique_ptr<T> takeTables() {
-  auto& pool = tablePool<T>();
-  if (pool.empty()) return std::make_unique<T>();
-  std::unique_ptr<T> t = std::move(pool.back());
+
+std::unique_ptr<ScanScorer::Tables> ScanScorer::takeTables() {
+  auto& pool = threadPool();
+  if (pool.empty()) return std::make_unique<Tables>();
+  std::unique_ptr<Tables> t = std::move(pool.back());
   pool.pop_back();
   return t;
 }
-}  // namespace
 
 ScanScorer::ScanScorer(const GridMap& map, const PreparedScan& scan, const ScanMatcherOptions& o)
-    : map_(map), scan_(scan), o_(o), tables_(takeTables<Tables>()), table_(tables_->table), filled_(tables_->filled),
+    : map_(map), scan_(scan), o_(o), tables_(takeTables()), table_(tables_->table), filled_(tables_->filled),
       hits_(tables_->hits), near_(tables_->near) {
   // A table given back keeps its size (every slot empty): a power of two, at least 2^12.
   if (table_.empty()) table_.assign(std::size_t{1} << kInitialTableBits, Slot{kEmpty, 0, 0});
@@ -156,7 +156,7 @@ ScanScorer::~ScanScorer() {
   for (const std::uint32_t i : filled_) table_[i].key = kEmpty;
   filled_.clear();
   hits_.clear();
-  tablePool<Tables>().push_back(std::move(tables_));
+  threadPool().push_back(std::move(tables_));
 }
 
 void ScanScorer::grow() {
@@ -442,15 +442,7 @@ MatchResult matchScan(ScanScorer& scorer, const Pose2& start, const MatchPrior* 
     const int coarse = std::min(o.coarse_levels, o.refinements);
     if (coarse > 0 && o.coarse_beam_step > 1) {
       // Coarse-to-fine: the large steps only need to find the basin; every n-th matching beam does.
-      PreparedScan sub;
-      for (std::size_t b = 0; b < scan.size(); b += static_cast<std::size_t>(o.coarse_beam_step)) {
-        sub.ex.push_back(scan.ex[b]);
-        sub.ey.push_back(scan.ey[b]);
-        sub.fx.push_back(scan.fx[b]);
-        sub.fy.push_back(scan.fy[b]);
-        sub.nx.push_back(scan.nx[b]);
-        sub.ny.push_back(scan.ny[b]);
-      }
+      const PreparedScan sub = everyNthMatchingPoint(scan, static_cast<std::size_t>(o.coarse_beam_step));
       ScanScorer sub_scorer(map, sub, o);
       MatchResult c;
       c.pose = start;

@@ -65,4 +65,8 @@ constexpr double kNormalMaxRms = 0.02;
 
 PreparedScan prepareScan(const LaserScan& scan, const BeamOptions& o, double resolution);
 
+/// Every step-th matching end point of `scan` (with its free-cell point and normal), from the first; the map beams
+/// and the sensor pose are not copied (a scan for scoring only: the coarse-to-fine search's coarse levels).
+PreparedScan everyNthMatchingPoint(const PreparedScan& scan, std::size_t step);
+
 }  // namespace gridtopo::slam

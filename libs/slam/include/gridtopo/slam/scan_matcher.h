@@ -6,8 +6,8 @@
 // accuracy because the hit means are continuous.
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "gridtopo/slam/grid_map.h"
@@ -122,6 +122,8 @@ class ScanScorer {
   const ScanMatcherOptions& o_;
   // The tables below, taken from the thread's pool of unused ones (empty) and given back (emptied) at the end.
   struct Tables;
+  static std::vector<std::unique_ptr<Tables>>& threadPool();
+  static std::unique_ptr<Tables> takeTables();
   std::unique_ptr<Tables> tables_;
   std::vector<Slot>& table_;         // open addressing, linear probing, power-of-two size
   std::vector<std::uint32_t>& filled_;  // the table's slots in use, to empty them at the end
