@@ -4,7 +4,8 @@
 # relations error of the first repetition's trajectory (gridtopo-eval of binary B). Prints a markdown table of the
 # medians with the ratio B / A, and checks that A and B gave the same trajectory (a speed change should not move
 # the result; "differs" says when it did).
-#   usage: scripts/bench_speed.sh [-r REPS] [-t THREADS] [-p PARTICLES] [-s SEED] [-c INI] [-o OUT] A_BIN_DIR B_BIN_DIR [LOG ...]
+#   usage: scripts/bench_speed.sh [-r REPS] [-t THREADS] [-p PARTICLES] [-s SEED] [-c INI] [-C A_INI] [-o OUT] A_BIN_DIR B_BIN_DIR [LOG ...]
+# -C: binary A's own INI (an older binary with another default INI, e.g. a worktree's config-ini/slam.ini; default -c's).
 #   e.g.   mkdir /tmp/old; cp -r build/bin build/lib /tmp/old; (change, rebuild);
 #          scripts/bench_speed.sh /tmp/old/bin build/bin intel aces
 # A binary's libraries are taken from the lib folder beside its bin folder when there is one (the build's RUNPATH
@@ -14,11 +15,11 @@
 # 30 minutes on two cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-REPS=3 THREADS=2 PARTICLES=30 SEED=1 INI=config-ini/slam.ini OUT=
-while getopts "r:t:p:s:c:o:" f; do
+REPS=3 THREADS=2 PARTICLES=30 SEED=1 INI=config-ini/slam.ini A_INI= OUT=
+while getopts "r:t:p:s:c:C:o:" f; do
   case $f in
     r) REPS=$OPTARG ;; t) THREADS=$OPTARG ;; p) PARTICLES=$OPTARG ;; s) SEED=$OPTARG ;; c) INI=$OPTARG ;;
-    o) OUT=$OPTARG ;; *) exit 2 ;;
+    C) A_INI=$OPTARG ;; o) OUT=$OPTARG ;; *) exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -28,6 +29,10 @@ if [ $# -lt 2 ]; then
 fi
 A=$1 B=$2
 shift 2
+A_INI=${A_INI:-$INI}
+for ini in "$INI" "$A_INI"; do
+  [ -f "$ini" ] || { echo "bench_speed: $ini: no such INI" >&2; exit 2; }
+done
 for bin in "$A" "$B"; do
   [ -x "$bin/gridtopo-slam" ] || { echo "bench_speed: $bin/gridtopo-slam: not an executable" >&2; exit 2; }
 done
@@ -50,11 +55,11 @@ for name in "${LOGS[@]}"; do
   tag=$(basename "${log%%.clf*}")
   for ((r = 1; r <= REPS; ++r)); do
     for side in A B; do
-      bin=$A; [ $side = B ] && bin=$B
+      bin=$A ini=$A_INI; [ $side = B ] && bin=$B ini=$INI
       dir=$OUT/$tag-$side-$r
       libs=${LD_LIBRARY_PATH:-}
       [ -d "$bin/../lib" ] && libs=$(cd "$bin/../lib" && pwd)${libs:+:$libs}
-      LD_LIBRARY_PATH=$libs /usr/bin/time -f "%e %U %S %M" -o "$dir.time" "$bin/gridtopo-slam" -i "$log" -c "$INI" -p "$PARTICLES" \
+      LD_LIBRARY_PATH=$libs /usr/bin/time -f "%e %U %S %M" -o "$dir.time" "$bin/gridtopo-slam" -i "$log" -c "$ini" -p "$PARTICLES" \
         -s "$SEED" -t "$THREADS" -o "$dir" -q > "$dir.log" 2>&1 || { echo "bench_speed: $bin on $log failed: $dir.log" >&2; exit 1; }
     done
   done
@@ -71,4 +76,5 @@ for name in "${LOGS[@]}"; do
     'BEGIN {printf "| %s | %.1f | %.1f | %.2f | %.1f | %.1f | %.2f | %.0f | %.0f | %s | %s |\n", t, aw, bw, bw / aw, ac, bc, bc / ac, ar, br, e, s}'
 done
 echo
-echo "($REPS repetitions each, alternated A B; -p $PARTICLES -s $SEED -t $THREADS -c $INI; medians; A = $A, B = $B)"
+a_ini=; [ "$A_INI" != "$INI" ] && a_ini=" (A: -c $A_INI)"
+echo "($REPS repetitions each, alternated A B; -p $PARTICLES -s $SEED -t $THREADS -c $INI$a_ini; medians; A = $A, B = $B)"
