@@ -121,13 +121,16 @@ TEST(ScanMatcher, ScorersReuseTheirThreadsTablesWithoutCarryingAnythingOver) {
     EXPECT_EQ(check(wide, f.map, scan, 6.0, 3000), 0);
   }
   for (int round = 0; round < 3; ++round) {
-    ScanScorer outer(shifted, round == 1 ? few : scan, o);
-    EXPECT_EQ(check(outer, shifted, round == 1 ? few : scan, 0.3, 200), 0) << round;
+    // Round 1 swaps the two scorers' scans: each gets back tables last used with the other scan.
+    const PreparedScan& outer_scan = round == 1 ? few : scan;
+    const PreparedScan& inner_scan = round == 1 ? scan : few;
+    ScanScorer outer(shifted, outer_scan, o);
+    EXPECT_EQ(check(outer, shifted, outer_scan, 0.3, 200), 0) << round;
     {
-      ScanScorer inner(f.map, round == 1 ? scan : few, o);
-      EXPECT_EQ(check(inner, f.map, round == 1 ? scan : few, 0.3, 200), 0) << round;
+      ScanScorer inner(f.map, inner_scan, o);
+      EXPECT_EQ(check(inner, f.map, inner_scan, 0.3, 200), 0) << round;
     }
-    EXPECT_EQ(check(outer, shifted, round == 1 ? few : scan, 0.3, 200), 0) << round;
+    EXPECT_EQ(check(outer, shifted, outer_scan, 0.3, 200), 0) << round;
   }
 }
 
